@@ -1,0 +1,60 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <span>
+
+#include "soltex/common/texture_spec.h"
+
+// Sums of noise octaves (turbulence, fBm), band-limited to a filter width.
+//
+// Octave k has frequency f_k = scale * 2^k lattice cells per texture unit and weight (1/2)^k.
+// Sampled with spacing w (the filter width), it is representable only while its lattice
+// spacing 1/f_k spans about two samples or more. Its visibility is
+//     alpha_k = 1 - smoothstep(0.25, 0.5, f_k * w),
+// and the octave contributes (1/2)^k * (alpha_k * noise + (1 - alpha_k) * mean): fully present
+// up to four samples per cell, gone at the Nyquist limit of two, replaced by the basis mean.
+// An octave with alpha_k = 0 is not evaluated at all. See docs/TEXTURES.md for the sources.
+namespace soltex {
+
+// Mean of |gradient noise| over space, measured over 2^24 samples spread across many
+// periods (the fractal test re-measures it).
+inline constexpr float kGradientAbsMean = 0.2105f;
+
+struct Octave {
+  double frequency;    // lattice cells per texture unit
+  float noise_weight;  // (1/2)^k * alpha_k
+  float mean_term;     // (1/2)^k * (1 - alpha_k) * basis mean
+};
+
+// The octaves of one fractal for one filter width: computed once per brick or frame.
+struct OctavePlan {
+  NoiseBasis basis = NoiseBasis::value;
+  bool absolute = true;  // fold each octave with |.| (gradient basis only)
+  int count = 0;
+  std::array<Octave, SpecLimits::kMaxOctaveCount> octaves{};
+  float total_weight = 0.0f;  // sum of (1/2)^k: the largest possible raw sum for value noise
+  int evaluated_octaves() const;  // octaves with a nonzero noise weight
+};
+
+// filter_width = 0 means point sampling: every octave is fully present.
+OctavePlan plan_octaves(const FractalParams& params, double filter_width);
+
+// The raw sum at one point.
+float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept;
+
+// The raw sum at (x[i], y, z) for every i; bit-identical to fractal_sum at each point.
+// Points inside one lattice cell share that cell's corner work.
+void fractal_sum_row(const OctavePlan& plan, std::span<const double> x, double y, double z,
+                     std::span<float> out);
+
+// One octave of a basis at lattice-unit point t (no scaling, no weight).
+float basis_noise(NoiseBasis basis, const glm::dvec3& t) noexcept;
+
+// Adds basis(x[i] * frequency, y * frequency, z * frequency) to out[i]: the row
+// kernel behind fractal_sum_row, exposed for single-octave noise and benchmarks.
+void noise_row(NoiseBasis basis, std::span<const double> x, double y, double z, double frequency,
+               std::span<float> out);
+
+}  // namespace soltex

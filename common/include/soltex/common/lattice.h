@@ -1,0 +1,45 @@
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+// Splitting a texture-space coordinate into an integer lattice cell and a fraction.
+//
+// Every split goes through floor() in double precision, never an int cast ((int)-0.5 == 0),
+// and the cell is reduced by the lattice period before it is ever converted to int, so any
+// finite input, however large, yields a valid table index.
+namespace soltex {
+
+// The noise lattices repeat every 256 cells along each axis (256-entry tables).
+inline constexpr int kLatticePeriod = 256;
+
+struct LatticeSplit {
+  int cell;    // floor(t) mod 256, in [0, 255]
+  float frac;  // t - floor(t), in [0, 1]; may round up to 1.0f, which continuity makes harmless
+};
+
+// Non-finite t (NaN, +-Inf) is treated as 0: a defined value, never an out-of-range index.
+inline LatticeSplit split_lattice(double t) noexcept {
+  if (!std::isfinite(t)) t = 0.0;
+  const double whole = std::floor(t);
+  // Both steps are exact in binary floating point: whole / 256 scales by a power of two, and
+  // the difference of two integers that lies in [0, 256) is representable.
+  const double wrapped = whole - 256.0 * std::floor(whole * (1.0 / 256.0));
+  return {static_cast<int>(wrapped), static_cast<float>(t - whole)};
+}
+
+// fract(u) = u - floor(u), exact for finite u; non-finite u gives 0.
+inline double fract(double u) noexcept {
+  if (!std::isfinite(u)) return 0.0;
+  return u - std::floor(u);
+}
+
+// floor(u) mod 2 (floored, so negative u works): 0 or 1. Non-finite u gives 0. Exact for
+// every finite double: halving and doubling are exact, and so is the final difference.
+inline int floor_parity(double u) noexcept {
+  if (!std::isfinite(u)) return 0;
+  const double whole = std::floor(u);
+  return static_cast<int>(whole - 2.0 * std::floor(whole * 0.5));
+}
+
+}  // namespace soltex

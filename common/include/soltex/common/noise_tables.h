@@ -1,0 +1,32 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+namespace soltex {
+
+// The random tables behind both noise bases, generated once from a fixed seed so every
+// process and build sees the same textures.
+struct NoiseTables {
+  // NoiseTable[256]: values in [0, 1].
+  std::array<float, 256> value;
+  // Index[256], a random permutation of 0..255, stored twice so that
+  // INDEX(ix, iy, iz) = PERM(ix + PERM(iy + PERM(iz))) never needs a mask for ix, iy, iz <= 256.
+  std::array<uint8_t, 512> perm;
+  // The mean of `value`; also the exact mean of value noise over one period, since every
+  // lattice value weighs the same in the integral of a trilinear interpolant.
+  float value_mean;
+
+  int index(int ix, int iy, int iz) const { return perm[ix + perm[iy + perm[iz]]]; }
+};
+
+// The seed is part of the texture definition: changing it changes every noise texture.
+inline constexpr uint64_t kNoiseSeed = 0x5011'7E57'2002'1985ULL;
+
+const NoiseTables& noise_tables();
+
+// Builds the tables from `seed` with SplitMix64 (Steele, Lea & Flood 2014) and a
+// Fisher-Yates shuffle, both fully specified here so the tables are the same everywhere.
+NoiseTables make_noise_tables(uint64_t seed);
+
+}  // namespace soltex

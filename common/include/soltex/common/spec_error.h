@@ -1,0 +1,25 @@
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace soltex {
+
+// A texture spec or volume that breaks a documented bound. The message names the field,
+// the offending value and the bound, e.g.
+// "marble.turbulence.octave_max = 40: must be in [0, 24]".
+class SpecError : public std::invalid_argument {
+ public:
+  SpecError(std::string field, std::string value, std::string bound);
+
+  const std::string& field() const { return field_; }
+  const std::string& value() const { return value_; }
+  const std::string& bound() const { return bound_; }
+
+ private:
+  std::string field_;
+  std::string value_;
+  std::string bound_;
+};
+
+}  // namespace soltex

@@ -1,0 +1,66 @@
+#pragma once
+
+#include <cstddef>
+#include <glm/vec3.hpp>
+#include <span>
+
+#include "soltex/common/fractal.h"
+#include "soltex/common/texture_spec.h"
+
+namespace soltex {
+
+// A regular 3D grid of points: point(i, j, k) = origin + (i, j, k) * step, x fastest.
+// Positions are computed from the index, never by accumulating steps, so two grids that
+// share a point compute it identically.
+struct Grid {
+  glm::dvec3 origin{0.0};
+  glm::dvec3 step{1.0};
+  glm::ivec3 count{1};
+
+  std::size_t size() const {
+    return static_cast<std::size_t>(count.x) * static_cast<std::size_t>(count.y) *
+           static_cast<std::size_t>(count.z);
+  }
+  glm::dvec3 point(int i, int j, int k) const {
+    return {origin.x + static_cast<double>(i) * step.x, origin.y + static_cast<double>(j) * step.y,
+            origin.z + static_cast<double>(k) * step.z};
+  }
+};
+
+// One evaluated texture sample: the pattern's scalar field t in [0, 1] and its colour.
+struct Texel {
+  glm::vec3 colour{0.0f};
+  float field = 0.0f;
+};
+
+// Evaluates one texture at points or over grids. Construction validates the spec (throws
+// SpecError) and precomputes what does not depend on the point. Thread-safe: all methods
+// are const and keep their scratch space per thread.
+//
+// filter_width is the sample spacing in texture units: octaves of noise finer than it can
+// show are faded to their mean (see fractal.h); 0 samples the function as it is.
+// sample() and evaluate_grid() give bit-identical results at the same point.
+class TextureEvaluator {
+ public:
+  explicit TextureEvaluator(const TextureSpec& spec);
+
+  const TextureSpec& spec() const { return spec_; }
+
+  Texel sample(const glm::dvec3& p, double filter_width = 0.0) const;
+
+  // Writes spec().channels.sample_count() planes of grid.size() floats each, channel-planar
+  // in the order R, G, B, opacity, specular (those present). out.size() must be at least
+  // sample_count() * grid.size(); throws std::invalid_argument otherwise.
+  void evaluate_grid(const Grid& grid, double filter_width, std::span<float> out) const;
+
+  // The octaves evaluated at this filter width (0 for patterns without noise).
+  int evaluated_octaves(double filter_width) const;
+
+ private:
+  OctavePlan plan_for(double filter_width) const;
+
+  TextureSpec spec_;
+  OctavePlan point_plan_;  // the plan for filter_width = 0, used most often
+};
+
+}  // namespace soltex

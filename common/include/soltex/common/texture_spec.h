@@ -1,0 +1,152 @@
+#pragma once
+
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <variant>
+#include <vector>
+
+// The validated C++ form of a texture: one pattern with its parameters, a colour ramp and
+// the channels a client wants. Defaults are the lecture slides' values where they give one.
+// Build a spec however you like, then pass it through validated(): it checks every field
+// against the bounds in SpecLimits and throws SpecError naming the field, value and bound.
+namespace soltex {
+
+enum class Axis : uint8_t { x, y, z };
+enum class NoiseBasis : uint8_t { value, gradient };
+enum class Ripple : uint8_t { axis, product };
+
+// sum_{k = octave_min}^{octave_max} (1/2)^k * basis(2^k * scale * p); with the gradient
+// basis each octave is |noise| unless signed_octaves.
+struct FractalParams {
+  double scale = 4.0;
+  int octave_min = 0;
+  int octave_max = 5;
+  NoiseBasis basis = NoiseBasis::value;
+  bool signed_octaves = false;
+};
+
+struct StripesParams {
+  double width = 1.0;
+  double offset = 0.0;
+  Axis axis = Axis::x;
+};
+
+struct CheckerParams {
+  glm::dvec3 size{1.0, 1.0, 1.0};
+  double offset = 0.0;
+  bool three_d = false;
+};
+
+struct ColourCubeParams {
+  double period = 1.0;
+};
+
+// t = base + amplitude * (floor(r / thickness) mod 2), r = sqrt(x^2 + y^2).
+struct RingsParams {
+  double thickness = 0.1;
+  double base = 0.0;
+  double amplitude = 1.0;
+};
+
+struct WoodParams {
+  double ring_spacing = 0.1;
+  double tilt_y = 0.3;
+  double tilt_z = 0.15;
+  double twist = 0.5;
+  double jitter = 0.6;
+  double jitter_scale = 4.0;
+  double grain_fraction = 0.2;
+};
+
+struct NoiseParams {
+  double scale = 4.0;
+  NoiseBasis basis = NoiseBasis::value;
+};
+
+struct TurbulenceParams {
+  FractalParams fractal;
+};
+
+struct MarbleParams {
+  double frequency = 2.0;
+  double amplitude = 4.0;
+  Ripple ripple = Ripple::axis;
+  Axis axis = Axis::x;
+  FractalParams turbulence;
+};
+
+using Pattern = std::variant<StripesParams, CheckerParams, ColourCubeParams, RingsParams,
+                             WoodParams, NoiseParams, TurbulenceParams, MarbleParams>;
+
+// Stable lower-case names ("stripes", "checker", ...), used in messages and file names.
+const char* pattern_name(const Pattern& pattern);
+
+struct RampKey {
+  float position = 0.0f;
+  glm::vec3 colour{0.0f};
+};
+
+// Piecewise-linear map from the scalar field t in [0, 1] to colour; constant beyond the end
+// keys. An empty ramp in a spec means "the pattern's default ramp".
+struct ColourRamp {
+  std::vector<RampKey> keys;
+
+  glm::vec3 at(float t) const noexcept;
+};
+
+ColourRamp default_ramp(const Pattern& pattern);
+
+enum class Channel : uint8_t { colour, opacity, specular };
+
+// Which channels a brick carries, in this fixed order: R, G, B (colour), opacity, specular.
+struct ChannelSet {
+  bool colour = true;
+  bool opacity = false;
+  bool specular = false;
+
+  int sample_count() const { return (colour ? 3 : 0) + (opacity ? 1 : 0) + (specular ? 1 : 0); }
+  bool operator==(const ChannelSet&) const = default;
+};
+
+struct ScalarRange {
+  float low = 0.0f;
+  float high = 1.0f;
+};
+
+struct TextureSpec {
+  Pattern pattern;
+  ColourRamp ramp;
+  ChannelSet channels;
+  ScalarRange opacity;
+  ScalarRange specular;
+};
+
+// The cache cube: a box in texture space, 2^finest_level_log2 cells per axis at level 0.
+struct Volume {
+  glm::dvec3 min{0.0};
+  glm::dvec3 max{1.0};
+  int finest_level_log2 = 8;
+};
+
+// Every bound a spec or volume must keep. Sizes and scales are bounded so that a request
+// cannot ask for unbounded work or for values whose products overflow.
+struct SpecLimits {
+  static constexpr double kMinLength = 1e-6;  // widths, sizes, periods, spacings
+  static constexpr double kMaxLength = 1e6;
+  static constexpr double kMaxOffset = 1e6;        // offsets, amplitudes, ring base
+  static constexpr double kMinFrequency = 1e-6;    // scales and frequencies
+  static constexpr double kMaxFrequency = 1e4;
+  static constexpr double kMaxAngle = 1e3;         // radians, and radians per unit of twist
+  static constexpr int kMaxOctave = 24;            // octave_max; 2^24 * scale stays exact
+  static constexpr int kMaxOctaveCount = 16;       // octave_max - octave_min + 1
+  static constexpr int kMaxRampKeys = 16;
+  static constexpr int kMaxFinestLevelLog2 = 14;   // 16384 cells per axis
+  static constexpr double kMaxVolumeCoordinate = 1e12;
+};
+
+// Checks every field and returns the spec with defaults filled in (the pattern's default
+// ramp when the ramp is empty). Throws SpecError on the first violation.
+TextureSpec validated(TextureSpec spec);
+Volume validated(Volume volume);
+
+}  // namespace soltex

@@ -1,0 +1,194 @@
+#include "soltex/common/texture_evaluator.h"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pattern_fields.h"
+
+namespace soltex {
+namespace {
+
+template <class... Ts>
+struct Overloaded : Ts... {
+  using Ts::operator()...;
+};
+
+// The fractal a pattern uses, if any.
+const FractalParams* fractal_of(const Pattern& pattern, FractalParams& storage) {
+  if (const auto* noise = std::get_if<NoiseParams>(&pattern)) {
+    storage = fields::single_octave(*noise);
+    return &storage;
+  }
+  if (const auto* turbulence = std::get_if<TurbulenceParams>(&pattern)) {
+    return &turbulence->fractal;
+  }
+  if (const auto* marble = std::get_if<MarbleParams>(&pattern)) return &marble->turbulence;
+  return nullptr;
+}
+
+fields::WoodFrame wood_frame(const Pattern& pattern) {
+  if (const auto* wood = std::get_if<WoodParams>(&pattern)) {
+    return {std::cos(wood->tilt_z), std::sin(wood->tilt_z)};
+  }
+  return {1.0, 0.0};
+}
+
+inline float cube_field(const glm::vec3& c) { return (c.r + c.g + c.b) * (1.0f / 3.0f); }
+
+struct RowScratch {
+  std::vector<double> x;
+  std::vector<float> field;
+  std::vector<glm::vec3> colour;
+};
+
+}  // namespace
+
+TextureEvaluator::TextureEvaluator(const TextureSpec& spec)
+    : spec_(validated(spec)), point_plan_(plan_for(0.0)) {}
+
+OctavePlan TextureEvaluator::plan_for(double filter_width) const {
+  FractalParams storage;
+  const FractalParams* fractal = fractal_of(spec_.pattern, storage);
+  return fractal ? plan_octaves(*fractal, filter_width) : OctavePlan{};
+}
+
+int TextureEvaluator::evaluated_octaves(double filter_width) const {
+  return plan_for(filter_width).evaluated_octaves();
+}
+
+Texel TextureEvaluator::sample(const glm::dvec3& p, double filter_width) const {
+  const OctavePlan local_plan = filter_width > 0.0 ? plan_for(filter_width) : OctavePlan{};
+  const OctavePlan& plan = filter_width > 0.0 ? local_plan : point_plan_;
+  Texel texel;
+  std::visit(Overloaded{
+                 [&](const StripesParams& s) { texel.field = fields::stripes(s, p); },
+                 [&](const CheckerParams& c) { texel.field = fields::checker(c, p); },
+                 [&](const ColourCubeParams& c) {
+                   texel.colour = fields::colour_cube(c, p);
+                   texel.field = cube_field(texel.colour);
+                 },
+                 [&](const RingsParams& r) { texel.field = fields::rings(r, p); },
+                 [&](const WoodParams& w) {
+                   texel.field = fields::wood(w, wood_frame(spec_.pattern), p);
+                 },
+                 [&](const NoiseParams&) {
+                   texel.field = fields::normalise_fractal(plan, fractal_sum(plan, p));
+                 },
+                 [&](const TurbulenceParams&) {
+                   texel.field = fields::normalise_fractal(plan, fractal_sum(plan, p));
+                 },
+                 [&](const MarbleParams& m) {
+                   texel.field = fields::marble(m, fields::ripple(m, p), fractal_sum(plan, p));
+                 },
+             },
+             spec_.pattern);
+  if (!std::holds_alternative<ColourCubeParams>(spec_.pattern)) {
+    texel.colour = spec_.ramp.at(texel.field);
+  }
+  return texel;
+}
+
+void TextureEvaluator::evaluate_grid(const Grid& grid, double filter_width,
+                                     std::span<float> out) const {
+  const std::size_t n = grid.size();
+  const int channels = spec_.channels.sample_count();
+  if (grid.count.x <= 0 || grid.count.y <= 0 || grid.count.z <= 0) {
+    throw std::invalid_argument("evaluate_grid: grid.count must be positive on every axis");
+  }
+  if (out.size() < n * static_cast<std::size_t>(channels)) {
+    throw std::invalid_argument("evaluate_grid: output holds " + std::to_string(out.size()) +
+                                " floats, the grid needs " +
+                                std::to_string(n * static_cast<std::size_t>(channels)));
+  }
+  const OctavePlan local_plan = filter_width > 0.0 ? plan_for(filter_width) : OctavePlan{};
+  const OctavePlan& plan = filter_width > 0.0 ? local_plan : point_plan_;
+  const fields::WoodFrame frame = wood_frame(spec_.pattern);
+  const bool is_cube = std::holds_alternative<ColourCubeParams>(spec_.pattern);
+
+  thread_local RowScratch scratch;
+  const auto nx = static_cast<std::size_t>(grid.count.x);
+  scratch.x.resize(nx);
+  scratch.field.resize(nx);
+  scratch.colour.resize(nx);
+  // The x coordinates are the same in every row.
+  for (std::size_t i = 0; i < nx; ++i) scratch.x[i] = grid.point(static_cast<int>(i), 0, 0).x;
+  const std::span<const double> xs(scratch.x.data(), nx);
+  float* field = scratch.field.data();
+  glm::vec3* colour = scratch.colour.data();
+
+  const auto row_field = [&](double y, double z) {
+    const auto each_point = [&](auto&& fn) {
+      for (std::size_t i = 0; i < nx; ++i) field[i] = fn(glm::dvec3(xs[i], y, z));
+    };
+    std::visit(Overloaded{
+                   [&](const StripesParams& s) {
+                     each_point([&](const glm::dvec3& p) { return fields::stripes(s, p); });
+                   },
+                   [&](const CheckerParams& c) {
+                     each_point([&](const glm::dvec3& p) { return fields::checker(c, p); });
+                   },
+                   [&](const ColourCubeParams& c) {
+                     for (std::size_t i = 0; i < nx; ++i) {
+                       colour[i] = fields::colour_cube(c, glm::dvec3(xs[i], y, z));
+                       field[i] = cube_field(colour[i]);
+                     }
+                   },
+                   [&](const RingsParams& r) {
+                     each_point([&](const glm::dvec3& p) { return fields::rings(r, p); });
+                   },
+                   [&](const WoodParams& w) {
+                     each_point([&](const glm::dvec3& p) { return fields::wood(w, frame, p); });
+                   },
+                   [&](const NoiseParams&) {
+                     fractal_sum_row(plan, xs, y, z, {field, nx});
+                     for (std::size_t i = 0; i < nx; ++i) {
+                       field[i] = fields::normalise_fractal(plan, field[i]);
+                     }
+                   },
+                   [&](const TurbulenceParams&) {
+                     fractal_sum_row(plan, xs, y, z, {field, nx});
+                     for (std::size_t i = 0; i < nx; ++i) {
+                       field[i] = fields::normalise_fractal(plan, field[i]);
+                     }
+                   },
+                   [&](const MarbleParams& m) {
+                     fractal_sum_row(plan, xs, y, z, {field, nx});
+                     for (std::size_t i = 0; i < nx; ++i) {
+                       field[i] = fields::marble(m, fields::ripple(m, glm::dvec3(xs[i], y, z)),
+                                                 field[i]);
+                     }
+                   },
+               },
+               spec_.pattern);
+  };
+
+  const ChannelSet& wanted = spec_.channels;
+  std::size_t row_start = 0;
+  for (int k = 0; k < grid.count.z; ++k) {
+    for (int j = 0; j < grid.count.y; ++j, row_start += nx) {
+      const glm::dvec3 row_origin = grid.point(0, j, k);
+      row_field(row_origin.y, row_origin.z);
+      float* plane = out.data() + row_start;
+      if (wanted.colour) {
+        for (std::size_t i = 0; i < nx; ++i) {
+          const glm::vec3 c = is_cube ? colour[i] : spec_.ramp.at(field[i]);
+          plane[i] = c.r;
+          plane[n + i] = c.g;
+          plane[2 * n + i] = c.b;
+        }
+        plane += 3 * n;
+      }
+      for (const auto* range : {wanted.opacity ? &spec_.opacity : nullptr,
+                                wanted.specular ? &spec_.specular : nullptr}) {
+        if (range == nullptr) continue;
+        for (std::size_t i = 0; i < nx; ++i) {
+          plane[i] = range->low + (range->high - range->low) * field[i];
+        }
+        plane += n;
+      }
+    }
+  }
+}
+
+}  // namespace soltex
