@@ -151,13 +151,13 @@ const char* pattern_name(const Pattern& pattern) {
 glm::vec3 ColourRamp::at(float t) const noexcept {
   if (keys.empty()) return glm::vec3(std::clamp(std::isnan(t) ? 0.0f : t, 0.0f, 1.0f));
   if (!(t > keys.front().position)) return keys.front().colour;  // also NaN
+  // Keys are hit exactly: a two-colour pattern gives its two colours, not a rounding of them.
   for (std::size_t i = 1; i < keys.size(); ++i) {
     const RampKey& hi = keys[i];
-    if (t <= hi.position) {
+    if (t == hi.position) return hi.colour;
+    if (t < hi.position) {
       const RampKey& lo = keys[i - 1];
-      const float span = hi.position - lo.position;
-      if (span <= 0.0f) return hi.colour;
-      const float u = (t - lo.position) / span;
+      const float u = (t - lo.position) / (hi.position - lo.position);
       return lo.colour + u * (hi.colour - lo.colour);
     }
   }
