@@ -7,7 +7,7 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config
   clang libclang-rt-14-dev        # libFuzzer and the sanitizer runtimes
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
-  libglm-dev libspdlog-dev libcli11-dev libstb-dev
+  libglm-dev libspdlog-dev libcli11-dev libstb-dev libxxhash-dev libzstd-dev liblz4-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <glm/vec3.hpp>
 #include <span>
 
@@ -9,21 +10,27 @@
 
 namespace soltex {
 
-// A regular 3D grid of points: point(i, j, k) = origin + (i, j, k) * step, x fastest.
-// Positions are computed from the index, never by accumulating steps, so two grids that
-// share a point compute it identically.
+// A regular 3D grid of points, x fastest:
+//     point(i, j, k) = origin + (first + (i, j, k)) * step
+// Positions are computed from the global lattice index (first + i), never by accumulating
+// steps or from a shifted origin, so two grids that share a lattice point (neighbouring bricks
+// sharing a face) compute it bit-identically.
 struct Grid {
   glm::dvec3 origin{0.0};
   glm::dvec3 step{1.0};
   glm::ivec3 count{1};
+  glm::ivec3 first{0};
 
   std::size_t size() const {
     return static_cast<std::size_t>(count.x) * static_cast<std::size_t>(count.y) *
            static_cast<std::size_t>(count.z);
   }
+  static double coordinate(double origin, double step, int first, int i) {
+    return origin + static_cast<double>(static_cast<int64_t>(first) + i) * step;
+  }
   glm::dvec3 point(int i, int j, int k) const {
-    return {origin.x + static_cast<double>(i) * step.x, origin.y + static_cast<double>(j) * step.y,
-            origin.z + static_cast<double>(k) * step.z};
+    return {coordinate(origin.x, step.x, first.x, i), coordinate(origin.y, step.y, first.y, j),
+            coordinate(origin.z, step.z, first.z, k)};
   }
 };
 
