@@ -8,9 +8,12 @@ namespace soltex {
 
 const char* mip_mode_name(MipMode mode) {
   switch (mode) {
-    case MipMode::point: return "point";
-    case MipMode::band_limited: return "band-limited";
-    case MipMode::supersampled: return "supersampled";
+    case MipMode::point:
+      return "point";
+    case MipMode::band_limited:
+      return "band-limited";
+    case MipMode::supersampled:
+      return "supersampled";
   }
   return "unknown";
 }
@@ -24,16 +27,22 @@ void evaluate_brick(const TextureEvaluator& texture, const BrickLayout& layout, 
   }
   const Grid grid = layout.sample_grid(level, brick);
   switch (mip.mode) {
-    case MipMode::point: texture.evaluate_grid(grid, 0.0, out); return;
-    case MipMode::band_limited: texture.evaluate_grid(grid, layout.filter_width(level), out); return;
-    case MipMode::supersampled: break;
+    case MipMode::point:
+      texture.evaluate_grid(grid, 0.0, out);
+      return;
+    case MipMode::band_limited:
+      texture.evaluate_grid(grid, layout.filter_width(level), out);
+      return;
+    case MipMode::supersampled:
+      break;
   }
   const int k = mip.supersample;
   if (k < 1 || k > 4) {
     throw std::invalid_argument("evaluate_brick: supersample = " + std::to_string(k) +
                                 " must be in [1, 4]");
   }
-  const std::size_t total = grid.size() * static_cast<std::size_t>(texture.spec().channels.sample_count());
+  const std::size_t total =
+      grid.size() * static_cast<std::size_t>(texture.spec().channels.sample_count());
   if (out.size() < total) {
     throw std::invalid_argument("evaluate_brick: output holds " + std::to_string(out.size()) +
                                 " floats, the brick needs " + std::to_string(total));

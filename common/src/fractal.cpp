@@ -67,8 +67,8 @@ inline void for_each_noise(std::span<const double> x, double frequency, double y
 }
 
 template <typename Emit>
-inline void dispatch_basis(NoiseBasis basis, std::span<const double> x, double frequency,
-                           double y, double z, Emit emit) {
+inline void dispatch_basis(NoiseBasis basis, std::span<const double> x, double frequency, double y,
+                           double z, Emit emit) {
   const NoiseTables& tables = noise_tables();
   if (basis == NoiseBasis::value) {
     for_each_noise(
@@ -101,8 +101,8 @@ OctavePlan plan_octaves(const FractalParams& params, double filter_width) {
   plan.absolute = params.basis == NoiseBasis::gradient && !params.signed_octaves;
   const float mean = basis_mean(plan);
   const double width = std::isfinite(filter_width) ? std::max(filter_width, 0.0) : 0.0;
-  for (int k = params.octave_min; k <= params.octave_max && plan.count < SpecLimits::kMaxOctaveCount;
-       ++k) {
+  for (int k = params.octave_min;
+       k <= params.octave_max && plan.count < SpecLimits::kMaxOctaveCount; ++k) {
     const double frequency = std::ldexp(params.scale, k);
     const float weight = std::ldexp(1.0f, -k);
     const float alpha = 1.0f - smoothstep(0.25f, 0.5f, static_cast<float>(frequency * width));

@@ -16,7 +16,9 @@
 
 namespace soltex::fields {
 
-inline double coordinate(const glm::dvec3& p, Axis axis) { return p[static_cast<int>(axis)]; }
+inline double coordinate(const glm::dvec3& p, Axis axis) {
+  return p[static_cast<int>(axis)];
+}
 
 inline float stripes(const StripesParams& s, const glm::dvec3& p) {
   return static_cast<float>(floor_parity(s.offset + coordinate(p, s.axis) / s.width));
@@ -29,7 +31,9 @@ inline float checker(const CheckerParams& c, const glm::dvec3& p) {
 }
 
 // 1 - |2 fract(u) - 1|: a triangle wave, 0 at integers and 1 halfway.
-inline float triangle(double u) { return static_cast<float>(1.0 - std::fabs(2.0 * fract(u) - 1.0)); }
+inline float triangle(double u) {
+  return static_cast<float>(1.0 - std::fabs(2.0 * fract(u) - 1.0));
+}
 
 inline glm::vec3 colour_cube(const ColourCubeParams& c, const glm::dvec3& p) {
   return {triangle(p.x / c.period), triangle(p.y / c.period), triangle(p.z / c.period)};
@@ -80,8 +84,8 @@ inline double ripple(const MarbleParams& m, const glm::dvec3& p) {
 // undulate(sin(2 pi fract(ripple) + A turb)), mapped to [0, 1]. The ripple is reduced by its
 // period before the multiplication by 2 pi, so far-away points keep their precision.
 inline float marble(const MarbleParams& m, double ripple_value, float turbulence) {
-  const double phase = 2.0 * std::numbers::pi * fract(ripple_value) +
-                       m.amplitude * static_cast<double>(turbulence);
+  const double phase =
+      2.0 * std::numbers::pi * fract(ripple_value) + m.amplitude * static_cast<double>(turbulence);
   return static_cast<float>(0.5 + 0.5 * std::sin(phase));
 }
 

@@ -34,7 +34,9 @@ fields::WoodFrame wood_frame(const Pattern& pattern) {
   return {1.0, 0.0};
 }
 
-inline float cube_field(const glm::vec3& c) { return (c.r + c.g + c.b) * (1.0f / 3.0f); }
+inline float cube_field(const glm::vec3& c) {
+  return (c.r + c.g + c.b) * (1.0f / 3.0f);
+}
 
 struct RowScratch {
   std::vector<double> x;
@@ -61,28 +63,27 @@ Texel TextureEvaluator::sample(const glm::dvec3& p, double filter_width) const {
   const OctavePlan local_plan = filter_width > 0.0 ? plan_for(filter_width) : OctavePlan{};
   const OctavePlan& plan = filter_width > 0.0 ? local_plan : point_plan_;
   Texel texel;
-  std::visit(Overloaded{
-                 [&](const StripesParams& s) { texel.field = fields::stripes(s, p); },
-                 [&](const CheckerParams& c) { texel.field = fields::checker(c, p); },
-                 [&](const ColourCubeParams& c) {
-                   texel.colour = fields::colour_cube(c, p);
-                   texel.field = cube_field(texel.colour);
-                 },
-                 [&](const RingsParams& r) { texel.field = fields::rings(r, p); },
-                 [&](const WoodParams& w) {
-                   texel.field = fields::wood(w, wood_frame(spec_.pattern), p);
-                 },
-                 [&](const NoiseParams&) {
-                   texel.field = fields::normalise_fractal(plan, fractal_sum(plan, p));
-                 },
-                 [&](const TurbulenceParams&) {
-                   texel.field = fields::normalise_fractal(plan, fractal_sum(plan, p));
-                 },
-                 [&](const MarbleParams& m) {
-                   texel.field = fields::marble(m, fields::ripple(m, p), fractal_sum(plan, p));
-                 },
-             },
-             spec_.pattern);
+  std::visit(
+      Overloaded{
+          [&](const StripesParams& s) { texel.field = fields::stripes(s, p); },
+          [&](const CheckerParams& c) { texel.field = fields::checker(c, p); },
+          [&](const ColourCubeParams& c) {
+            texel.colour = fields::colour_cube(c, p);
+            texel.field = cube_field(texel.colour);
+          },
+          [&](const RingsParams& r) { texel.field = fields::rings(r, p); },
+          [&](const WoodParams& w) { texel.field = fields::wood(w, wood_frame(spec_.pattern), p); },
+          [&](const NoiseParams&) {
+            texel.field = fields::normalise_fractal(plan, fractal_sum(plan, p));
+          },
+          [&](const TurbulenceParams&) {
+            texel.field = fields::normalise_fractal(plan, fractal_sum(plan, p));
+          },
+          [&](const MarbleParams& m) {
+            texel.field = fields::marble(m, fields::ripple(m, p), fractal_sum(plan, p));
+          },
+      },
+      spec_.pattern);
   if (!std::holds_alternative<ColourCubeParams>(spec_.pattern)) {
     texel.colour = spec_.ramp.at(texel.field);
   }
@@ -155,8 +156,8 @@ void TextureEvaluator::evaluate_grid(const Grid& grid, double filter_width,
                    [&](const MarbleParams& m) {
                      fractal_sum_row(plan, xs, y, z, {field, nx});
                      for (std::size_t i = 0; i < nx; ++i) {
-                       field[i] = fields::marble(m, fields::ripple(m, glm::dvec3(xs[i], y, z)),
-                                                 field[i]);
+                       field[i] =
+                           fields::marble(m, fields::ripple(m, glm::dvec3(xs[i], y, z)), field[i]);
                      }
                    },
                },

@@ -1,9 +1,10 @@
 #include "soltex/common/texture_id.h"
 
+#include <xxhash.h>
+
 #include <bit>
 #include <cstdio>
 #include <cstring>
-#include <xxhash.h>
 
 namespace soltex {
 namespace {
@@ -116,7 +117,8 @@ std::vector<uint8_t> canonical_encoding(const TextureSpec& spec, const Volume& v
 }
 
 uint64_t texture_id(const TextureSpec& spec, const Volume& volume, int brick_size) {
-  const std::vector<uint8_t> bytes = canonical_encoding(validated(spec), validated(volume), brick_size);
+  const std::vector<uint8_t> bytes =
+      canonical_encoding(validated(spec), validated(volume), brick_size);
   return XXH64(bytes.data(), bytes.size(), 0);
 }
 

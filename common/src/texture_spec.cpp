@@ -33,7 +33,8 @@ class FieldChecker {
 
   void in_range(const char* field, double v, double lo, double hi) const {
     if (!std::isfinite(v) || v < lo || v > hi) {
-      throw SpecError(path(field), format_value(v), "must be finite and in " + format_range(lo, hi));
+      throw SpecError(path(field), format_value(v),
+                      "must be finite and in " + format_range(lo, hi));
     }
   }
   void length(const char* field, double v) const {
@@ -78,41 +79,42 @@ void check_fractal(const FieldChecker& check, const FractalParams& f) {
 
 void check_pattern(const Pattern& pattern) {
   const FieldChecker check(pattern_name(pattern));
-  std::visit(Overloaded{
-                 [&](const StripesParams& p) {
-                   check.length("width", p.width);
-                   check.offset("offset", p.offset);
-                 },
-                 [&](const CheckerParams& p) {
-                   check.length("size.x", p.size.x);
-                   check.length("size.y", p.size.y);
-                   check.length("size.z", p.size.z);
-                   check.offset("offset", p.offset);
-                 },
-                 [&](const ColourCubeParams& p) { check.length("period", p.period); },
-                 [&](const RingsParams& p) {
-                   check.length("thickness", p.thickness);
-                   check.offset("base", p.base);
-                   check.offset("amplitude", p.amplitude);
-                 },
-                 [&](const WoodParams& p) {
-                   check.length("ring_spacing", p.ring_spacing);
-                   check.angle("tilt_y", p.tilt_y);
-                   check.angle("tilt_z", p.tilt_z);
-                   check.angle("twist", p.twist);
-                   check.in_range("jitter", p.jitter, 0.0, 100.0);
-                   check.frequency("jitter_scale", p.jitter_scale);
-                   check.in_range("grain_fraction", p.grain_fraction, 0.0, 1.0);
-                 },
-                 [&](const NoiseParams& p) { check.frequency("scale", p.scale); },
-                 [&](const TurbulenceParams& p) { check_fractal(check.nested("fractal"), p.fractal); },
-                 [&](const MarbleParams& p) {
-                   check.frequency("frequency", p.frequency);
-                   check.offset("amplitude", p.amplitude);
-                   check_fractal(check.nested("turbulence"), p.turbulence);
-                 },
-             },
-             pattern);
+  std::visit(
+      Overloaded{
+          [&](const StripesParams& p) {
+            check.length("width", p.width);
+            check.offset("offset", p.offset);
+          },
+          [&](const CheckerParams& p) {
+            check.length("size.x", p.size.x);
+            check.length("size.y", p.size.y);
+            check.length("size.z", p.size.z);
+            check.offset("offset", p.offset);
+          },
+          [&](const ColourCubeParams& p) { check.length("period", p.period); },
+          [&](const RingsParams& p) {
+            check.length("thickness", p.thickness);
+            check.offset("base", p.base);
+            check.offset("amplitude", p.amplitude);
+          },
+          [&](const WoodParams& p) {
+            check.length("ring_spacing", p.ring_spacing);
+            check.angle("tilt_y", p.tilt_y);
+            check.angle("tilt_z", p.tilt_z);
+            check.angle("twist", p.twist);
+            check.in_range("jitter", p.jitter, 0.0, 100.0);
+            check.frequency("jitter_scale", p.jitter_scale);
+            check.in_range("grain_fraction", p.grain_fraction, 0.0, 1.0);
+          },
+          [&](const NoiseParams& p) { check.frequency("scale", p.scale); },
+          [&](const TurbulenceParams& p) { check_fractal(check.nested("fractal"), p.fractal); },
+          [&](const MarbleParams& p) {
+            check.frequency("frequency", p.frequency);
+            check.offset("amplitude", p.amplitude);
+            check_fractal(check.nested("turbulence"), p.turbulence);
+          },
+      },
+      pattern);
 }
 
 void check_ramp(const ColourRamp& ramp) {
@@ -168,16 +170,28 @@ ColourRamp default_ramp(const Pattern& pattern) {
   const glm::vec3 yellow{1.0f, 0.85f, 0.1f}, red{0.8f, 0.1f, 0.05f};
   return std::visit(
       Overloaded{
-          [&](const StripesParams&) { return ColourRamp{{{0.0f, yellow}, {1.0f, red}}}; },
-          [&](const CheckerParams&) { return ColourRamp{{{0.0f, yellow}, {1.0f, red}}}; },
-          [&](const ColourCubeParams&) { return ColourRamp{{{0.0f, glm::vec3(0.0f)}, {1.0f, glm::vec3(1.0f)}}}; },
-          [&](const RingsParams&) { return ColourRamp{{{0.0f, yellow}, {1.0f, red}}}; },
+          [&](const StripesParams&) {
+            return ColourRamp{{{0.0f, yellow}, {1.0f, red}}};
+          },
+          [&](const CheckerParams&) {
+            return ColourRamp{{{0.0f, yellow}, {1.0f, red}}};
+          },
+          [&](const ColourCubeParams&) {
+            return ColourRamp{{{0.0f, glm::vec3(0.0f)}, {1.0f, glm::vec3(1.0f)}}};
+          },
+          [&](const RingsParams&) {
+            return ColourRamp{{{0.0f, yellow}, {1.0f, red}}};
+          },
           [&](const WoodParams&) {
             return ColourRamp{{{0.0f, {0.78f, 0.56f, 0.32f}}, {1.0f, {0.40f, 0.22f, 0.09f}}}};
           },
-          [&](const NoiseParams&) { return ColourRamp{{{0.0f, glm::vec3(0.0f)}, {1.0f, glm::vec3(1.0f)}}}; },
+          [&](const NoiseParams&) {
+            return ColourRamp{{{0.0f, glm::vec3(0.0f)}, {1.0f, glm::vec3(1.0f)}}};
+          },
           [&](const TurbulenceParams&) {
-            return ColourRamp{{{0.0f, {0.05f, 0.05f, 0.2f}}, {0.5f, {0.9f, 0.5f, 0.1f}}, {1.0f, {1.0f, 1.0f, 0.8f}}}};
+            return ColourRamp{{{0.0f, {0.05f, 0.05f, 0.2f}},
+                               {0.5f, {0.9f, 0.5f, 0.1f}},
+                               {1.0f, {1.0f, 1.0f, 0.8f}}}};
           },
           [&](const MarbleParams&) {
             return ColourRamp{{{0.0f, {0.25f, 0.25f, 0.3f}},
@@ -211,9 +225,9 @@ Volume validated(Volume volume) {
     check.in_range((std::string("max.") + axes[a]).c_str(), hi, -SpecLimits::kMaxVolumeCoordinate,
                    SpecLimits::kMaxVolumeCoordinate);
     if (!(hi > lo)) {
-      throw SpecError(std::string("volume.max.") + axes[a], format_value(hi),
-                      "must be greater than volume.min." + std::string(axes[a]) + " = " +
-                          format_value(lo));
+      throw SpecError(
+          std::string("volume.max.") + axes[a], format_value(hi),
+          "must be greater than volume.min." + std::string(axes[a]) + " = " + format_value(lo));
     }
   }
   if (volume.finest_level_log2 < 0 || volume.finest_level_log2 > SpecLimits::kMaxFinestLevelLog2) {

@@ -14,17 +14,23 @@ struct Overloaded : Ts... {
 
 Axis axis_from(v1::Axis axis, const char* field) {
   switch (axis) {
-    case v1::AXIS_X: return Axis::x;
-    case v1::AXIS_Y: return Axis::y;
-    case v1::AXIS_Z: return Axis::z;
-    default: throw SpecError(field, std::to_string(axis), "must be AXIS_X, AXIS_Y or AXIS_Z");
+    case v1::AXIS_X:
+      return Axis::x;
+    case v1::AXIS_Y:
+      return Axis::y;
+    case v1::AXIS_Z:
+      return Axis::z;
+    default:
+      throw SpecError(field, std::to_string(axis), "must be AXIS_X, AXIS_Y or AXIS_Z");
   }
 }
 
 NoiseBasis basis_from(v1::NoiseBasis basis, const char* field) {
   switch (basis) {
-    case v1::NOISE_BASIS_VALUE: return NoiseBasis::value;
-    case v1::NOISE_BASIS_GRADIENT: return NoiseBasis::gradient;
+    case v1::NOISE_BASIS_VALUE:
+      return NoiseBasis::value;
+    case v1::NOISE_BASIS_GRADIENT:
+      return NoiseBasis::gradient;
     default:
       throw SpecError(field, std::to_string(basis),
                       "must be NOISE_BASIS_VALUE or NOISE_BASIS_GRADIENT");
@@ -43,8 +49,10 @@ int octave_from(uint32_t value, const char* field) {
 FractalParams fractal_from(const v1::Fractal& m, const std::string& prefix) {
   FractalParams f;
   if (m.has_scale()) f.scale = m.scale();
-  if (m.has_octave_min()) f.octave_min = octave_from(m.octave_min(), (prefix + ".octave_min").c_str());
-  if (m.has_octave_max()) f.octave_max = octave_from(m.octave_max(), (prefix + ".octave_max").c_str());
+  if (m.has_octave_min())
+    f.octave_min = octave_from(m.octave_min(), (prefix + ".octave_min").c_str());
+  if (m.has_octave_max())
+    f.octave_max = octave_from(m.octave_max(), (prefix + ".octave_max").c_str());
   f.basis = basis_from(m.basis(), (prefix + ".basis").c_str());
   f.signed_octaves = m.signed_octaves();
   return f;
@@ -60,7 +68,9 @@ v1::Fractal fractal_to(const FractalParams& f) {
   return m;
 }
 
-v1::Axis axis_to(Axis axis) { return static_cast<v1::Axis>(static_cast<int>(axis)); }
+v1::Axis axis_to(Axis axis) {
+  return static_cast<v1::Axis>(static_cast<int>(axis));
+}
 
 Pattern pattern_from(const v1::TextureSpec& m) {
   switch (m.pattern_case()) {
@@ -119,8 +129,12 @@ Pattern pattern_from(const v1::TextureSpec& m) {
       if (mm.has_frequency()) p.frequency = mm.frequency();
       if (mm.has_amplitude()) p.amplitude = mm.amplitude();
       switch (mm.ripple()) {
-        case v1::RIPPLE_AXIS: p.ripple = Ripple::axis; break;
-        case v1::RIPPLE_PRODUCT: p.ripple = Ripple::product; break;
+        case v1::RIPPLE_AXIS:
+          p.ripple = Ripple::axis;
+          break;
+        case v1::RIPPLE_PRODUCT:
+          p.ripple = Ripple::product;
+          break;
         default:
           throw SpecError("marble.ripple", std::to_string(mm.ripple()),
                           "must be RIPPLE_AXIS or RIPPLE_PRODUCT");
@@ -129,7 +143,8 @@ Pattern pattern_from(const v1::TextureSpec& m) {
       p.turbulence = fractal_from(mm.turbulence(), "marble.turbulence");
       return p;
     }
-    case v1::TextureSpec::PATTERN_NOT_SET: break;
+    case v1::TextureSpec::PATTERN_NOT_SET:
+      break;
   }
   throw SpecError("pattern", "unset",
                   "exactly one of stripes, checker, colour_cube, rings, wood, noise, turbulence, "
@@ -153,9 +168,15 @@ TextureSpec from_proto(const v1::TextureSpec& m) {
     spec.channels = {false, false, false};
     for (int i = 0; i < m.channels_size(); ++i) {
       switch (m.channels(i)) {
-        case v1::CHANNEL_COLOUR: spec.channels.colour = true; break;
-        case v1::CHANNEL_OPACITY: spec.channels.opacity = true; break;
-        case v1::CHANNEL_SPECULAR: spec.channels.specular = true; break;
+        case v1::CHANNEL_COLOUR:
+          spec.channels.colour = true;
+          break;
+        case v1::CHANNEL_OPACITY:
+          spec.channels.opacity = true;
+          break;
+        case v1::CHANNEL_SPECULAR:
+          spec.channels.specular = true;
+          break;
         default:
           throw SpecError("channels[" + std::to_string(i) + "]", std::to_string(m.channels(i)),
                           "must be CHANNEL_COLOUR, CHANNEL_OPACITY or CHANNEL_SPECULAR");

@@ -31,10 +31,10 @@ TextureSpec spec_of(Pattern pattern) {
 }
 
 TEST(Validated, DefaultsAreValidAndGetTheirRamp) {
-  for (const Pattern& p : {Pattern{StripesParams{}}, Pattern{CheckerParams{}},
-                           Pattern{ColourCubeParams{}}, Pattern{RingsParams{}},
-                           Pattern{WoodParams{}}, Pattern{NoiseParams{}},
-                           Pattern{TurbulenceParams{}}, Pattern{MarbleParams{}}}) {
+  for (const Pattern& p :
+       {Pattern{StripesParams{}}, Pattern{CheckerParams{}}, Pattern{ColourCubeParams{}},
+        Pattern{RingsParams{}}, Pattern{WoodParams{}}, Pattern{NoiseParams{}},
+        Pattern{TurbulenceParams{}}, Pattern{MarbleParams{}}}) {
     const TextureSpec spec = validated(spec_of(p));
     EXPECT_FALSE(spec.ramp.keys.empty()) << pattern_name(p);
   }

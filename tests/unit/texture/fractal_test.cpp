@@ -66,7 +66,8 @@ TEST(FractalSum, IsTheLectureTurbulenceAtPointSampling) {
   for (int n = 0; n < 10000; ++n) {
     const glm::dvec3 p(u(rng), u(rng), u(rng));
     double expected = 0.0;
-    for (int k = 1; k <= 4; ++k) expected += std::ldexp(1.0, -k) * value_noise(p * std::ldexp(2.5, k));
+    for (int k = 1; k <= 4; ++k)
+      expected += std::ldexp(1.0, -k) * value_noise(p * std::ldexp(2.5, k));
     ASSERT_NEAR(fractal_sum(plan, p), expected, 1e-6);
   }
 }
@@ -101,7 +102,8 @@ TEST(FractalSum, RowIsBitIdenticalToSinglePoint) {
           fractal_sum_row(plan, x, y, z, row);
           for (std::size_t i = 0; i < x.size(); ++i) {
             ASSERT_EQ(row[i], fractal_sum(plan, glm::dvec3(x[i], y, z)))
-                << "basis " << int(basis) << " width " << width << " origin " << origin << " i " << i;
+                << "basis " << int(basis) << " width " << width << " origin " << origin << " i "
+                << i;
           }
         }
       }

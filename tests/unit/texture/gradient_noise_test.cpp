@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
 #include <glm/common.hpp>
+#include <limits>
 #include <random>
 
 namespace soltex {
@@ -41,7 +41,8 @@ TEST(GradientNoise, MatchesTextbookFormulation) {
   std::uniform_real_distribution<double> u(-600.0, 600.0);
   for (int n = 0; n < 200000; ++n) {
     const glm::dvec3 p(u(rng), u(rng), u(rng));
-    ASSERT_NEAR(gradient_noise(p), reference_gradient_noise(p), 1e-5) << p.x << " " << p.y << " " << p.z;
+    ASSERT_NEAR(gradient_noise(p), reference_gradient_noise(p), 1e-5)
+        << p.x << " " << p.y << " " << p.z;
   }
 }
 

@@ -84,9 +84,9 @@ TEST(FloorParity, FlooredModuloOfNegatives) {
 }
 
 TEST(FloorParity, LargeAndNonFinite) {
-  EXPECT_EQ(floor_parity(8388608.0), 0);        // 2^23
+  EXPECT_EQ(floor_parity(8388608.0), 0);  // 2^23
   EXPECT_EQ(floor_parity(8388609.0), 1);
-  EXPECT_EQ(floor_parity(2147483648.5), 0);     // 2^31 + 0.5
+  EXPECT_EQ(floor_parity(2147483648.5), 0);  // 2^31 + 0.5
   EXPECT_EQ(floor_parity(2147483649.5), 1);
   EXPECT_EQ(floor_parity(1e12), 0);
   EXPECT_EQ(floor_parity(-1e12 - 1), 1);

@@ -44,18 +44,18 @@ TEST(Stripes, OffsetWidthAxisAndColours) {
 TEST(Checker, TwoDimensionalParityOfNegativeSums) {
   const TextureEvaluator t(spec_of(CheckerParams{glm::dvec3(1.0), 0.0, false}));
   EXPECT_EQ(field_at(t, 0.5, 0.5), 0.0f);
-  EXPECT_EQ(field_at(t, -0.5, 0.5), 1.0f);   // -1 + 0
-  EXPECT_EQ(field_at(t, -0.5, -0.5), 0.0f);  // -1 + -1 = -2: even
-  EXPECT_EQ(field_at(t, -1.5, 0.5), 0.0f);   // -2 + 0
+  EXPECT_EQ(field_at(t, -0.5, 0.5), 1.0f);      // -1 + 0
+  EXPECT_EQ(field_at(t, -0.5, -0.5), 0.0f);     // -1 + -1 = -2: even
+  EXPECT_EQ(field_at(t, -1.5, 0.5), 0.0f);      // -2 + 0
   EXPECT_EQ(field_at(t, 0.5, 0.5, 7.5), 0.0f);  // z ignored in 2D
 }
 
 TEST(Checker, ThreeDimensionalParity) {
   const TextureEvaluator t(spec_of(CheckerParams{glm::dvec3(0.5, 1.0, 2.0), 0.0, true}));
   EXPECT_EQ(field_at(t, 0.25, 0.5, 1.0), 0.0f);
-  EXPECT_EQ(field_at(t, 0.75, 0.5, 1.0), 1.0f);      // 1 + 0 + 0
-  EXPECT_EQ(field_at(t, -0.25, -0.5, -1.0), 1.0f);   // -1 - 1 - 1 = -3: odd
-  EXPECT_EQ(field_at(t, -0.25, -0.5, 1.0), 0.0f);    // -1 - 1 + 0 = -2
+  EXPECT_EQ(field_at(t, 0.75, 0.5, 1.0), 1.0f);     // 1 + 0 + 0
+  EXPECT_EQ(field_at(t, -0.25, -0.5, -1.0), 1.0f);  // -1 - 1 - 1 = -3: odd
+  EXPECT_EQ(field_at(t, -0.25, -0.5, 1.0), 0.0f);   // -1 - 1 + 0 = -2
 }
 
 TEST(ColourCube, TriangleWavePerAxis) {
@@ -78,7 +78,7 @@ TEST(Rings, RadiusAboutZAxis) {
   const TextureEvaluator t(spec_of(RingsParams{0.1, 0.0, 1.0}));
   EXPECT_EQ(field_at(t, 0.05, 0.0), 0.0f);
   EXPECT_EQ(field_at(t, 0.15, 0.0), 1.0f);
-  EXPECT_EQ(field_at(t, 0.0, -0.25), 0.0f);  // r / M = 2.5
+  EXPECT_EQ(field_at(t, 0.0, -0.25), 0.0f);         // r / M = 2.5
   EXPECT_EQ(field_at(t, -0.09, 0.12, 55.0), 1.0f);  // r = 0.15, any z
 }
 

@@ -33,6 +33,7 @@ TEST(TextureEvaluator, BatchEqualsSinglePointBitForBit) {
       {{-1.0, -0.5, 0.25}, {0.037, 0.05, 0.11}, {23, 5, 3}},
       {{1e6 + 0.3, -2e6, 7.0}, {0.001, 0.013, 0.2}, {40, 2, 2}},
       {{-3.0, -3.0, -3.0}, {0.25, 0.25, 0.25}, {25, 25, 1}},
+      {{0.5, -0.25, 3.0}, {0.01, 0.02, 0.03}, {9, 4, 2}, {-1000, 7, 123456}},
   };
   for (const Pattern& pattern : all_patterns()) {
     TextureSpec spec;

@@ -11,7 +11,9 @@
 namespace soltex {
 namespace {
 
-const NoiseTables& T() { return noise_tables(); }
+const NoiseTables& T() {
+  return noise_tables();
+}
 
 float lattice_value(int i, int j, int k) {
   return T().value[T().index(i & 255, j & 255, k & 255)];
@@ -50,7 +52,8 @@ TEST(ValueNoise, EqualsTableAtLatticePoints) {
   for (int i = -300; i <= 300; i += 37) {
     for (int j = -5; j <= 5; ++j) {
       for (int k : {-256, -1, 0, 1, 255, 256, 1000}) {
-        EXPECT_EQ(value_noise(glm::dvec3(i, j, k)), lattice_value(i, j, k)) << i << "," << j << "," << k;
+        EXPECT_EQ(value_noise(glm::dvec3(i, j, k)), lattice_value(i, j, k))
+            << i << "," << j << "," << k;
       }
     }
   }

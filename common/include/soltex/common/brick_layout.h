@@ -31,7 +31,9 @@ class BrickLayout {
   int brick_size() const { return brick_size_; }
   int brick_shift() const { return brick_shift_; }
   int samples_per_axis() const { return brick_size_ + 1; }
-  int samples_per_brick() const { return samples_per_axis() * samples_per_axis() * samples_per_axis(); }
+  int samples_per_brick() const {
+    return samples_per_axis() * samples_per_axis() * samples_per_axis();
+  }
 
   int finest_level_log2() const { return volume_.finest_level_log2; }
   int coarsest_level() const { return volume_.finest_level_log2 - brick_shift_; }

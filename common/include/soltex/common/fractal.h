@@ -34,7 +34,7 @@ struct OctavePlan {
   bool absolute = true;  // fold each octave with |.| (gradient basis only)
   int count = 0;
   std::array<Octave, SpecLimits::kMaxOctaveCount> octaves{};
-  float total_weight = 0.0f;  // sum of (1/2)^k: the largest possible raw sum for value noise
+  float total_weight = 0.0f;      // sum of (1/2)^k: the largest possible raw sum for value noise
   int evaluated_octaves() const;  // octaves with a nonzero noise weight
 };
 

@@ -15,7 +15,9 @@
 // through these cell coefficients, so they agree bit for bit.
 namespace soltex {
 
-inline float fade(float t) noexcept { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
+inline float fade(float t) noexcept {
+  return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
+}
 
 struct GradientCellEdges {
   float slope0, offset0;  // x-face 0: value(fx) = offset0 + slope0 * fx

@@ -133,14 +133,14 @@ struct Volume {
 struct SpecLimits {
   static constexpr double kMinLength = 1e-6;  // widths, sizes, periods, spacings
   static constexpr double kMaxLength = 1e6;
-  static constexpr double kMaxOffset = 1e6;        // offsets, amplitudes, ring base
-  static constexpr double kMinFrequency = 1e-6;    // scales and frequencies
+  static constexpr double kMaxOffset = 1e6;      // offsets, amplitudes, ring base
+  static constexpr double kMinFrequency = 1e-6;  // scales and frequencies
   static constexpr double kMaxFrequency = 1e4;
-  static constexpr double kMaxAngle = 1e3;         // radians, and radians per unit of twist
-  static constexpr int kMaxOctave = 24;            // octave_max; 2^24 * scale stays exact
-  static constexpr int kMaxOctaveCount = 16;       // octave_max - octave_min + 1
+  static constexpr double kMaxAngle = 1e3;    // radians, and radians per unit of twist
+  static constexpr int kMaxOctave = 24;       // octave_max; 2^24 * scale stays exact
+  static constexpr int kMaxOctaveCount = 16;  // octave_max - octave_min + 1
   static constexpr int kMaxRampKeys = 16;
-  static constexpr int kMaxFinestLevelLog2 = 14;   // 16384 cells per axis
+  static constexpr int kMaxFinestLevelLog2 = 14;  // 16384 cells per axis
   static constexpr double kMaxVolumeCoordinate = 1e12;
 };
 

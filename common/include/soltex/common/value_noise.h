@@ -44,6 +44,8 @@ inline float value_noise(const NoiseTables& tables, const glm::dvec3& t) noexcep
   return value_cell_finish(value_cell_edges(tables, x.cell, y, z), x.frac);
 }
 
-inline float value_noise(const glm::dvec3& t) noexcept { return value_noise(noise_tables(), t); }
+inline float value_noise(const glm::dvec3& t) noexcept {
+  return value_noise(noise_tables(), t);
+}
 
 }  // namespace soltex
