@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
 
 #include "soltex/common/gradient_noise.h"
 #include "soltex/common/value_noise.h"
@@ -25,65 +24,96 @@ inline float octave_term(const Octave& octave, float noise) {
   return octave.noise_weight * noise + octave.mean_term;
 }
 
-// Per-row scratch: lattice cells and fractions of the x coordinates.
-struct RowScratch {
-  std::vector<int> cell;
-  std::vector<float> frac;
+// Per-run cell coefficients of one row, reused across calls on the same thread.
+struct RunScratch {
+  std::vector<float> a, b, c, d;
+
+  void reserve(std::size_t runs) {
+    if (a.size() < runs) {
+      a.resize(runs);
+      b.resize(runs);
+      c.resize(runs);
+      d.resize(runs);
+    }
+  }
 };
 
-RowScratch& row_scratch(std::size_t n) {
-  thread_local RowScratch scratch;
-  if (scratch.cell.size() < n) {
-    scratch.cell.resize(n);
-    scratch.frac.resize(n);
-  }
+RunScratch& run_scratch(std::size_t runs) {
+  thread_local RunScratch scratch;
+  scratch.reserve(runs);
   return scratch;
 }
 
-// Calls emit(i, noise) for every x[i]; cells are walked in runs so that the corner work of a
-// cell is done once per run. Edges and finish are the value or gradient cell functions.
-template <typename Edges, typename Finish, typename Emit>
-inline void for_each_noise(std::span<const double> x, double frequency, double y, double z,
-                           Edges edges_of, Finish finish, Emit emit) {
-  const std::size_t n = x.size();
-  RowScratch& scratch = row_scratch(n);
-  int* cell = scratch.cell.data();
-  float* frac = scratch.frac.data();
-  for (std::size_t i = 0; i < n; ++i) {
-    const LatticeSplit split = split_lattice(x[i] * frequency);
-    cell[i] = split.cell;
-    frac[i] = split.frac;
-  }
-  const LatticeSplit sy = split_lattice(y * frequency);
-  const LatticeSplit sz = split_lattice(z * frequency);
-  std::size_t begin = 0;
-  while (begin < n) {
-    std::size_t end = begin + 1;
-    while (end < n && cell[end] == cell[begin]) ++end;
-    const auto edges = edges_of(cell[begin], sy, sz);
-    for (std::size_t i = begin; i < end; ++i) emit(i, finish(edges, frac[i]));
-    begin = end;
+// The loops below take __restrict pointers: without them the compiler must assume a store to
+// the coefficient arrays may change the noise tables and refuses to vectorise the gathers.
+
+void value_runs(const float* __restrict value, const int32_t* __restrict perm,
+                const int32_t* __restrict run_cell, std::size_t runs, const RowHashes& hashes,
+                float fy, float fz, float* __restrict e0, float* __restrict e1) {
+  for (std::size_t r = 0; r < runs; ++r) {
+    const ValueCellEdges edges = value_cell_edges(value, perm, run_cell[r], hashes, fy, fz);
+    e0[r] = edges.e0;
+    e1[r] = edges.e1;
   }
 }
 
-template <typename Emit>
-inline void dispatch_basis(NoiseBasis basis, std::span<const double> x, double frequency, double y,
-                           double z, Emit emit) {
+template <bool kAbsolute>
+void value_finish(const Octave& octave, const int32_t* __restrict run_of,
+                  const float* __restrict frac, const float* __restrict e0,
+                  const float* __restrict e1, std::size_t n, float* __restrict acc) {
+  const Octave o = octave;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int32_t r = run_of[i];
+    float noise = value_cell_finish(e0[r], e1[r], frac[i]);
+    if constexpr (kAbsolute) noise = std::fabs(noise);
+    acc[i] += octave_term(o, noise);
+  }
+}
+
+void gradient_runs(const NoiseTables& tables, const int32_t* __restrict run_cell, std::size_t runs,
+                   const GradientRow& row, float* __restrict slope0, float* __restrict offset0,
+                   float* __restrict slope1, float* __restrict offset1) {
+  for (std::size_t r = 0; r < runs; ++r) {
+    const GradientCellEdges e = gradient_cell_edges(tables, run_cell[r], row);
+    slope0[r] = e.slope0;
+    offset0[r] = e.offset0;
+    slope1[r] = e.slope1;
+    offset1[r] = e.offset1;
+  }
+}
+
+template <bool kAbsolute>
+void gradient_finish(const Octave& octave, const int32_t* __restrict run_of,
+                     const float* __restrict frac, const float* __restrict slope0,
+                     const float* __restrict offset0, const float* __restrict slope1,
+                     const float* __restrict offset1, std::size_t n, float* __restrict acc) {
+  const Octave o = octave;
+  for (std::size_t i = 0; i < n; ++i) {
+    const int32_t r = run_of[i];
+    float noise = gradient_cell_finish(slope0[r], offset0[r], slope1[r], offset1[r], frac[i]);
+    if constexpr (kAbsolute) noise = std::fabs(noise);
+    acc[i] += octave_term(o, noise);
+  }
+}
+
+// One octave along one row: corner work per cell run, then the finish per point.
+template <bool kAbsolute>
+void add_octave(NoiseBasis basis, const Octave& octave, const int32_t* run_of, const float* frac,
+                const int32_t* run_cell, std::size_t runs, std::size_t n, double y, double z,
+                float* acc) {
   const NoiseTables& tables = noise_tables();
+  const LatticeSplit sy = split_lattice(y * octave.frequency);
+  const LatticeSplit sz = split_lattice(z * octave.frequency);
+  RunScratch& s = run_scratch(runs);
   if (basis == NoiseBasis::value) {
-    for_each_noise(
-        x, frequency, y, z,
-        [&](int ix, const LatticeSplit& sy, const LatticeSplit& sz) {
-          return value_cell_edges(tables, ix, sy, sz);
-        },
-        value_cell_finish, emit);
+    value_runs(tables.value.data(), tables.perm.data(), run_cell, runs,
+               row_hashes(tables, sy.cell, sz.cell), sy.frac, sz.frac, s.a.data(), s.b.data());
+    value_finish<kAbsolute>(octave, run_of, frac, s.a.data(), s.b.data(), n, acc);
   } else {
-    for_each_noise(
-        x, frequency, y, z,
-        [&](int ix, const LatticeSplit& sy, const LatticeSplit& sz) {
-          return gradient_cell_edges(tables, ix, sy, sz);
-        },
-        gradient_cell_finish, emit);
+    gradient_runs(tables, run_cell, runs, gradient_row(tables, sy, sz), s.a.data(), s.b.data(),
+                  s.c.data(), s.d.data());
+    gradient_finish<kAbsolute>(octave, run_of, frac, s.a.data(), s.b.data(), s.c.data(), s.d.data(),
+                               n, acc);
   }
 }
 
@@ -131,31 +161,52 @@ float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept {
   return sum;
 }
 
-void fractal_sum_row(const OctavePlan& plan, std::span<const double> x, double y, double z,
-                     std::span<float> out) {
-  std::fill(out.begin(), out.begin() + static_cast<std::ptrdiff_t>(x.size()), 0.0f);
-  float* acc = out.data();
-  for (int k = 0; k < plan.count; ++k) {
-    const Octave& octave = plan.octaves[k];
-    if (octave.noise_weight == 0.0f) {
-      for (std::size_t i = 0; i < x.size(); ++i) acc[i] += octave.mean_term;
-      continue;
+FractalRows::FractalRows(const OctavePlan& plan, std::span<const double> x)
+    : plan_(plan), size_(x.size()), octaves_(static_cast<std::size_t>(plan.count)) {
+  std::vector<int32_t> cell(size_);
+  for (int k = 0; k < plan_.count; ++k) {
+    OctaveColumns& columns = octaves_[static_cast<std::size_t>(k)];
+    if (plan_.octaves[k].noise_weight == 0.0f) continue;  // faded out: no noise to evaluate
+    const double frequency = plan_.octaves[k].frequency;
+    columns.frac.resize(size_);
+    columns.run_of.resize(size_);
+    for (std::size_t i = 0; i < size_; ++i) {
+      const LatticeSplit split = split_lattice(x[i] * frequency);
+      cell[i] = split.cell;
+      columns.frac[i] = split.frac;
     }
-    if (plan.absolute) {
-      dispatch_basis(plan.basis, x, octave.frequency, y, z, [&](std::size_t i, float noise) {
-        acc[i] += octave_term(octave, std::fabs(noise));
-      });
-    } else {
-      dispatch_basis(plan.basis, x, octave.frequency, y, z,
-                     [&](std::size_t i, float noise) { acc[i] += octave_term(octave, noise); });
+    for (std::size_t i = 0; i < size_; ++i) {
+      if (i == 0 || cell[i] != cell[i - 1]) columns.run_cell.push_back(cell[i]);
+      columns.run_of[i] = static_cast<int32_t>(columns.run_cell.size() - 1);
     }
   }
 }
 
-void noise_row(NoiseBasis basis, std::span<const double> x, double y, double z, double frequency,
-               std::span<float> out) {
+void FractalRows::sum(double y, double z, std::span<float> out) const {
   float* acc = out.data();
-  dispatch_basis(basis, x, frequency, y, z, [&](std::size_t i, float noise) { acc[i] += noise; });
+  std::fill(acc, acc + size_, 0.0f);
+  for (int k = 0; k < plan_.count; ++k) {
+    const Octave& octave = plan_.octaves[k];
+    if (octave.noise_weight == 0.0f) {
+      for (std::size_t i = 0; i < size_; ++i) acc[i] += octave.mean_term;
+      continue;
+    }
+    const OctaveColumns& c = octaves_[static_cast<std::size_t>(k)];
+    const std::size_t runs = c.run_cell.size();
+    const int32_t* run_of = c.run_of.data();
+    const float* frac = c.frac.data();
+    const int32_t* run_cell = c.run_cell.data();
+    if (plan_.absolute) {
+      add_octave<true>(plan_.basis, octave, run_of, frac, run_cell, runs, size_, y, z, acc);
+    } else {
+      add_octave<false>(plan_.basis, octave, run_of, frac, run_cell, runs, size_, y, z, acc);
+    }
+  }
+}
+
+void fractal_sum_row(const OctavePlan& plan, std::span<const double> x, double y, double z,
+                     std::span<float> out) {
+  FractalRows(plan, x).sum(y, z, out);
 }
 
 }  // namespace soltex

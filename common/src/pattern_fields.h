@@ -49,10 +49,20 @@ struct WoodFrame {
   double cos_tilt_z, sin_tilt_z;
 };
 
-inline float wood(const WoodParams& w, const WoodFrame& frame, const glm::dvec3& p) {
+// The rotation about y depends on y alone, so a row along x computes it once.
+struct WoodRotation {
+  double cos_y, sin_y;
+};
+
+inline WoodRotation wood_rotation(const WoodParams& w, double y) {
   // Rotate the point (not the texture) by -(tilt_y + twist * y) about y, then about z.
-  const double angle_y = -(w.tilt_y + w.twist * p.y);
-  const double cy = std::cos(angle_y), sy = std::sin(angle_y);
+  const double angle_y = -(w.tilt_y + w.twist * y);
+  return {std::cos(angle_y), std::sin(angle_y)};
+}
+
+inline float wood(const WoodParams& w, const WoodFrame& frame, const WoodRotation& rotation,
+                  const glm::dvec3& p) {
+  const double cy = rotation.cos_y, sy = rotation.sin_y;
   const double x1 = cy * p.x + sy * p.z;
   const double z1 = -sy * p.x + cy * p.z;
   const double x2 = frame.cos_tilt_z * x1 - frame.sin_tilt_z * p.y;

@@ -1,5 +1,6 @@
 #include "soltex/common/texture_evaluator.h"
 
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -27,7 +28,8 @@ const FractalParams* fractal_of(const Pattern& pattern, FractalParams& storage) 
   return nullptr;
 }
 
-fields::WoodFrame wood_frame(const Pattern& pattern) {
+// cos and sin of wood's tilt about z, fixed per texture.
+glm::dvec2 wood_tilt_z(const Pattern& pattern) {
   if (const auto* wood = std::get_if<WoodParams>(&pattern)) {
     return {std::cos(wood->tilt_z), std::sin(wood->tilt_z)};
   }
@@ -47,7 +49,9 @@ struct RowScratch {
 }  // namespace
 
 TextureEvaluator::TextureEvaluator(const TextureSpec& spec)
-    : spec_(validated(spec)), point_plan_(plan_for(0.0)) {}
+    : spec_(validated(spec)),
+      point_plan_(plan_for(0.0)),
+      wood_tilt_z_(wood_tilt_z(spec_.pattern)) {}
 
 OctavePlan TextureEvaluator::plan_for(double filter_width) const {
   FractalParams storage;
@@ -63,27 +67,29 @@ Texel TextureEvaluator::sample(const glm::dvec3& p, double filter_width) const {
   const OctavePlan local_plan = filter_width > 0.0 ? plan_for(filter_width) : OctavePlan{};
   const OctavePlan& plan = filter_width > 0.0 ? local_plan : point_plan_;
   Texel texel;
-  std::visit(
-      Overloaded{
-          [&](const StripesParams& s) { texel.field = fields::stripes(s, p); },
-          [&](const CheckerParams& c) { texel.field = fields::checker(c, p); },
-          [&](const ColourCubeParams& c) {
-            texel.colour = fields::colour_cube(c, p);
-            texel.field = cube_field(texel.colour);
-          },
-          [&](const RingsParams& r) { texel.field = fields::rings(r, p); },
-          [&](const WoodParams& w) { texel.field = fields::wood(w, wood_frame(spec_.pattern), p); },
-          [&](const NoiseParams&) {
-            texel.field = fields::normalise_fractal(plan, fractal_sum(plan, p));
-          },
-          [&](const TurbulenceParams&) {
-            texel.field = fields::normalise_fractal(plan, fractal_sum(plan, p));
-          },
-          [&](const MarbleParams& m) {
-            texel.field = fields::marble(m, fields::ripple(m, p), fractal_sum(plan, p));
-          },
-      },
-      spec_.pattern);
+  std::visit(Overloaded{
+                 [&](const StripesParams& s) { texel.field = fields::stripes(s, p); },
+                 [&](const CheckerParams& c) { texel.field = fields::checker(c, p); },
+                 [&](const ColourCubeParams& c) {
+                   texel.colour = fields::colour_cube(c, p);
+                   texel.field = cube_field(texel.colour);
+                 },
+                 [&](const RingsParams& r) { texel.field = fields::rings(r, p); },
+                 [&](const WoodParams& w) {
+                   texel.field = fields::wood(w, {wood_tilt_z_.x, wood_tilt_z_.y},
+                                              fields::wood_rotation(w, p.y), p);
+                 },
+                 [&](const NoiseParams&) {
+                   texel.field = fields::normalise_fractal(plan, fractal_sum(plan, p));
+                 },
+                 [&](const TurbulenceParams&) {
+                   texel.field = fields::normalise_fractal(plan, fractal_sum(plan, p));
+                 },
+                 [&](const MarbleParams& m) {
+                   texel.field = fields::marble(m, fields::ripple(m, p), fractal_sum(plan, p));
+                 },
+             },
+             spec_.pattern);
   if (!std::holds_alternative<ColourCubeParams>(spec_.pattern)) {
     texel.colour = spec_.ramp.at(texel.field);
   }
@@ -104,7 +110,7 @@ void TextureEvaluator::evaluate_grid(const Grid& grid, double filter_width,
   }
   const OctavePlan local_plan = filter_width > 0.0 ? plan_for(filter_width) : OctavePlan{};
   const OctavePlan& plan = filter_width > 0.0 ? local_plan : point_plan_;
-  const fields::WoodFrame frame = wood_frame(spec_.pattern);
+  const fields::WoodFrame frame{wood_tilt_z_.x, wood_tilt_z_.y};
   const bool is_cube = std::holds_alternative<ColourCubeParams>(spec_.pattern);
 
   thread_local RowScratch scratch;
@@ -118,50 +124,54 @@ void TextureEvaluator::evaluate_grid(const Grid& grid, double filter_width,
   float* field = scratch.field.data();
   glm::vec3* colour = scratch.colour.data();
 
+  std::optional<FractalRows> fractal_rows;
+  if (plan.count > 0) fractal_rows.emplace(plan, xs);
+
   const auto row_field = [&](double y, double z) {
     const auto each_point = [&](auto&& fn) {
       for (std::size_t i = 0; i < nx; ++i) field[i] = fn(glm::dvec3(xs[i], y, z));
     };
-    std::visit(Overloaded{
-                   [&](const StripesParams& s) {
-                     each_point([&](const glm::dvec3& p) { return fields::stripes(s, p); });
-                   },
-                   [&](const CheckerParams& c) {
-                     each_point([&](const glm::dvec3& p) { return fields::checker(c, p); });
-                   },
-                   [&](const ColourCubeParams& c) {
-                     for (std::size_t i = 0; i < nx; ++i) {
-                       colour[i] = fields::colour_cube(c, glm::dvec3(xs[i], y, z));
-                       field[i] = cube_field(colour[i]);
-                     }
-                   },
-                   [&](const RingsParams& r) {
-                     each_point([&](const glm::dvec3& p) { return fields::rings(r, p); });
-                   },
-                   [&](const WoodParams& w) {
-                     each_point([&](const glm::dvec3& p) { return fields::wood(w, frame, p); });
-                   },
-                   [&](const NoiseParams&) {
-                     fractal_sum_row(plan, xs, y, z, {field, nx});
-                     for (std::size_t i = 0; i < nx; ++i) {
-                       field[i] = fields::normalise_fractal(plan, field[i]);
-                     }
-                   },
-                   [&](const TurbulenceParams&) {
-                     fractal_sum_row(plan, xs, y, z, {field, nx});
-                     for (std::size_t i = 0; i < nx; ++i) {
-                       field[i] = fields::normalise_fractal(plan, field[i]);
-                     }
-                   },
-                   [&](const MarbleParams& m) {
-                     fractal_sum_row(plan, xs, y, z, {field, nx});
-                     for (std::size_t i = 0; i < nx; ++i) {
-                       field[i] =
-                           fields::marble(m, fields::ripple(m, glm::dvec3(xs[i], y, z)), field[i]);
-                     }
-                   },
-               },
-               spec_.pattern);
+    std::visit(
+        Overloaded{
+            [&](const StripesParams& s) {
+              each_point([&](const glm::dvec3& p) { return fields::stripes(s, p); });
+            },
+            [&](const CheckerParams& c) {
+              each_point([&](const glm::dvec3& p) { return fields::checker(c, p); });
+            },
+            [&](const ColourCubeParams& c) {
+              for (std::size_t i = 0; i < nx; ++i) {
+                colour[i] = fields::colour_cube(c, glm::dvec3(xs[i], y, z));
+                field[i] = cube_field(colour[i]);
+              }
+            },
+            [&](const RingsParams& r) {
+              each_point([&](const glm::dvec3& p) { return fields::rings(r, p); });
+            },
+            [&](const WoodParams& w) {
+              const fields::WoodRotation rotation = fields::wood_rotation(w, y);
+              each_point([&](const glm::dvec3& p) { return fields::wood(w, frame, rotation, p); });
+            },
+            [&](const NoiseParams&) {
+              fractal_rows->sum(y, z, {field, nx});
+              for (std::size_t i = 0; i < nx; ++i) {
+                field[i] = fields::normalise_fractal(plan, field[i]);
+              }
+            },
+            [&](const TurbulenceParams&) {
+              fractal_rows->sum(y, z, {field, nx});
+              for (std::size_t i = 0; i < nx; ++i) {
+                field[i] = fields::normalise_fractal(plan, field[i]);
+              }
+            },
+            [&](const MarbleParams& m) {
+              fractal_rows->sum(y, z, {field, nx});
+              for (std::size_t i = 0; i < nx; ++i) {
+                field[i] = fields::marble(m, fields::ripple(m, glm::dvec3(xs[i], y, z)), field[i]);
+              }
+            },
+        },
+        spec_.pattern);
   };
 
   const ChannelSet& wanted = spec_.channels;

@@ -4,7 +4,8 @@
 // Every texture is measured twice:
 //   *_Single  the per-point function (value_noise, gradient_noise, fractal_sum,
 //             TextureEvaluator::sample) called once per point, results summed into a sink;
-//   *_Batch   the row kernels (noise_row, fractal_sum_row) over rows of 64 points;
+//   *_Batch   FractalRows (one octave of weight 1 for plain noise): the x work once per
+//             grid, then every row of 64 points;
 //   *_Grid    TextureEvaluator::evaluate_grid over the whole 64^3 grid.
 // items/s is points/s; the counter ns_per_point is its inverse in nanoseconds.
 //
@@ -38,9 +39,9 @@ void report_points(benchmark::State& state) {
   state.SetItemsProcessed(points);
   // Rate inverted: seconds per point; the 1e-9 factor turns it into nanoseconds per point.
   // The console reporter appends "s" to inverted rates: "8.2s" there reads 8.2 ns/point.
-  state.counters["ns_per_point"] =
-      benchmark::Counter(static_cast<double>(kPoints) * 1e-9,
-                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  state.counters["ns_per_point"] = benchmark::Counter(
+      static_cast<double>(kPoints) * 1e-9,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 // x coordinates 0, 1, ..., 63 (integer grid units); rows scale them by the frequency.
@@ -71,15 +72,17 @@ void single_noise(benchmark::State& state) {
   report_points(state);
 }
 
+// One octave with weight 1 is the plain noise: FractalRows over the grid's shared x row.
 void batch_noise(benchmark::State& state, soltex::NoiseBasis basis) {
+  const soltex::OctavePlan plan =
+      soltex::plan_octaves(soltex::FractalParams{kFrequency, 0, 0, basis, true}, 0.0);
   const std::array<double, kSide> xs = integer_row();
   std::array<float, kSide> out{};
   for (auto _ : state) {
+    const soltex::FractalRows rows(plan, xs);  // the x work, once per grid
     for (int k = 0; k < kSide; ++k) {
       for (int j = 0; j < kSide; ++j) {
-        out.fill(0.0f);  // noise_row adds into its output
-        soltex::noise_row(basis, xs, static_cast<double>(j), static_cast<double>(k), kFrequency,
-                          out);
+        rows.sum(static_cast<double>(j), static_cast<double>(k), out);
         benchmark::DoNotOptimize(out.data());
         benchmark::ClobberMemory();
       }
@@ -95,11 +98,15 @@ float gradient_noise_fn(const soltex::NoiseTables& tables, const glm::dvec3& t) 
   return soltex::gradient_noise(tables, t);
 }
 
-void BM_ValueNoise_Single(benchmark::State& state) { single_noise<value_noise_fn>(state); }
+void BM_ValueNoise_Single(benchmark::State& state) {
+  single_noise<value_noise_fn>(state);
+}
 void BM_ValueNoise_Batch(benchmark::State& state) {
   batch_noise(state, soltex::NoiseBasis::value);
 }
-void BM_GradientNoise_Single(benchmark::State& state) { single_noise<gradient_noise_fn>(state); }
+void BM_GradientNoise_Single(benchmark::State& state) {
+  single_noise<gradient_noise_fn>(state);
+}
 void BM_GradientNoise_Batch(benchmark::State& state) {
   batch_noise(state, soltex::NoiseBasis::gradient);
 }
@@ -135,9 +142,10 @@ void batch_fractal(benchmark::State& state, const soltex::FractalParams& params)
   const std::array<double, kSide> xs = integer_row();
   std::array<float, kSide> out{};
   for (auto _ : state) {
+    const soltex::FractalRows rows(plan, xs);  // the x work, once per grid
     for (int k = 0; k < kSide; ++k) {
       for (int j = 0; j < kSide; ++j) {
-        soltex::fractal_sum_row(plan, xs, static_cast<double>(j), static_cast<double>(k), out);
+        rows.sum(static_cast<double>(j), static_cast<double>(k), out);
         benchmark::DoNotOptimize(out.data());
         benchmark::ClobberMemory();
       }
@@ -221,10 +229,18 @@ void grid_texture(benchmark::State& state, const soltex::TextureSpec& spec) {
   report_points(state);
 }
 
-void BM_Marble_Single(benchmark::State& state) { single_texture(state, marble_spec()); }
-void BM_Marble_Grid(benchmark::State& state) { grid_texture(state, marble_spec()); }
-void BM_Wood_Single(benchmark::State& state) { single_texture(state, wood_spec()); }
-void BM_Wood_Grid(benchmark::State& state) { grid_texture(state, wood_spec()); }
+void BM_Marble_Single(benchmark::State& state) {
+  single_texture(state, marble_spec());
+}
+void BM_Marble_Grid(benchmark::State& state) {
+  grid_texture(state, marble_spec());
+}
+void BM_Wood_Single(benchmark::State& state) {
+  single_texture(state, wood_spec());
+}
+void BM_Wood_Grid(benchmark::State& state) {
+  grid_texture(state, wood_spec());
+}
 
 }  // namespace
 

@@ -38,7 +38,9 @@ namespace soltex {
 uint8_t quantize(float value);
 std::vector<uint8_t> quantize(std::span<const float> values);
 
-inline constexpr float dequantize(uint8_t q) { return static_cast<float>(q) / 255.0f; }
+inline constexpr float dequantize(uint8_t q) {
+  return static_cast<float>(q) / 255.0f;
+}
 
 // ---- Encoding ------------------------------------------------------------------------------
 

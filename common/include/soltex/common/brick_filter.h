@@ -25,8 +25,8 @@ inline constexpr uint8_t kMaxBrickFilterId = 3;
 const char* brick_filter_name(BrickFilter filter);
 
 // Filters or unfilters, in place, every plane of `planes`: each plane holds side^3 samples,
-// x fastest. Throws std::invalid_argument unless side >= 1 and planes.size() is a multiple
-// of side^3.
+// x fastest. Throws std::invalid_argument unless side is in [1, 17] (a brick of size 16 has 17
+// samples per axis) and planes.size() is a multiple of side^3.
 void apply_brick_filter(BrickFilter filter, int side, std::span<uint8_t> planes);
 void undo_brick_filter(BrickFilter filter, int side, std::span<uint8_t> planes);
 

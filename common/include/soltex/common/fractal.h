@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <span>
+#include <vector>
 
 #include "soltex/common/texture_spec.h"
 
@@ -44,17 +45,37 @@ OctavePlan plan_octaves(const FractalParams& params, double filter_width);
 // The raw sum at one point.
 float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept;
 
-// The raw sum at (x[i], y, z) for every i; bit-identical to fractal_sum at each point.
-// Points inside one lattice cell share that cell's corner work.
+// Fractal sums over rows of points that share their x coordinates (every row of a grid).
+// The x half of the work — lattice cells, fractions and the runs of points that fall into one
+// cell, per octave — is done once here; sum() then does, per row and octave, the corner work
+// once per cell run and the finish once per point, in loops the compiler vectorises. The
+// results equal fractal_sum at (x[i], y, z) bit for bit.
+class FractalRows {
+ public:
+  FractalRows(const OctavePlan& plan, std::span<const double> x);
+
+  std::size_t size() const { return size_; }
+
+  // out[i] = fractal_sum(plan, (x[i], y, z)); out.size() must be at least size().
+  void sum(double y, double z, std::span<float> out) const;
+
+ private:
+  struct OctaveColumns {
+    std::vector<int32_t> run_of;    // per point: index of its cell run
+    std::vector<float> frac;        // per point: x fraction
+    std::vector<int32_t> run_cell;  // per run: lattice cell along x, in [0, 255]
+  };
+
+  OctavePlan plan_;
+  std::size_t size_;
+  std::vector<OctaveColumns> octaves_;
+};
+
+// One row's sum without keeping the x work: FractalRows(plan, x).sum(y, z, out).
 void fractal_sum_row(const OctavePlan& plan, std::span<const double> x, double y, double z,
                      std::span<float> out);
 
 // One octave of a basis at lattice-unit point t (no scaling, no weight).
 float basis_noise(NoiseBasis basis, const glm::dvec3& t) noexcept;
-
-// Adds basis(x[i] * frequency, y * frequency, z * frequency) to out[i]: the row
-// kernel behind fractal_sum_row, exposed for single-octave noise and benchmarks.
-void noise_row(NoiseBasis basis, std::span<const double> x, double y, double z, double frequency,
-               std::span<float> out);
 
 }  // namespace soltex

@@ -19,59 +19,86 @@ inline float fade(float t) noexcept {
   return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
 }
 
+namespace detail {
+// Gradient components for hash & 15.
+inline constexpr int kGradX[16] = {1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0, 1, -1, 0, 0};
+inline constexpr int kGradY[16] = {1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1, 1, 1, -1, -1};
+inline constexpr int kGradZ[16] = {0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1, 0, 0, 1, -1};
+
+// Each table packed two bits per entry (component + 1), so a lookup is a shift and a mask:
+// vectorised loops then need no gather for the gradients.
+constexpr uint32_t pack_gradients(const int (&component)[16]) {
+  uint32_t packed = 0;
+  for (int h = 0; h < 16; ++h) packed |= static_cast<uint32_t>(component[h] + 1) << (2 * h);
+  return packed;
+}
+inline constexpr uint32_t kPackedX = pack_gradients(kGradX);
+inline constexpr uint32_t kPackedY = pack_gradients(kGradY);
+inline constexpr uint32_t kPackedZ = pack_gradients(kGradZ);
+
+inline float gradient_component(uint32_t packed, int h) {
+  return static_cast<float>(static_cast<int>((packed >> (2 * h)) & 3u) - 1);
+}
+}  // namespace detail
+
+// What a row along x shares: the y-z hashes, fractions and fade weights.
+struct GradientRow {
+  RowHashes hashes;
+  float fy, fz;  // fractions
+  float v, w;    // fade(fy), fade(fz)
+};
+
+inline GradientRow gradient_row(const NoiseTables& tables, const LatticeSplit& y,
+                                const LatticeSplit& z) noexcept {
+  return {row_hashes(tables, y.cell, z.cell), y.frac, z.frac, fade(y.frac), fade(z.frac)};
+}
+
 struct GradientCellEdges {
   float slope0, offset0;  // x-face 0: value(fx) = offset0 + slope0 * fx
   float slope1, offset1;  // x-face 1: value(fx) = offset1 + slope1 * (fx - 1)
 };
 
-namespace detail {
-// Gradient components for hash & 15.
-inline constexpr float kGradX[16] = {1, -1, 1, -1, 1, -1, 1, -1, 0, 0, 0, 0, 1, -1, 0, 0};
-inline constexpr float kGradY[16] = {1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1, 1, 1, -1, -1};
-inline constexpr float kGradZ[16] = {0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1, 0, 0, 1, -1};
-}  // namespace detail
-
 inline GradientCellEdges gradient_cell_edges(const NoiseTables& tables, int ix,
-                                             const LatticeSplit& y,
-                                             const LatticeSplit& z) noexcept {
-  const float v = fade(y.frac);
-  const float w = fade(z.frac);
-  const auto face = [&](int dx, float& slope, float& offset) {
-    float s[2][2];
-    float o[2][2];
-    for (int dy = 0; dy < 2; ++dy) {
-      for (int dz = 0; dz < 2; ++dz) {
-        const int h = tables.index(ix + dx, y.cell + dy, z.cell + dz) & 15;
-        s[dy][dz] = detail::kGradX[h];
-        o[dy][dz] = detail::kGradY[h] * (y.frac - static_cast<float>(dy)) +
-                    detail::kGradZ[h] * (z.frac - static_cast<float>(dz));
-      }
-    }
-    const float s0 = s[0][0] + v * (s[1][0] - s[0][0]);
-    const float s1 = s[0][1] + v * (s[1][1] - s[0][1]);
-    const float o0 = o[0][0] + v * (o[1][0] - o[0][0]);
-    const float o1 = o[0][1] + v * (o[1][1] - o[0][1]);
-    slope = s0 + w * (s1 - s0);
-    offset = o0 + w * (o1 - o0);
+                                             const GradientRow& row) noexcept {
+  const int32_t* p = tables.perm.data();
+  const float fy0 = row.fy, fy1 = row.fy - 1.0f;
+  const float fz0 = row.fz, fz1 = row.fz - 1.0f;
+  const auto face = [&](int x, float& slope, float& offset) {
+    const int h00 = p[x + row.hashes.h00] & 15, h10 = p[x + row.hashes.h10] & 15;
+    const int h01 = p[x + row.hashes.h01] & 15, h11 = p[x + row.hashes.h11] & 15;
+    const auto gx = [](int h) { return detail::gradient_component(detail::kPackedX, h); };
+    const auto gy = [](int h) { return detail::gradient_component(detail::kPackedY, h); };
+    const auto gz = [](int h) { return detail::gradient_component(detail::kPackedZ, h); };
+    const float o00 = gy(h00) * fy0 + gz(h00) * fz0;
+    const float o10 = gy(h10) * fy1 + gz(h10) * fz0;
+    const float o01 = gy(h01) * fy0 + gz(h01) * fz1;
+    const float o11 = gy(h11) * fy1 + gz(h11) * fz1;
+    const float s0 = gx(h00) + row.v * (gx(h10) - gx(h00));
+    const float s1 = gx(h01) + row.v * (gx(h11) - gx(h01));
+    const float o0 = o00 + row.v * (o10 - o00);
+    const float o1 = o01 + row.v * (o11 - o01);
+    slope = s0 + row.w * (s1 - s0);
+    offset = o0 + row.w * (o1 - o0);
   };
   GradientCellEdges edges{};
-  face(0, edges.slope0, edges.offset0);
-  face(1, edges.slope1, edges.offset1);
+  face(ix, edges.slope0, edges.offset0);
+  face(ix + 1, edges.slope1, edges.offset1);
   return edges;
 }
 
-inline float gradient_cell_finish(const GradientCellEdges& edges, float fx) noexcept {
-  const float a0 = edges.offset0 + edges.slope0 * fx;
-  const float a1 = edges.offset1 + edges.slope1 * (fx - 1.0f);
+inline float gradient_cell_finish(float slope0, float offset0, float slope1, float offset1,
+                                  float fx) noexcept {
+  const float a0 = offset0 + slope0 * fx;
+  const float a1 = offset1 + slope1 * (fx - 1.0f);
   return a0 + fade(fx) * (a1 - a0);
 }
 
 // Gradient noise at `t`, given in lattice units.
 inline float gradient_noise(const NoiseTables& tables, const glm::dvec3& t) noexcept {
   const LatticeSplit x = split_lattice(t.x);
-  const LatticeSplit y = split_lattice(t.y);
-  const LatticeSplit z = split_lattice(t.z);
-  return gradient_cell_finish(gradient_cell_edges(tables, x.cell, y, z), x.frac);
+  const GradientCellEdges e = gradient_cell_edges(
+      tables, x.cell, gradient_row(tables, split_lattice(t.y), split_lattice(t.z)));
+  return gradient_cell_finish(e.slope0, e.offset0, e.slope1, e.offset1, x.frac);
 }
 
 inline float gradient_noise(const glm::dvec3& t) noexcept {

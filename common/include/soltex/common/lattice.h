@@ -19,8 +19,9 @@ struct LatticeSplit {
 };
 
 // Non-finite t (NaN, +-Inf) is treated as 0: a defined value, never an out-of-range index.
+// Branch-free (a select, not a jump) so that loops over many coordinates vectorise.
 inline LatticeSplit split_lattice(double t) noexcept {
-  if (!std::isfinite(t)) t = 0.0;
+  t = std::fabs(t) <= 1.7976931348623157e308 ? t : 0.0;  // NaN compares false
   const double whole = std::floor(t);
   // Both steps are exact in binary floating point: whole / 256 scales by a power of two, and
   // the difference of two integers that lies in [0, 256) is representable.

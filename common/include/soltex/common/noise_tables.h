@@ -12,13 +12,25 @@ struct NoiseTables {
   std::array<float, 256> value;
   // Index[256], a random permutation of 0..255, stored twice so that
   // INDEX(ix, iy, iz) = PERM(ix + PERM(iy + PERM(iz))) never needs a mask for ix, iy, iz <= 256.
-  std::array<uint8_t, 512> perm;
+  // 32-bit entries so that vectorised loops can gather from it.
+  std::array<int32_t, 512> perm;
   // The mean of `value`; also the exact mean of value noise over one period, since every
   // lattice value weighs the same in the integral of a trilinear interpolant.
   float value_mean;
 
   int index(int ix, int iy, int iz) const { return perm[ix + perm[iy + perm[iz]]]; }
 };
+
+// PERM(iy + dy + PERM(iz + dz)) for the four (dy, dz) corners of a y-z cell: every lattice
+// cell along one x row shares them, so INDEX(ix + dx, iy + dy, iz + dz) = PERM(ix + dx + h_dydz).
+struct RowHashes {
+  int32_t h00, h10, h01, h11;  // h<dy><dz>
+};
+
+inline RowHashes row_hashes(const NoiseTables& t, int iy, int iz) {
+  const int32_t* p = t.perm.data();
+  return {p[iy + p[iz]], p[iy + 1 + p[iz]], p[iy + p[iz + 1]], p[iy + 1 + p[iz + 1]]};
+}
 
 // The seed is part of the texture definition: changing it changes every noise texture.
 inline constexpr uint64_t kNoiseSeed = 0x5011'7E57'2002'1985ULL;

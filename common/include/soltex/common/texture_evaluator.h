@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <span>
 
@@ -67,7 +68,8 @@ class TextureEvaluator {
   OctavePlan plan_for(double filter_width) const;
 
   TextureSpec spec_;
-  OctavePlan point_plan_;  // the plan for filter_width = 0, used most often
+  OctavePlan point_plan_;   // the plan for filter_width = 0, used most often
+  glm::dvec2 wood_tilt_z_;  // cos and sin of WoodParams::tilt_z
 };
 
 }  // namespace soltex

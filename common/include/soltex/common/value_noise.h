@@ -9,8 +9,9 @@
 // period 256 cells along each axis.
 //
 // The trilinear interpolation runs along y and z first, then x. That order is the definition:
-// a row of samples along x inside one cell then shares the two y-z interpolated edge values,
-// and the single-point and batch paths execute the same operations, so they agree bit for bit.
+// a row of samples along x shares the y-z hashes and fractions, a run of samples inside one
+// cell shares the two y-z interpolated face values, and the single-point and batch paths
+// execute the same operations, so they agree bit for bit.
 namespace soltex {
 
 // The values on the two x-faces of a cell, interpolated in y and z.
@@ -19,21 +20,22 @@ struct ValueCellEdges {
   float e1;
 };
 
-inline ValueCellEdges value_cell_edges(const NoiseTables& tables, int ix, const LatticeSplit& y,
-                                       const LatticeSplit& z) noexcept {
-  const auto corner = [&](int dx, int dy, int dz) {
-    return tables.value[tables.index(ix + dx, y.cell + dy, z.cell + dz)];
+// `v` and `p` are NoiseTables::value and ::perm; passed as pointers so that a vectorised caller
+// can declare them free of aliasing with its outputs.
+inline ValueCellEdges value_cell_edges(const float* v, const int32_t* p, int ix, const RowHashes& h,
+                                       float fy, float fz) noexcept {
+  const auto face = [&](int x) {
+    const float c00 = v[p[x + h.h00]], c10 = v[p[x + h.h10]];
+    const float c01 = v[p[x + h.h01]], c11 = v[p[x + h.h11]];
+    const float a = c00 + fy * (c10 - c00);
+    const float b = c01 + fy * (c11 - c01);
+    return a + fz * (b - a);
   };
-  const auto bilerp = [&](int dx) {
-    const float a = corner(dx, 0, 0) + y.frac * (corner(dx, 1, 0) - corner(dx, 0, 0));
-    const float b = corner(dx, 0, 1) + y.frac * (corner(dx, 1, 1) - corner(dx, 0, 1));
-    return a + z.frac * (b - a);
-  };
-  return {bilerp(0), bilerp(1)};
+  return {face(ix), face(ix + 1)};
 }
 
-inline float value_cell_finish(const ValueCellEdges& edges, float fx) noexcept {
-  return edges.e0 + fx * (edges.e1 - edges.e0);
+inline float value_cell_finish(float e0, float e1, float fx) noexcept {
+  return e0 + fx * (e1 - e0);
 }
 
 // Value noise at `t`, given in lattice units (already scaled by the frequency).
@@ -41,7 +43,9 @@ inline float value_noise(const NoiseTables& tables, const glm::dvec3& t) noexcep
   const LatticeSplit x = split_lattice(t.x);
   const LatticeSplit y = split_lattice(t.y);
   const LatticeSplit z = split_lattice(t.z);
-  return value_cell_finish(value_cell_edges(tables, x.cell, y, z), x.frac);
+  const ValueCellEdges edges = value_cell_edges(tables.value.data(), tables.perm.data(), x.cell,
+                                                row_hashes(tables, y.cell, z.cell), y.frac, z.frac);
+  return value_cell_finish(edges.e0, edges.e1, x.frac);
 }
 
 inline float value_noise(const glm::dvec3& t) noexcept {
