@@ -55,7 +55,7 @@ class CanonicalWriter {
 }  // namespace
 
 std::vector<uint8_t> canonical_encoding(const TextureSpec& spec, const Volume& volume,
-                                        int brick_size) {
+                                        int brick_size, const MipSettings& mip) {
   CanonicalWriter w;
   w.text(kFormatTag);
   w.text(pattern_name(spec.pattern));
@@ -113,12 +113,15 @@ std::vector<uint8_t> canonical_encoding(const TextureSpec& spec, const Volume& v
   w.vec(volume.max);
   w.i32(volume.finest_level_log2);
   w.i32(brick_size);
+  w.u8(static_cast<uint8_t>(mip.mode));
+  w.i32(mip.mode == MipMode::supersampled ? mip.supersample : 0);
   return w.take();
 }
 
-uint64_t texture_id(const TextureSpec& spec, const Volume& volume, int brick_size) {
+uint64_t texture_id(const TextureSpec& spec, const Volume& volume, int brick_size,
+                    const MipSettings& mip) {
   const std::vector<uint8_t> bytes =
-      canonical_encoding(validated(spec), validated(volume), brick_size);
+      canonical_encoding(validated(spec), validated(volume), brick_size, mip);
   return XXH64(bytes.data(), bytes.size(), 0);
 }
 

@@ -22,10 +22,10 @@ Volume unit_volume() {
 TEST(TextureId, GoldenValueIsStableAcrossProcessesAndBuilds) {
   // The id is part of the protocol: clients and servers of different builds must agree.
   // A change here changes every cached brick's name; bump the format tag if it is intended.
-  EXPECT_EQ(texture_id_hex(texture_id(marble_spec(), unit_volume(), 16)), "cf833c0c638e1d65");
+  EXPECT_EQ(texture_id_hex(texture_id(marble_spec(), unit_volume(), 16)), "c3c07909a758b5b2");
   TextureSpec stripes;
   stripes.pattern = StripesParams{};
-  EXPECT_EQ(texture_id_hex(texture_id(stripes, unit_volume(), 8)), "8ab9b455bb13eea8");
+  EXPECT_EQ(texture_id_hex(texture_id(stripes, unit_volume(), 8)), "b65cb57e8c3b01e3");
 }
 
 TEST(TextureId, EveryInputChangesTheId) {
@@ -43,6 +43,11 @@ TEST(TextureId, EveryInputChangesTheId) {
   spec = marble_spec();
   spec.channels.specular = true;
   EXPECT_NE(texture_id(spec, unit_volume(), 16), base);
+  EXPECT_NE(texture_id(marble_spec(), unit_volume(), 16, {MipMode::point, 2}), base);
+  EXPECT_NE(texture_id(marble_spec(), unit_volume(), 16, {MipMode::supersampled, 2}),
+            texture_id(marble_spec(), unit_volume(), 16, {MipMode::supersampled, 3}));
+  // The supersample count only matters when supersampling.
+  EXPECT_EQ(texture_id(marble_spec(), unit_volume(), 16, {MipMode::band_limited, 3}), base);
   spec = marble_spec();
   spec.ramp.keys[1].colour.r = 0.5f;
   EXPECT_NE(texture_id(spec, unit_volume(), 16), base);

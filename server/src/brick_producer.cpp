@@ -1,0 +1,63 @@
+#include "brick_producer.h"
+
+#include <spdlog/spdlog.h>
+
+#include <vector>
+
+#include "soltex/common/brick_evaluator.h"
+#include "soltex/common/texture_id.h"
+
+namespace soltex::server {
+namespace {
+
+uint64_t header_checksum(const std::vector<uint8_t>& encoded) {
+  uint64_t v = 0;
+  for (int i = 7; i >= 0; --i) v = (v << 8) | encoded[20 + static_cast<std::size_t>(i)];
+  return v;
+}
+
+}  // namespace
+
+void BrickProducer::produce(const WorkItem& item, Deliver deliver) {
+  EncodedBrickPtr cached;
+  switch (store_.claim(item.key, item.codec, cached, deliver)) {
+    case BrickStore::Claim::hit:
+      deliver(cached);
+      return;
+    case BrickStore::Claim::waiter:
+      return;  // the owner's publish() calls deliver
+    case BrickStore::Claim::owner:
+      break;
+  }
+  EncodedBrickPtr brick;
+  try {
+    brick = evaluate(item);
+  } catch (const std::exception& e) {
+    spdlog::error("brick {} level {} ({}, {}, {}) failed: {}", texture_id_hex(item.key.texture),
+                  item.key.level, item.key.brick.x, item.key.brick.y, item.key.brick.z, e.what());
+    store_.abandon(item.key, item.codec);
+    deliver(nullptr);
+    return;
+  }
+  store_.publish(brick);
+  deliver(brick);
+}
+
+EncodedBrickPtr BrickProducer::evaluate(const WorkItem& item) {
+  const RegisteredTexture& texture = *item.texture;
+  const int channels = texture.evaluator.spec().channels.sample_count();
+  thread_local std::vector<float> samples;
+  samples.resize(static_cast<std::size_t>(texture.layout.samples_per_brick()) *
+                 static_cast<std::size_t>(channels));
+  evaluate_brick(texture.evaluator, texture.layout, item.key.level, item.key.brick, texture.mip,
+                 samples);
+  const std::vector<uint8_t> quantized = quantize(samples);
+  const std::vector<uint8_t> encoded =
+      encode_brick(quantized, texture.layout.brick_size(), channels,
+                   CodecOptions{item.codec, zstd_level_, true});
+  metrics_.bricks_evaluated.fetch_add(1, std::memory_order_relaxed);
+  return std::make_shared<const EncodedBrick>(EncodedBrick{
+      item.key, item.codec, std::string(encoded.begin(), encoded.end()), header_checksum(encoded)});
+}
+
+}  // namespace soltex::server

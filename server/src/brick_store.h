@@ -1,0 +1,98 @@
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <list>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "soltex/common/brick_codec.h"
+#include "soltex/common/brick_key.h"
+
+namespace soltex::server {
+
+// One brick encoded with one codec, as sent on the wire. Immutable and shared: the server
+// quantizes, filters and compresses a brick once, however many streams receive it.
+struct EncodedBrick {
+  BrickKey key;
+  Codec codec;
+  std::string payload;
+  uint64_t checksum;
+};
+
+using EncodedBrickPtr = std::shared_ptr<const EncodedBrick>;
+
+struct BrickStoreStats {
+  uint64_t hits = 0;
+  uint64_t misses = 0;
+  uint64_t coalesced = 0;  // requests that waited for a brick another request was producing
+  uint64_t insertions = 0;
+  uint64_t evictions = 0;
+  uint64_t bytes = 0;
+  uint64_t entries = 0;
+};
+
+// The server's cache of encoded bricks under a byte budget: sharded (one mutex per shard),
+// least-recently-used eviction per shard, and single-flight: while one caller produces a
+// brick, everyone else asking for it waits for that result instead of evaluating it again.
+class BrickStore {
+ public:
+  using Waiter = std::function<void(const EncodedBrickPtr&)>;
+
+  explicit BrickStore(std::size_t byte_budget);
+
+  enum class Claim {
+    hit,     // `cached` holds the brick
+    owner,   // the caller must produce the brick and publish() it (or abandon() on failure)
+    waiter,  // someone else is producing it; `waiter` will be called with the result
+  };
+
+  Claim claim(const BrickKey& key, Codec codec, EncodedBrickPtr& cached, Waiter waiter);
+
+  // Stores the brick (evicting others to stay within budget) and hands it to every waiter.
+  void publish(const EncodedBrickPtr& brick);
+  // The owner failed: waiters are called with nullptr.
+  void abandon(const BrickKey& key, Codec codec);
+
+  BrickStoreStats stats() const;
+  std::size_t byte_budget() const { return byte_budget_; }
+
+ private:
+  struct Entry {
+    EncodedBrickPtr brick;
+    std::list<const EncodedBrick*>::iterator lru;  // front = most recent
+  };
+  struct CodecKey {
+    BrickKey key;
+    Codec codec;
+    bool operator==(const CodecKey&) const = default;
+  };
+  struct CodecKeyHash {
+    std::size_t operator()(const CodecKey& k) const noexcept {
+      return BrickKeyHash{}(k.key) ^ (static_cast<std::size_t>(k.codec) * 0x9E3779B97F4A7C15ULL);
+    }
+  };
+  struct Shard {
+    mutable std::mutex mutex;
+    std::unordered_map<CodecKey, Entry, CodecKeyHash> entries;
+    std::list<const EncodedBrick*> lru;
+    std::unordered_map<CodecKey, std::vector<Waiter>, CodecKeyHash> in_flight;
+    std::size_t bytes = 0;
+  };
+  static constexpr std::size_t kShards = 16;
+
+  Shard& shard_for(const CodecKey& key);
+  static std::size_t cost(const EncodedBrick& brick);
+
+  const std::size_t byte_budget_;
+  const std::size_t shard_budget_;
+  std::array<Shard, kShards> shards_;
+  std::atomic<uint64_t> hits_{0}, misses_{0}, coalesced_{0}, insertions_{0}, evictions_{0};
+};
+
+}  // namespace soltex::server

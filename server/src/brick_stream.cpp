@@ -1,0 +1,331 @@
+#include "brick_stream.h"
+
+#include <spdlog/spdlog.h>
+
+#include "soltex/common/texture_id.h"
+
+namespace soltex::server {
+
+class BrickStream::Reactor final
+    : public grpc::ServerBidiReactor<v1::BrickRequest, v1::BrickBatch> {
+ public:
+  explicit Reactor(std::shared_ptr<BrickStream> stream) : stream_(std::move(stream)) {}
+
+  void OnReadDone(bool ok) override { stream_->on_read_done(ok); }
+  void OnWriteDone(bool ok) override { stream_->on_write_done(ok); }
+  void OnCancel() override { stream_->on_cancel(); }
+  void OnDone() override {
+    stream_->on_done();
+    delete this;
+  }
+
+ private:
+  std::shared_ptr<BrickStream> stream_;
+};
+
+namespace {
+
+v1::BrickKey to_proto(const BrickKey& key) {
+  v1::BrickKey m;
+  m.set_texture_id(key.texture);
+  m.set_level(static_cast<uint32_t>(key.level));
+  m.set_x(key.brick.x);
+  m.set_y(key.brick.y);
+  m.set_z(key.brick.z);
+  return m;
+}
+
+v1::Codec to_proto(Codec codec) {
+  switch (codec) {
+    case Codec::raw:
+      return v1::CODEC_RAW;
+    case Codec::lz4:
+      return v1::CODEC_LZ4;
+    case Codec::zstd:
+      return v1::CODEC_ZSTD;
+  }
+  return v1::CODEC_UNSPECIFIED;
+}
+
+std::optional<Codec> from_proto(v1::Codec codec) {
+  switch (codec) {
+    case v1::CODEC_RAW:
+      return Codec::raw;
+    case v1::CODEC_LZ4:
+      return Codec::lz4;
+    case v1::CODEC_ZSTD:
+    case v1::CODEC_UNSPECIFIED:
+      return Codec::zstd;
+    default:
+      return std::nullopt;
+  }
+}
+
+std::string describe(const v1::BrickKey& key) {
+  return "brick (" + std::to_string(key.x()) + ", " + std::to_string(key.y()) + ", " +
+         std::to_string(key.z()) + ") level " + std::to_string(key.level()) + " of texture " +
+         texture_id_hex(key.texture_id());
+}
+
+}  // namespace
+
+BrickStream::BrickStream(Context context, uint64_t id, std::string peer)
+    : context_(context),
+      id_(id),
+      peer_(std::move(peer)),
+      opened_(std::chrono::steady_clock::now()) {
+  context_.metrics.streams_opened.fetch_add(1, std::memory_order_relaxed);
+  context_.metrics.streams_open.fetch_add(1, std::memory_order_relaxed);
+}
+
+BrickStream::~BrickStream() {
+  context_.metrics.streams_open.fetch_sub(1, std::memory_order_relaxed);
+  const std::size_t dropped = queue_.clear();
+  context_.metrics.queue_depth.fetch_sub(static_cast<int64_t>(dropped), std::memory_order_relaxed);
+}
+
+grpc::ServerBidiReactor<v1::BrickRequest, v1::BrickBatch>* BrickStream::start() {
+  std::lock_guard lock(mutex_);
+  reactor_ = new Reactor(shared_from_this());
+  spdlog::info("stream {} opened by {}", id_, peer_);
+  pump();
+  return reactor_;
+}
+
+void BrickStream::on_read_done(bool ok) {
+  std::size_t added = 0;
+  {
+    std::lock_guard lock(mutex_);
+    reading_ = false;
+    if (!ok) {
+      reads_done_ = true;  // the client half-closed (or the call is over)
+    } else {
+      context_.metrics.stream_messages.fetch_add(1, std::memory_order_relaxed);
+      added = accept_request();
+    }
+    pump();
+  }
+  // Outside our lock: the scheduler takes its own lock and then ours (via take()).
+  context_.scheduler.notify(shared_from_this(), added);
+}
+
+std::size_t BrickStream::accept_request() {
+  const StreamLimits& limits = context_.limits;
+  if (request_.accept_codecs_size() > 0) {
+    for (int c : request_.accept_codecs()) {
+      if (auto codec = from_proto(static_cast<v1::Codec>(c))) {
+        codec_ = *codec;
+        break;
+      }
+    }
+  }
+  for (const v1::BrickKey& cancel : request_.cancel()) {
+    const BrickKey key{cancel.texture_id(),
+                       static_cast<int32_t>(cancel.level()),
+                       {cancel.x(), cancel.y(), cancel.z()}};
+    if (queue_.cancel(key)) {
+      context_.metrics.bricks_cancelled.fetch_add(1, std::memory_order_relaxed);
+      context_.metrics.queue_depth.fetch_sub(1, std::memory_order_relaxed);
+    }
+  }
+  if (static_cast<uint32_t>(request_.want_size()) > limits.max_keys_per_request) {
+    add_request_error(grpc::StatusCode::RESOURCE_EXHAUSTED,
+                      "request wants " + std::to_string(request_.want_size()) +
+                          " bricks; at most " + std::to_string(limits.max_keys_per_request) +
+                          " per request (max_keys_per_request); none were queued");
+    return 0;
+  }
+  std::size_t added = 0;
+  const auto now = std::chrono::steady_clock::now();
+  TexturePtr texture;  // consecutive keys usually name the same texture
+  for (const v1::BrickWant& want : request_.want()) {
+    const v1::BrickKey& k = want.key();
+    if (!texture || texture->id != k.texture_id()) texture = context_.registry.find(k.texture_id());
+    if (!texture) {
+      add_error(k, grpc::StatusCode::NOT_FOUND,
+                "texture " + texture_id_hex(k.texture_id()) +
+                    " is not registered on this server (call RegisterTexture first)");
+      continue;
+    }
+    const BrickLayout& layout = texture->layout;
+    if (k.level() > static_cast<uint32_t>(layout.coarsest_level())) {
+      add_error(k, grpc::StatusCode::OUT_OF_RANGE,
+                describe(k) + ": level " + std::to_string(k.level()) + " is outside [0, " +
+                    std::to_string(layout.coarsest_level()) + "]");
+      continue;
+    }
+    const int level = static_cast<int>(k.level());
+    if (!layout.contains(level, {k.x(), k.y(), k.z()})) {
+      add_error(k, grpc::StatusCode::OUT_OF_RANGE,
+                describe(k) + ": brick coordinates must be in [0, " +
+                    std::to_string(layout.bricks_per_axis(level) - 1) + "] at level " +
+                    std::to_string(level));
+      continue;
+    }
+    if (queue_.size() >= limits.max_queued_per_stream) {
+      add_error(k, grpc::StatusCode::RESOURCE_EXHAUSTED,
+                describe(k) + ": stream queue is full (" +
+                    std::to_string(limits.max_queued_per_stream) +
+                    " bricks, max_queued_per_stream)");
+      continue;
+    }
+    WorkItem item;
+    item.key = {k.texture_id(), level, {k.x(), k.y(), k.z()}};
+    item.priority = want.priority();
+    item.codec = codec_;
+    item.texture = texture;
+    item.enqueued = now;
+    if (queue_.push(std::move(item)) == WorkQueue::Push::added) {
+      ++added;
+      context_.metrics.bricks_requested.fetch_add(1, std::memory_order_relaxed);
+      context_.metrics.queue_depth.fetch_add(1, std::memory_order_relaxed);
+    }
+  }
+  return added;
+}
+
+std::function<void()> BrickStream::take() {
+  std::optional<WorkItem> item = queue_.pop();
+  if (!item) return {};
+  context_.metrics.queue_depth.fetch_sub(1, std::memory_order_relaxed);
+  in_production_.fetch_add(1, std::memory_order_relaxed);
+  return [self = shared_from_this(), item = std::move(*item)] {
+    self->context_.producer.produce(
+        item, [self, item](const EncodedBrickPtr& brick) { self->deliver(item, brick); });
+  };
+}
+
+void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick) {
+  std::lock_guard lock(mutex_);
+  in_production_.fetch_sub(1, std::memory_order_relaxed);
+  if (brick) {
+    outbox_.push_back({brick, std::nullopt, std::nullopt, item.enqueued});
+  } else {
+    add_error(to_proto(item.key), grpc::StatusCode::INTERNAL,
+              "evaluating " + describe(to_proto(item.key)) + " failed (see the server log)");
+  }
+  pump();
+}
+
+void BrickStream::add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message) {
+  v1::BrickError error;
+  *error.mutable_key() = key;
+  error.set_code(static_cast<int32_t>(code));
+  error.set_message(std::move(message));
+  context_.metrics.count_error(static_cast<int>(code));
+  outbox_.push_back({nullptr, std::move(error), std::nullopt, std::chrono::steady_clock::now()});
+}
+
+void BrickStream::add_request_error(grpc::StatusCode code, std::string message) {
+  v1::RequestError error;
+  error.set_code(static_cast<int32_t>(code));
+  error.set_message(std::move(message));
+  context_.metrics.count_error(static_cast<int>(code));
+  outbox_.push_back({nullptr, std::nullopt, std::move(error), std::chrono::steady_clock::now()});
+}
+
+void BrickStream::pump() {
+  if (finished_ || reactor_ == nullptr) return;
+  const StreamLimits& limits = context_.limits;
+
+  if (!writing_ && !outbox_.empty() && !cancelled_) {
+    batch_.Clear();
+    batch_enqueued_.clear();
+    std::size_t bytes = 0;
+    while (!outbox_.empty()) {
+      Outgoing& next = outbox_.front();
+      if (next.brick) {
+        if (static_cast<uint32_t>(batch_.bricks_size()) >= limits.max_batch_bricks ||
+            (batch_.bricks_size() > 0 &&
+             bytes + next.brick->payload.size() > limits.max_batch_bytes)) {
+          break;
+        }
+        v1::Brick* b = batch_.add_bricks();
+        *b->mutable_key() = to_proto(next.brick->key);
+        b->set_codec(to_proto(next.brick->codec));
+        b->set_payload(next.brick->payload);
+        b->set_checksum(next.brick->checksum);
+        bytes += next.brick->payload.size();
+        batch_enqueued_.push_back(next.enqueued);
+      } else if (next.error) {
+        *batch_.add_errors() = std::move(*next.error);
+      } else {
+        *batch_.add_request_errors() = std::move(*next.request_error);
+      }
+      outbox_.pop_front();
+    }
+    writing_ = true;
+    bricks_sent_ += static_cast<uint64_t>(batch_.bricks_size());
+    bytes_sent_ += bytes;
+    errors_sent_ += static_cast<uint64_t>(batch_.errors_size() + batch_.request_errors_size());
+    context_.metrics.bricks_served.fetch_add(static_cast<uint64_t>(batch_.bricks_size()),
+                                             std::memory_order_relaxed);
+    context_.metrics.bytes_served.fetch_add(bytes, std::memory_order_relaxed);
+    const auto now = std::chrono::steady_clock::now();
+    for (const auto& enqueued : batch_enqueued_) {
+      context_.metrics.brick_latency_ns.record(static_cast<uint64_t>(
+          std::chrono::duration_cast<std::chrono::nanoseconds>(now - enqueued).count()));
+    }
+    reactor_->StartWrite(&batch_);
+  }
+
+  // Backpressure: read on only while a whole request would still fit in the queue.
+  const bool room = queue_.size() + limits.max_keys_per_request <= limits.max_queued_per_stream;
+  if (!reading_ && !reads_done_ && !shutting_down_ && !cancelled_ && room) {
+    reading_ = true;
+    request_.Clear();
+    reactor_->StartRead(&request_);
+  }
+
+  const bool idle = !writing_ && outbox_.empty() && queue_.size() == 0 &&
+                    in_production_.load(std::memory_order_relaxed) == 0;
+  grpc::Status status;
+  bool finish = false;
+  if (cancelled_) {
+    finish = !writing_;
+    status = grpc::Status(grpc::StatusCode::CANCELLED, "stream cancelled");
+  } else if (shutting_down_ && !writing_) {
+    finish = true;
+    status = grpc::Status(grpc::StatusCode::UNAVAILABLE, "soltexd is shutting down");
+  } else if (reads_done_ && idle) {
+    finish = true;
+  }
+  if (finish) {
+    finished_ = true;
+    spdlog::info("stream {} closed ({}): {} bricks, {} bytes, {} errors in {:.1f} s", id_,
+                 status.ok() ? "OK" : status.error_message(), bricks_sent_, bytes_sent_,
+                 errors_sent_,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - opened_).count());
+    reactor_->Finish(status);
+  }
+}
+
+void BrickStream::on_write_done(bool ok) {
+  std::lock_guard lock(mutex_);
+  writing_ = false;
+  if (!ok) cancelled_ = true;  // the client is gone; OnCancel or OnDone follows
+  pump();
+}
+
+void BrickStream::on_cancel() {
+  std::lock_guard lock(mutex_);
+  cancelled_ = true;
+  const std::size_t dropped = queue_.clear();
+  context_.metrics.queue_depth.fetch_sub(static_cast<int64_t>(dropped), std::memory_order_relaxed);
+  pump();
+}
+
+void BrickStream::shut_down() {
+  std::lock_guard lock(mutex_);
+  shutting_down_ = true;
+  const std::size_t dropped = queue_.clear();
+  context_.metrics.queue_depth.fetch_sub(static_cast<int64_t>(dropped), std::memory_order_relaxed);
+  pump();
+}
+
+void BrickStream::on_done() {
+  std::lock_guard lock(mutex_);
+  reactor_ = nullptr;
+}
+
+}  // namespace soltex::server

@@ -1,0 +1,111 @@
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <atomic>
+#include <chrono>
+#include <deque>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+
+#include "brick_producer.h"
+#include "brick_scheduler.h"
+#include "server_metrics.h"
+#include "soltex/v1/brick_service.grpc.pb.h"
+#include "texture_registry.h"
+#include "work_queue.h"
+
+namespace soltex::server {
+
+struct StreamLimits {
+  uint32_t max_keys_per_request = 1024;
+  uint32_t max_queued_per_stream = 4096;
+  uint32_t max_batch_bricks = 32;
+  uint32_t max_batch_bytes = 1 << 20;
+};
+
+// Everything one StreamBricks call needs, shared between the gRPC reactor (gRPC threads) and
+// the workers producing its bricks (our pool). The reactor object itself belongs to gRPC and
+// is deleted in OnDone; this state outlives it for as long as a worker holds it.
+//
+// One write in flight at a time; the next request is read only while the queue has room for
+// a whole request (backpressure: a client that asks faster than it is served is slowed by
+// HTTP/2 flow control, not by an unbounded queue).
+class BrickStream final : public WorkSource, public std::enable_shared_from_this<BrickStream> {
+ public:
+  struct Context {
+    TextureRegistry& registry;
+    BrickScheduler& scheduler;
+    BrickProducer& producer;
+    ServerMetrics& metrics;
+    StreamLimits limits;
+  };
+
+  BrickStream(Context context, uint64_t id, std::string peer);
+  ~BrickStream() override;
+
+  // Creates the gRPC reactor bound to this stream and starts reading.
+  grpc::ServerBidiReactor<v1::BrickRequest, v1::BrickBatch>* start();
+
+  // Server shutdown: drop queued work and finish with UNAVAILABLE once the current write is done.
+  void shut_down();
+
+  std::function<void()> take() override;
+  bool has_work() const override { return queue_.size() > 0; }
+
+ private:
+  class Reactor;
+  struct Outgoing {
+    EncodedBrickPtr brick;                // or
+    std::optional<v1::BrickError> error;  // or
+    std::optional<v1::RequestError> request_error;
+    std::chrono::steady_clock::time_point enqueued;
+  };
+
+  // Reactor callbacks (gRPC threads).
+  void on_read_done(bool ok);
+  void on_write_done(bool ok);
+  void on_cancel();
+  void on_done();
+
+  // Worker callback.
+  void deliver(const WorkItem& item, const EncodedBrickPtr& brick);
+
+  // All below: mutex_ held.
+  std::size_t accept_request();  // returns how many keys were queued
+  void add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message);
+  void add_request_error(grpc::StatusCode code, std::string message);
+  void pump();  // start the next read, write or finish, whichever is due
+
+  Context context_;
+  const uint64_t id_;
+  const std::string peer_;
+  const std::chrono::steady_clock::time_point opened_;
+
+  // Recursive: gRPC may run a reaction inline from an operation we start under the lock.
+  std::recursive_mutex mutex_;
+  Reactor* reactor_ = nullptr;  // null once gRPC has called OnDone
+  v1::BrickRequest request_;
+  v1::BrickBatch batch_;
+  std::vector<std::chrono::steady_clock::time_point> batch_enqueued_;
+  std::deque<Outgoing> outbox_;
+  Codec codec_ = Codec::zstd;
+  bool reading_ = false;
+  bool reads_done_ = false;
+  bool writing_ = false;
+  bool finished_ = false;
+  bool shutting_down_ = false;
+  bool cancelled_ = false;
+
+  WorkQueue queue_;
+  std::atomic<int64_t> in_production_{0};
+
+  // Totals for the close log line.
+  uint64_t bricks_sent_ = 0;
+  uint64_t bytes_sent_ = 0;
+  uint64_t errors_sent_ = 0;
+};
+
+}  // namespace soltex::server

@@ -1,0 +1,48 @@
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <memory>
+
+#include "brick_producer.h"
+#include "brick_scheduler.h"
+#include "brick_service.h"
+#include "brick_store.h"
+#include "metrics_http_server.h"
+#include "server_config.h"
+#include "server_metrics.h"
+#include "texture_registry.h"
+
+namespace soltex::server {
+
+// soltexd assembled: registry, brick store, worker pool, gRPC service (with health and
+// reflection) and the metrics endpoint. Construction starts serving.
+class Daemon {
+ public:
+  explicit Daemon(const ServerConfig& config);
+  ~Daemon();
+
+  int grpc_port() const { return grpc_port_; }
+  int metrics_port() const { return metrics_->port(); }
+
+  // Graceful: health NOT_SERVING, open streams finished, gRPC shut down within the grace
+  // period, workers joined, metrics stopped. Idempotent.
+  void shut_down();
+
+  std::string render_metrics() const;
+
+ private:
+  ServerConfig config_;
+  ServerMetrics metrics_state_;
+  TextureRegistry registry_;
+  BrickStore store_;
+  BrickScheduler scheduler_;
+  BrickProducer producer_;
+  std::unique_ptr<BrickServiceImpl> service_;
+  std::unique_ptr<grpc::Server> server_;
+  std::unique_ptr<MetricsHttpServer> metrics_;
+  int grpc_port_ = 0;
+  bool shut_down_ = false;
+};
+
+}  // namespace soltex::server

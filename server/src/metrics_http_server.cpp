@@ -1,0 +1,105 @@
+#include "metrics_http_server.h"
+
+#include <spdlog/spdlog.h>
+
+#include <boost/asio/ip/address.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <memory>
+#include <stdexcept>
+
+namespace soltex::server {
+namespace {
+
+namespace beast = boost::beast;
+namespace http = beast::http;
+using tcp = boost::asio::ip::tcp;
+
+class Session : public std::enable_shared_from_this<Session> {
+ public:
+  Session(tcp::socket socket, const MetricsHttpServer::Render& render)
+      : socket_(std::move(socket)), render_(render) {}
+
+  void start() {
+    http::async_read(socket_, buffer_, request_,
+                     [self = shared_from_this()](beast::error_code ec, std::size_t) {
+                       if (!ec) self->respond();
+                     });
+  }
+
+ private:
+  void respond() {
+    response_.version(request_.version());
+    response_.keep_alive(false);
+    if (request_.method() != http::verb::get) {
+      response_.result(http::status::method_not_allowed);
+      response_.set(http::field::content_type, "text/plain");
+      response_.body() = "only GET is supported\n";
+    } else if (request_.target() != "/metrics") {
+      response_.result(http::status::not_found);
+      response_.set(http::field::content_type, "text/plain");
+      response_.body() = "not found: try GET /metrics\n";
+    } else {
+      response_.result(http::status::ok);
+      response_.set(http::field::content_type, "text/plain; version=0.0.4");
+      response_.body() = render_();
+    }
+    response_.prepare_payload();
+    http::async_write(socket_, response_,
+                      [self = shared_from_this()](beast::error_code, std::size_t) {
+                        beast::error_code ignored;
+                        self->socket_.shutdown(tcp::socket::shutdown_both, ignored);
+                      });
+  }
+
+  tcp::socket socket_;
+  const MetricsHttpServer::Render& render_;
+  beast::flat_buffer buffer_;
+  http::request<http::string_body> request_;
+  http::response<http::string_body> response_;
+};
+
+}  // namespace
+
+MetricsHttpServer::MetricsHttpServer(const std::string& host, uint16_t port, Render render)
+    : render_(std::move(render)), acceptor_(io_) {
+  beast::error_code ec;
+  const auto address = boost::asio::ip::make_address(host, ec);
+  if (ec) throw std::runtime_error("metrics address '" + host + "' is not an IP address");
+  const tcp::endpoint endpoint(address, port);
+  acceptor_.open(endpoint.protocol(), ec);
+  if (!ec) acceptor_.set_option(boost::asio::socket_base::reuse_address(true), ec);
+  if (!ec) acceptor_.bind(endpoint, ec);
+  if (!ec) acceptor_.listen(boost::asio::socket_base::max_listen_connections, ec);
+  if (ec) {
+    throw std::runtime_error("cannot listen for metrics on " + host + ":" + std::to_string(port) +
+                             ": " + ec.message());
+  }
+  port_ = acceptor_.local_endpoint().port();
+  accept();
+  thread_ = std::thread([this] { io_.run(); });
+}
+
+MetricsHttpServer::~MetricsHttpServer() {
+  stop();
+}
+
+void MetricsHttpServer::accept() {
+  acceptor_.async_accept([this](beast::error_code ec, tcp::socket socket) {
+    if (ec) return;  // closed: stopping
+    std::make_shared<Session>(std::move(socket), render_)->start();
+    accept();
+  });
+}
+
+void MetricsHttpServer::stop() {
+  if (!thread_.joinable()) return;
+  boost::asio::post(io_, [this] {
+    beast::error_code ignored;
+    acceptor_.close(ignored);
+  });
+  io_.stop();
+  thread_.join();
+}
+
+}  // namespace soltex::server

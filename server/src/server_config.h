@@ -1,0 +1,31 @@
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace soltex::server {
+
+// Everything an operator can set (command line, config file or environment).
+struct ServerConfig {
+  std::string listen = "127.0.0.1:7447";          // gRPC, HOST:PORT; port 0 picks a free one
+  std::string metrics_listen = "127.0.0.1:9447";  // Prometheus GET /metrics, HOST:PORT
+  std::size_t cache_mb = 256;                     // encoded-brick cache budget
+  int threads = 0;                                // brick workers; 0 = one per core
+  std::string log_level = "info";
+  int zstd_level = 3;
+  uint32_t max_textures = 1024;
+  uint32_t max_keys_per_request = 1024;
+  uint32_t max_queued_per_stream = 4096;
+  uint32_t max_message_bytes = 4u << 20;
+  double shutdown_grace_seconds = 5.0;
+  std::string ready_file;  // written once listening: "grpc=PORT\nmetrics=PORT\n"
+};
+
+// "HOST:PORT" or "[V6]:PORT" -> host and port; throws std::invalid_argument naming the text.
+struct HostPort {
+  std::string host;
+  uint16_t port;
+};
+HostPort parse_host_port(const std::string& text);
+
+}  // namespace soltex::server

@@ -1,0 +1,40 @@
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <string>
+
+#include "brick_store.h"
+#include "soltex/common/latency_histogram.h"
+
+namespace soltex::server {
+
+// The daemon's counters, updated lock-free from any thread and rendered in the Prometheus
+// text exposition format for GET /metrics.
+struct ServerMetrics {
+  std::atomic<uint64_t> streams_opened{0};
+  std::atomic<int64_t> streams_open{0};
+  std::atomic<uint64_t> stream_messages{0};  // BrickRequest messages read
+  std::atomic<uint64_t> register_requests{0};
+  std::atomic<uint64_t> bricks_requested{0};  // wanted keys accepted into a queue
+  std::atomic<uint64_t> bricks_served{0};
+  std::atomic<uint64_t> bytes_served{0};  // brick payload bytes
+  std::atomic<uint64_t> bricks_evaluated{0};
+  std::atomic<uint64_t> bricks_cancelled{0};
+  std::atomic<int64_t> queue_depth{0};                     // bricks queued over all streams
+  std::array<std::atomic<uint64_t>, 17> errors_by_code{};  // grpc::StatusCode 0..16
+  // From a brick entering a stream's queue to its batch being handed to gRPC, nanoseconds.
+  LatencyHistogram brick_latency_ns;
+
+  void count_error(int code) {
+    if (code >= 0 && code < static_cast<int>(errors_by_code.size())) {
+      errors_by_code[static_cast<std::size_t>(code)].fetch_add(1, std::memory_order_relaxed);
+    }
+  }
+
+  std::string render(const BrickStoreStats& store, std::size_t store_budget,
+                     std::size_t textures) const;
+};
+
+}  // namespace soltex::server

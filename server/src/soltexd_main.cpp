@@ -1,0 +1,107 @@
+// soltexd: evaluates procedural texture bricks on request and streams them over gRPC.
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "daemon.h"
+
+namespace {
+
+using soltex::server::ServerConfig;
+
+void write_ready_file(const std::string& path, int grpc_port, int metrics_port) {
+  // Written to a temporary name and renamed, so a reader never sees half a file.
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary);
+    out << "grpc=" << grpc_port << "\nmetrics=" << metrics_port << "\n";
+  }
+  std::filesystem::rename(temporary, path);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ServerConfig config;
+  CLI::App app{"soltexd: procedural solid-texture brick server (gRPC)"};
+  app.set_config("--config", "", "read options from a TOML or INI file");
+  app.add_option("--listen", config.listen, "gRPC address HOST:PORT (port 0: any free port)")
+      ->envname("SOLTEXD_LISTEN")
+      ->capture_default_str();
+  app.add_option("--metrics-listen", config.metrics_listen,
+                 "Prometheus metrics address HOST:PORT, served at GET /metrics")
+      ->capture_default_str();
+  app.add_option("--cache-mb", config.cache_mb, "encoded-brick cache budget in MiB")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  app.add_option("--threads", config.threads, "brick worker threads (0: one per core)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  app.add_option("--log-level", config.log_level, "trace, debug, info, warn, error or off")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}))
+      ->capture_default_str();
+  app.add_option("--zstd-level", config.zstd_level, "zstd compression level for bricks")
+      ->check(CLI::Range(1, 19))
+      ->capture_default_str();
+  app.add_option("--max-textures", config.max_textures, "texture registry bound")
+      ->check(CLI::Range(1u, 1u << 20))
+      ->capture_default_str();
+  app.add_option("--max-keys-per-request", config.max_keys_per_request,
+                 "brick keys one BrickRequest may want")
+      ->check(CLI::Range(1u, 1u << 20))
+      ->capture_default_str();
+  app.add_option("--max-queued-per-stream", config.max_queued_per_stream,
+                 "bricks queued on one stream before RESOURCE_EXHAUSTED")
+      ->check(CLI::Range(1u, 1u << 24))
+      ->capture_default_str();
+  app.add_option("--max-message-bytes", config.max_message_bytes,
+                 "largest request message accepted")
+      ->check(CLI::Range(1024u, 1u << 30))
+      ->capture_default_str();
+  app.add_option("--shutdown-grace", config.shutdown_grace_seconds,
+                 "seconds open calls get to finish on SIGINT/SIGTERM")
+      ->check(CLI::Range(0.0, 600.0))
+      ->capture_default_str();
+  app.add_option("--ready-file", config.ready_file,
+                 "once listening, write 'grpc=PORT' and 'metrics=PORT' lines here");
+  CLI11_PARSE(app, argc, argv);
+  if (config.max_keys_per_request > config.max_queued_per_stream) {
+    std::fprintf(stderr,
+                 "--max-keys-per-request (%u) must not exceed --max-queued-per-stream (%u)\n",
+                 config.max_keys_per_request, config.max_queued_per_stream);
+    return 2;
+  }
+
+  spdlog::set_level(spdlog::level::from_str(config.log_level));
+  spdlog::set_pattern("%Y-%m-%dT%H:%M:%S.%e %^%l%$ soltexd: %v");
+
+  std::unique_ptr<soltex::server::Daemon> daemon;
+  try {
+    daemon = std::make_unique<soltex::server::Daemon>(config);
+  } catch (const std::exception& e) {
+    spdlog::critical("{}", e.what());
+    return 1;
+  }
+  spdlog::info("soltexd {} listening on {} (gRPC port {}), metrics on http://{}/metrics (port {})",
+               SOLTEX_VERSION, config.listen, daemon->grpc_port(), config.metrics_listen,
+               daemon->metrics_port());
+  if (!config.ready_file.empty()) {
+    write_ready_file(config.ready_file, daemon->grpc_port(), daemon->metrics_port());
+  }
+
+  boost::asio::io_context signals_io;
+  boost::asio::signal_set signals(signals_io, SIGINT, SIGTERM);
+  signals.async_wait([&](const boost::system::error_code& ec, int signal_number) {
+    if (!ec) spdlog::info("received signal {}", signal_number);
+  });
+  signals_io.run();
+  daemon->shut_down();
+  return 0;
+}

@@ -1,0 +1,51 @@
+#include "work_queue.h"
+
+namespace soltex::server {
+
+WorkQueue::Push WorkQueue::push(WorkItem item) {
+  std::lock_guard lock(mutex_);
+  if (auto it = by_key_.find(item.key); it != by_key_.end()) {
+    WorkItem updated = *it->second;
+    if (item.priority <= updated.priority) return Push::updated;
+    updated.priority = item.priority;
+    items_.erase(it->second);
+    it->second = items_.insert(std::move(updated)).first;
+    return Push::updated;
+  }
+  item.sequence = next_sequence_++;
+  const BrickKey key = item.key;
+  by_key_.emplace(key, items_.insert(std::move(item)).first);
+  return Push::added;
+}
+
+bool WorkQueue::cancel(const BrickKey& key) {
+  std::lock_guard lock(mutex_);
+  auto it = by_key_.find(key);
+  if (it == by_key_.end()) return false;
+  items_.erase(it->second);
+  by_key_.erase(it);
+  return true;
+}
+
+std::optional<WorkItem> WorkQueue::pop() {
+  std::lock_guard lock(mutex_);
+  if (items_.empty()) return std::nullopt;
+  auto node = items_.extract(items_.begin());
+  by_key_.erase(node.value().key);
+  return std::move(node.value());
+}
+
+std::size_t WorkQueue::size() const {
+  std::lock_guard lock(mutex_);
+  return items_.size();
+}
+
+std::size_t WorkQueue::clear() {
+  std::lock_guard lock(mutex_);
+  const std::size_t n = items_.size();
+  items_.clear();
+  by_key_.clear();
+  return n;
+}
+
+}  // namespace soltex::server

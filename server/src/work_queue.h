@@ -1,0 +1,53 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <unordered_map>
+
+#include "brick_store.h"
+#include "texture_registry.h"
+
+namespace soltex::server {
+
+// A brick a stream is waiting for.
+struct WorkItem {
+  BrickKey key;
+  int32_t priority = 0;
+  Codec codec = Codec::zstd;
+  TexturePtr texture;
+  std::chrono::steady_clock::time_point enqueued;
+  uint64_t sequence = 0;  // arrival order, the last tie-breaker
+};
+
+// One stream's pending bricks, best first: coarser levels first (a coarse brick is a fallback
+// for many fine ones), then higher client priority, then arrival order. A key is queued at
+// most once; asking again raises its priority. Thread-safe.
+class WorkQueue {
+ public:
+  enum class Push { added, updated };
+  Push push(WorkItem item);
+  bool cancel(const BrickKey& key);
+  std::optional<WorkItem> pop();
+  std::size_t size() const;
+  std::size_t clear();
+
+ private:
+  struct Order {
+    bool operator()(const WorkItem& a, const WorkItem& b) const {
+      if (a.key.level != b.key.level) return a.key.level > b.key.level;
+      if (a.priority != b.priority) return a.priority > b.priority;
+      return a.sequence < b.sequence;
+    }
+  };
+  using Set = std::set<WorkItem, Order>;
+
+  mutable std::mutex mutex_;
+  Set items_;
+  std::unordered_map<BrickKey, Set::iterator, BrickKeyHash> by_key_;
+  uint64_t next_sequence_ = 0;
+};
+
+}  // namespace soltex::server

@@ -1,0 +1,143 @@
+#include "soltexd_process.h"
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <boost/asio/connect.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#ifndef SOLTEXD_BINARY
+#error "SOLTEXD_BINARY must name the soltexd executable"
+#endif
+
+namespace soltex::testing {
+namespace {
+
+std::string make_directory() {
+  std::string pattern = (std::filesystem::temp_directory_path() / "soltexd-test-XXXXXX").string();
+  if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+  return pattern;
+}
+
+}  // namespace
+
+SoltexdProcess::SoltexdProcess(std::vector<std::string> extra_args) : directory_(make_directory()) {
+  const std::string ready = directory_ + "/ready";
+  const std::string log_path = directory_ + "/log";
+  std::vector<std::string> args = {SOLTEXD_BINARY,
+                                   "--listen",
+                                   "127.0.0.1:0",
+                                   "--metrics-listen",
+                                   "127.0.0.1:0",
+                                   "--ready-file",
+                                   ready,
+                                   "--shutdown-grace",
+                                   "2"};
+  args.insert(args.end(), extra_args.begin(), extra_args.end());
+  pid_ = fork();
+  if (pid_ < 0) throw std::runtime_error("fork failed");
+  if (pid_ == 0) {
+    FILE* log = std::freopen(log_path.c_str(), "w", stdout);
+    if (log != nullptr) dup2(fileno(stdout), STDERR_FILENO);
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (std::chrono::steady_clock::now() < deadline) {
+    std::ifstream in(ready);
+    std::string line;
+    while (std::getline(in, line)) {
+      if (line.rfind("grpc=", 0) == 0) grpc_port_ = std::stoi(line.substr(5));
+      if (line.rfind("metrics=", 0) == 0) metrics_port_ = std::stoi(line.substr(8));
+    }
+    if (grpc_port_ > 0 && metrics_port_ > 0) return;
+    int status = 0;
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {
+      pid_ = -1;
+      throw std::runtime_error("soltexd exited during start-up:\n" + log());
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  throw std::runtime_error("soltexd did not become ready within 20 s:\n" + log());
+}
+
+SoltexdProcess::~SoltexdProcess() {
+  if (pid_ > 0) {
+    kill(pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
+  }
+  std::error_code ignored;
+  std::filesystem::remove_all(directory_, ignored);
+}
+
+int SoltexdProcess::terminate() {
+  if (pid_ <= 0) return -1;
+  kill(pid_, SIGTERM);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  int status = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(pid_, &status, WNOHANG) == pid_) {
+      pid_ = -1;
+      return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return -1000;  // still running
+}
+
+std::string SoltexdProcess::log() const {
+  std::ifstream in(directory_ + "/log");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string http_get(int port, const std::string& path, int* status) {
+  namespace beast = boost::beast;
+  namespace http = beast::http;
+  using tcp = boost::asio::ip::tcp;
+  try {
+    boost::asio::io_context io;
+    tcp::socket socket(io);
+    socket.connect(tcp::endpoint(boost::asio::ip::make_address("127.0.0.1"),
+                                 static_cast<unsigned short>(port)));
+    http::request<http::empty_body> request(http::verb::get, path, 11);
+    request.set(http::field::host, "127.0.0.1");
+    http::write(socket, request);
+    beast::flat_buffer buffer;
+    http::response<http::string_body> response;
+    http::read(socket, buffer, response);
+    if (status) *status = static_cast<int>(response.result_int());
+    return response.body();
+  } catch (const std::exception&) {
+    if (status) *status = 0;
+    return "";
+  }
+}
+
+double metric_value(const std::string& exposition, const std::string& name) {
+  std::istringstream in(exposition);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.size() > name.size() && line.compare(0, name.size(), name) == 0 &&
+        line[name.size()] == ' ') {
+      return std::strtod(line.c_str() + name.size() + 1, nullptr);
+    }
+  }
+  return -1.0;
+}
+
+}  // namespace soltex::testing

@@ -1,0 +1,44 @@
+#pragma once
+
+#include <sys/types.h>
+
+#include <string>
+#include <vector>
+
+namespace soltex::testing {
+
+// A real soltexd started on loopback with port 0 (free ports chosen by the kernel), for tests.
+// The destructor stops it with SIGKILL if a test did not stop it itself.
+class SoltexdProcess {
+ public:
+  // Starts `binary` with --listen 127.0.0.1:0 --metrics-listen 127.0.0.1:0 plus `extra_args`,
+  // and waits (up to 20 s) until it has written its ready file.
+  explicit SoltexdProcess(std::vector<std::string> extra_args = {});
+  ~SoltexdProcess();
+
+  SoltexdProcess(const SoltexdProcess&) = delete;
+  SoltexdProcess& operator=(const SoltexdProcess&) = delete;
+
+  std::string grpc_address() const { return "127.0.0.1:" + std::to_string(grpc_port_); }
+  int metrics_port() const { return metrics_port_; }
+
+  // Sends SIGTERM and returns the exit status (or -signal if killed), waiting up to 30 s.
+  int terminate();
+
+  // The daemon's log (stdout and stderr) so far.
+  std::string log() const;
+
+ private:
+  pid_t pid_ = -1;
+  int grpc_port_ = 0;
+  int metrics_port_ = 0;
+  std::string directory_;
+};
+
+// GET http://127.0.0.1:port/path; returns the body ("" on failure, with `status` set to 0).
+std::string http_get(int port, const std::string& path, int* status = nullptr);
+
+// The value of an unlabelled (or exactly labelled) sample in Prometheus text, or -1.
+double metric_value(const std::string& exposition, const std::string& name);
+
+}  // namespace soltex::testing
