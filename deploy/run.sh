@@ -1,13 +1,34 @@
 #!/usr/bin/env bash
-# The main job: install what is needed, build soltex, and render the texture gallery (a slice
-# through each solid texture and the texture on a lit sphere, one PNG per texture).
+# The main job: install what is needed, build soltex, start soltexd on loopback, render the
+# default scene with soltex-view (headless) into a PNG, print what happened, stop the server.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${SOLTEX_BUILD_DIR:-$root/build}
-out=${SOLTEX_OUT_DIR:-$root/out/gallery}
+out=${SOLTEX_OUT_DIR:-$root/out}
 
 "$root/deploy/install-deps.sh"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" --target soltex-gallery -j "${SOLTEX_JOBS:-2}"
-"$build/client/gallery/soltex-gallery" --out "$out"
-echo "run: $(ls "$out"/*.png | wc -l) PNG files in $out"
+cmake --build "$build" --target soltexd soltex-view -j "${SOLTEX_JOBS:-2}"
+
+mkdir -p "$out"
+ready="$out/soltexd.ready"
+rm -f "$ready"
+"$build/server/soltexd" --listen 127.0.0.1:0 --metrics-listen 127.0.0.1:0 \
+  --ready-file "$ready" >"$out/soltexd.log" 2>&1 &
+server=$!
+trap 'kill "$server" 2>/dev/null || true' EXIT
+for _ in $(seq 1 200); do [ -s "$ready" ] && break; sleep 0.05; done
+[ -s "$ready" ] || { cat "$out/soltexd.log"; echo "run: soltexd did not start" >&2; exit 1; }
+port=$(sed -n 's/^grpc=//p' "$ready")
+metrics=$(sed -n 's/^metrics=//p' "$ready")
+echo "run: soltexd listening on 127.0.0.1:$port (metrics on 127.0.0.1:$metrics)"
+
+"$build/client/view/soltex-view" --headless --server "127.0.0.1:$port" \
+  --out "$out/soltex-view.png" "$@"
+
+served=$(curl -s "http://127.0.0.1:$metrics/metrics" 2>/dev/null |
+  awk '/^soltex_bricks_served_total /{print $2}' || true)
+echo "run: soltexd served ${served:-?} bricks"
+kill -TERM "$server"
+wait "$server" && echo "run: soltexd stopped cleanly" || echo "run: soltexd exited with $?"
+trap - EXIT

@@ -17,6 +17,6 @@ ctest --test-dir "$build" --output-on-failure -j "$jobs"
 echo "== ASan+UBSan build and unit tests"
 cmake -S "$root" -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOLTEX_SANITIZE=ON \
   -DSOLTEX_BUILD_BENCHMARKS=OFF >/dev/null
-cmake --build "$asan" -j "$jobs"
+cmake --build "$asan" --target unit_tests -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir "$asan" -L unit --output-on-failure -j "$jobs"

@@ -173,10 +173,12 @@ bool BrickCache::try_evict(std::size_t clock_index, uint64_t frame) {
         !entry.stamp.compare_exchange_strong(stamp, kEvicted, std::memory_order_acq_rel)) {
       return false;
     }
+    // A new generation before the map lets go of the entry: whoever releases its last
+    // reference afterwards has seen the new generation, so nobody trusts a freed brick.
+    // Accessors holding it check its stamp on their next lookup.
+    generation_.fetch_add(1, std::memory_order_acq_rel);
     shard.map.erase(entry.key);
   }
-  // Accessors holding it in their microcache will check its stamp on their next lookup.
-  generation_.fetch_add(1, std::memory_order_acq_rel);
   resident_bytes_.store(resident_bytes_.load(std::memory_order_relaxed) - entry.charged_bytes,
                         std::memory_order_relaxed);
   resident_bricks_.fetch_sub(1, std::memory_order_relaxed);
@@ -230,28 +232,42 @@ BrickCacheStats BrickCache::stats() const {
 
 // ---- Accessor -----------------------------------------------------------------------------
 
-const CachedBrick* BrickCache::Accessor::find_slow(const BrickKey& key) {
+BrickCache::Accessor::Accessor(BrickCache& cache) : cache_(&cache), last_(&table_[0]) {}
+
+void BrickCache::Accessor::let_go_of_evicted() {
+  for (Slot& slot : table_) {
+    if (slot.entry != nullptr && slot.entry->stamp.load(std::memory_order_acquire) == kEvicted) {
+      slot = Slot{};
+    }
+  }
+}
+
+const CachedBrick* BrickCache::Accessor::find_slow(const BrickKey& key, std::size_t set) {
   // Generation before frame (begin_frame() bumps them in the other order): a slot validated
   // under this generation carries this frame's stamp.
   const uint64_t generation = cache_->generation_.load(std::memory_order_acquire);
   const uint64_t frame = cache_->frame_.load(std::memory_order_acquire);
-  if (microcache_hits_ + slow_microcache_hits_ + slow_hits_ + misses_ >= kFlushEvery) {
+  if (frame != frame_seen_) {
+    frame_seen_ = frame;
+    let_go_of_evicted();
+    flush_statistics();
+  } else if (microcache_hits_ + map_hits_ + misses_ >= kFlushEvery) {
     flush_statistics();
   }
 
-  // A slot may hold the key from an older generation: check that it is still resident.
-  for (int i = 0; i < 2; ++i) {
-    Slot& slot = slots_[i];
-    if (slot.generation == 0 || !(slot.key == key)) continue;
+  Slot* ways = &table_[kWays * set];
+  for (std::size_t way = 0; way < kWays; ++way) {
+    Slot& slot = ways[way];
+    if (slot.entry == nullptr || !(slot.key == key)) continue;
+    // From an older generation: trust it again once it is stamped for this frame.
     if (slot.generation == generation || touch(*slot.entry, frame)) {
       slot.generation = generation;
-      last_ = i;
-      ++slow_microcache_hits_;
+      ++microcache_hits_;
+      last_ = &slot;
       return slot.brick;
     }
-    // Evicted. The reference is kept until the slot is reused, so a pointer handed out
-    // earlier stays valid as find() promises.
-    slot.generation = 0;
+    slot = Slot{};  // evicted
+    break;
   }
 
   std::shared_ptr<Entry> entry = cache_->find_entry(key);
@@ -259,17 +275,25 @@ const CachedBrick* BrickCache::Accessor::find_slow(const BrickKey& key) {
     ++misses_;
     return nullptr;
   }
-  ++slow_hits_;
-  last_ ^= 1;  // replace the slot found less recently
+  ++map_hits_;
+  // An empty way if there is one, else round robin.
+  std::size_t way = next_way_[set];
+  for (std::size_t w = 0; w < kWays; ++w) {
+    if (ways[w].entry == nullptr) {
+      way = w;
+      break;
+    }
+  }
+  next_way_[set] = static_cast<uint8_t>((way + 1) % kWays);
   const CachedBrick* brick = &entry->brick;
-  slots_[last_] = Slot{key, generation, std::move(entry), brick};
+  ways[way] = Slot{key, generation, std::move(entry), brick};
+  last_ = &ways[way];
   return brick;
 }
 
 void BrickCache::Accessor::flush_statistics() {
-  const uint64_t microcache = microcache_hits_ + slow_microcache_hits_;
-  cache_->add_lookups(microcache + slow_hits_, microcache, misses_);
-  microcache_hits_ = slow_microcache_hits_ = slow_hits_ = misses_ = 0;
+  cache_->add_lookups(microcache_hits_ + map_hits_, microcache_hits_, misses_);
+  microcache_hits_ = map_hits_ = misses_ = 0;
 }
 
 }  // namespace soltex

@@ -50,4 +50,25 @@ CachedBrick::CachedBrick(int brick_size, int channels, std::span<const uint8_t> 
   }
 }
 
+void CachedBrick::trilinear_other(const glm::ivec3& cell, const glm::vec3& frac, float* out) const {
+  const uint8_t* s = sample(cell.x, cell.y, cell.z);
+  switch (channels_) {
+    case 1:
+      trilinear_u8<1>(s, y_stride_, z_stride_, frac.x, frac.y, frac.z, out);
+      return;
+    case 2:
+      trilinear_u8<2>(s, y_stride_, z_stride_, frac.x, frac.y, frac.z, out);
+      return;
+    case 3:
+      trilinear_u8<3>(s, y_stride_, z_stride_, frac.x, frac.y, frac.z, out);
+      return;
+    case 4:
+      trilinear_u8<4>(s, y_stride_, z_stride_, frac.x, frac.y, frac.z, out);
+      return;
+    default:
+      trilinear_u8<5>(s, y_stride_, z_stride_, frac.x, frac.y, frac.z, out);
+      return;
+  }
+}
+
 }  // namespace soltex

@@ -6,14 +6,10 @@
 #include <vector>
 
 #include "pattern_fields.h"
+#include "soltex/common/overloaded.h"
 
 namespace soltex {
 namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
 
 // The fractal a pattern uses, if any.
 const FractalParams* fractal_of(const Pattern& pattern, FractalParams& storage) {

@@ -6,13 +6,10 @@
 #include <cstdio>
 #include <cstring>
 
+#include "soltex/common/overloaded.h"
+
 namespace soltex {
 namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
 
 // Bumped whenever the encoding or the meaning of a texture changes.
 constexpr char kFormatTag[] = "soltex.texture.v1";

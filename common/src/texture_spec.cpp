@@ -4,15 +4,11 @@
 #include <cmath>
 #include <string>
 
+#include "soltex/common/overloaded.h"
 #include "soltex/common/spec_error.h"
 
 namespace soltex {
 namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
 
 std::string format_value(double v) {
   if (std::isnan(v)) return "nan";

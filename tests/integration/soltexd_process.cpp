@@ -31,12 +31,13 @@ std::string make_directory() {
 
 }  // namespace
 
-SoltexdProcess::SoltexdProcess(std::vector<std::string> extra_args) : directory_(make_directory()) {
+SoltexdProcess::SoltexdProcess(std::vector<std::string> extra_args, int port)
+    : directory_(make_directory()) {
   const std::string ready = directory_ + "/ready";
   const std::string log_path = directory_ + "/log";
   std::vector<std::string> args = {SOLTEXD_BINARY,
                                    "--listen",
-                                   "127.0.0.1:0",
+                                   "127.0.0.1:" + std::to_string(port),
                                    "--metrics-listen",
                                    "127.0.0.1:0",
                                    "--ready-file",
@@ -103,6 +104,13 @@ std::string SoltexdProcess::log() const {
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+int free_port() {
+  boost::asio::io_context io;
+  boost::asio::ip::tcp::acceptor acceptor(
+      io, boost::asio::ip::tcp::endpoint(boost::asio::ip::make_address("127.0.0.1"), 0));
+  return acceptor.local_endpoint().port();
 }
 
 std::string http_get(int port, const std::string& path, int* status) {

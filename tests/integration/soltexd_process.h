@@ -11,9 +11,10 @@ namespace soltex::testing {
 // The destructor stops it with SIGKILL if a test did not stop it itself.
 class SoltexdProcess {
  public:
-  // Starts `binary` with --listen 127.0.0.1:0 --metrics-listen 127.0.0.1:0 plus `extra_args`,
-  // and waits (up to 20 s) until it has written its ready file.
-  explicit SoltexdProcess(std::vector<std::string> extra_args = {});
+  // Starts `binary` with --listen 127.0.0.1:PORT (default 0: a free port chosen by the
+  // kernel) --metrics-listen 127.0.0.1:0 plus `extra_args`, and waits (up to 20 s) until it
+  // has written its ready file.
+  explicit SoltexdProcess(std::vector<std::string> extra_args = {}, int port = 0);
   ~SoltexdProcess();
 
   SoltexdProcess(const SoltexdProcess&) = delete;
@@ -34,6 +35,9 @@ class SoltexdProcess {
   int metrics_port_ = 0;
   std::string directory_;
 };
+
+// A loopback port that was free a moment ago (for restarting a server on the same port).
+int free_port();
 
 // GET http://127.0.0.1:port/path; returns the body ("" on failure, with `status` set to 0).
 std::string http_get(int port, const std::string& path, int* status = nullptr);

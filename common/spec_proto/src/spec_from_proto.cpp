@@ -2,15 +2,11 @@
 
 #include <string>
 
+#include "soltex/common/overloaded.h"
 #include "soltex/common/spec_error.h"
 
 namespace soltex {
 namespace {
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
 
 Axis axis_from(v1::Axis axis, const char* field) {
   switch (axis) {

@@ -1,6 +1,8 @@
 #pragma once
 
+#include <array>
 #include <atomic>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -16,8 +18,8 @@
 //
 // Reading: a sharded hash map (64 shards, each behind its own std::shared_mutex, as in
 // pbrt-v4's BufferCache) so render threads never share a global lock, and per thread an
-// Accessor with a two-brick microcache in front of it (OpenImageIO's per-thread tile
-// microcache, OpenVDB's accessors): a run of lookups in one brick compares a key and a
+// Accessor with a microcache in front of it (OpenImageIO's per-thread tile microcache,
+// OpenVDB's accessors): a lookup of a brick the thread used lately compares a key and a
 // generation number and takes no lock and writes nothing shared.
 //
 // Lifetime: entries are reference counted (std::shared_ptr). Eviction removes an entry from
@@ -141,66 +143,114 @@ class BrickCache {
   std::atomic<uint64_t> resident_bricks_{0};
 };
 
-// One thread's window on a BrickCache, with a microcache of the two bricks it found last.
-// Make one per render thread (per texture, for locality) and do not share it; it must not
-// outlive its cache.
+// One thread's window on a BrickCache: a private microcache of the bricks it used lately,
+// in front of the shared map. Make one per render thread (per texture, for locality) and do
+// not share it; it must not outlive its cache.
 //
-// An object rather than a thread_local microcache: a thread_local would be shared by every
-// cache and texture the thread touches (so it would need the cache's identity in its key)
-// and could outlive the cache it points into; an accessor's lifetime and owner are plain.
+// The microcache is a four-way set-associative table of kSets * kWays bricks (like a TLB;
+// OpenImageIO keeps two tiles, but a pixel's neighbours on the next scanline are often in
+// other bricks than the last one or two), with the brick found last checked first; both
+// checks are inline. A hit compares a key and the cache's generation number: no lock, no
+// shared write, no reference count. The generation changes with every eviction and frame;
+// then each slot is checked once against its entry (still resident? stamp it for this
+// frame) before it is trusted again.
+//
+// The table holds references (std::shared_ptr) to its bricks, so a brick evicted while a
+// thread reads it stays valid. Evicted bricks are let go when their slot is reused or
+// checked, and at the latest on the first lookup of the next frame: an accessor keeps at
+// most kSets * kWays evicted bricks alive for at most a frame, outside the cache's budget.
+//
+// An object rather than a thread_local: a thread_local would be shared by every cache and
+// texture the thread touches (so it would need the cache's identity in its key) and could
+// outlive the cache it points into; an accessor's lifetime and owner are plain.
 //
 // Its counters are kept locally (shared atomics written per lookup would bounce between
-// cores) and added to the cache's on the first lookup past the microcache after every
-// few thousand lookups, when the accessor is destroyed, and on flush_statistics().
+// cores) and added to the cache's every few thousand lookups that leave the inline path,
+// on a new frame, when the accessor is destroyed, and on flush_statistics().
 class BrickCache::Accessor {
  public:
-  explicit Accessor(BrickCache& cache) : cache_(&cache) {}
+  static constexpr int kSetBits = 7;
+  static constexpr std::size_t kSets = std::size_t{1} << kSetBits;
+  static constexpr std::size_t kWays = 4;
+
+  explicit Accessor(BrickCache& cache);
   ~Accessor() { flush_statistics(); }
   Accessor(const Accessor&) = delete;
   Accessor& operator=(const Accessor&) = delete;
 
   // The brick, or nullptr when it is not resident. A hit pins the brick for the current
-  // frame. The pointer stays valid while this accessor lives and until it has been asked
-  // for two other bricks (the microcache holds a reference to the last two it found).
+  // frame. The pointer stays valid until the next find() on this accessor.
   const CachedBrick* find(const BrickKey& key) {
-    // The fast path: one of the last two bricks, with no eviction and no new frame since
-    // it was validated. No lock, no shared write.
+    // Inline: the brick found last, then the key's set, each valid if validated in this
+    // generation. Written so that its branches are predictable both in coherent order (the
+    // last brick hits) and in random order (the last brick misses, the set hits): the way
+    // is chosen without a branch.
     const uint64_t generation = cache_->generation_.load(std::memory_order_acquire);
-    const Slot& last = slots_[last_];
-    if (last.key == key && last.generation == generation) {
+    if (holds(*last_, key, generation)) {
       ++microcache_hits_;
-      return last.brick;
+      return last_->brick;
     }
-    const Slot& other = slots_[last_ ^ 1];
-    if (other.key == key && other.generation == generation) {
-      last_ ^= 1;
+    const std::size_t set = set_of(key);
+    Slot* ways = &table_[kWays * set];
+    unsigned found = 0;  // one bit per way
+    for (std::size_t way = 0; way < kWays; ++way) {
+      found |= static_cast<unsigned>(holds(ways[way], key, generation)) << way;
+    }
+    if (found != 0) {
+      last_ = &ways[std::countr_zero(found)];
       ++microcache_hits_;
-      return other.brick;
+      return last_->brick;
     }
-    return find_slow(key);
+    return find_slow(key, set);
   }
+
+  // The cache's generation: it changes with every eviction and every frame. While it is
+  // the one a brick was found in, that brick is still resident and pinned for the frame, so
+  // a caller may keep using it without asking again (a layer that keeps its last brick).
+  uint64_t generation() const { return cache_->generation_.load(std::memory_order_acquire); }
+  // Counts a lookup such a layer answered from the brick it kept.
+  void count_microcache_hit() { ++microcache_hits_; }
 
   void flush_statistics();
 
  private:
   struct Slot {
     BrickKey key;
-    uint64_t generation = 0;  // cache generation when last validated; 0: empty or evicted
+    uint64_t generation = 0;  // cache generation when last validated; 0: never
     std::shared_ptr<Entry> entry;
     const CachedBrick* brick = nullptr;
   };
 
   static constexpr uint64_t kFlushEvery = 4096;  // counted lookups before a flush
 
-  const CachedBrick* find_slow(const BrickKey& key);
+  // Compared with & rather than &&: no branch per field.
+  static bool holds(const Slot& slot, const BrickKey& key, uint64_t generation) {
+    return (slot.key.texture == key.texture) & (slot.key.level == key.level) &
+           (slot.key.brick.x == key.brick.x) & (slot.key.brick.y == key.brick.y) &
+           (slot.key.brick.z == key.brick.z) & (slot.generation == generation);
+  }
+  // A multiplicative hash of the key, cheap enough for the inline path; neighbouring bricks
+  // land in different sets.
+  static std::size_t set_of(const BrickKey& key) {
+    const uint32_t h = static_cast<uint32_t>(key.brick.x) * 0x9E3779B1u +
+                       static_cast<uint32_t>(key.brick.y) * 0x85EBCA77u +
+                       static_cast<uint32_t>(key.brick.z) * 0xC2B2AE3Du +
+                       static_cast<uint32_t>(key.level) * 0x27D4EB2Fu +
+                       static_cast<uint32_t>(key.texture ^ (key.texture >> 32)) * 0x165667B1u;
+    return h >> (32 - kSetBits);
+  }
+
+  const CachedBrick* find_slow(const BrickKey& key, std::size_t set);
+  void let_go_of_evicted();
 
   BrickCache* cache_;
-  Slot slots_[2];
-  int last_ = 0;  // the slot found last; the other is replaced next
-  // Not yet flushed. Fast-path hits count only microcache_hits_; the rest count slow_.
+  uint64_t frame_seen_ = 0;
+  std::array<Slot, kSets * kWays> table_;  // set s: slots kWays * s ...
+  std::array<uint8_t, kSets> next_way_{};  // per set, the way filled next (round robin)
+  const Slot* last_;                       // the slot found last
+  // Not yet flushed.
   uint64_t microcache_hits_ = 0;
-  uint64_t slow_microcache_hits_ = 0;
-  uint64_t slow_hits_ = 0;
+  uint64_t map_hits_ = 0;
   uint64_t misses_ = 0;
 };
 

@@ -52,24 +52,14 @@ class CachedBrick {
   // fractions `frac` in [0, 1]; writes channels() values in [0, 1]. `out` must hold
   // kMaxChannels floats (the 4-channel path stores 4 lanes at once).
   void trilinear(const glm::ivec3& cell, const glm::vec3& frac, float* out) const {
-    const uint8_t* s = sample(cell.x, cell.y, cell.z);
-    switch (channels_) {
-      case 1:
-        trilinear_u8<1>(s, y_stride_, z_stride_, frac.x, frac.y, frac.z, out);
-        return;
-      case 2:
-        trilinear_u8<2>(s, y_stride_, z_stride_, frac.x, frac.y, frac.z, out);
-        return;
-      case 3:
-        trilinear_u8<3>(s, y_stride_, z_stride_, frac.x, frac.y, frac.z, out);
-        return;
-      case 4:
-        trilinear_u8<4>(s, y_stride_, z_stride_, frac.x, frac.y, frac.z, out);
-        return;
-      default:
-        trilinear_u8<5>(s, y_stride_, z_stride_, frac.x, frac.y, frac.z, out);
-        return;
+    // RGB inline (the common case, and the one kept small enough to inline into a sampler);
+    // other channel counts through one call.
+    if (channels_ == 3) {
+      trilinear_u8<3>(sample(cell.x, cell.y, cell.z), y_stride_, z_stride_, frac.x, frac.y, frac.z,
+                      out);
+      return;
     }
+    trilinear_other(cell, frac, out);
   }
 
   // The sample nearest to cell + frac: writes channels() values in [0, 1].
@@ -80,6 +70,8 @@ class CachedBrick {
   }
 
  private:
+  void trilinear_other(const glm::ivec3& cell, const glm::vec3& frac, float* out) const;
+
   int brick_size_;
   int channels_;
   std::ptrdiff_t y_stride_;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <glm/vec3.hpp>
@@ -9,6 +10,8 @@
 #include "soltex/common/brick_key.h"
 #include "soltex/common/brick_layout.h"
 #include "soltex/common/cached_brick.h"
+#include "soltex/common/sample_split.h"
+#include "soltex/common/trilinear_u8.h"
 
 // Sampling one texture through the sparse cache cube.
 //
@@ -87,8 +90,41 @@ class TextureSampler {
   // for quadrilinear; clamped to [0, coarsest], NaN means coarsest). Nearest and trilinear
   // use the nearest level, round(lod). When `missed` is given, it receives the bricks that
   // were asked for and not resident.
+  //
+  // Inline: the common case (nearest or trilinear, brick resident and in the microcache)
+  // is a few dozen instructions around the kernel, and a call per pixel would be a good
+  // part of it. Everything else goes through sample_general().
   SampleResult sample(const glm::dvec3& p, double lod, SampleFilter filter,
-                      MissedBricks* missed = nullptr);
+                      MissedBricks* missed = nullptr) {
+    // One named result on every path, so it is built in place in the caller's: a copy of
+    // it right after the kernel's vector store would stall on store forwarding.
+    SampleResult result{};
+    if (filter != SampleFilter::quadrilinear && lod >= 0.0) {  // not NaN, not negative
+      // lod + 0.5 >= 0.5: truncation rounds to the nearest level.
+      const int level = static_cast<int>(std::min(lod, coarsest_lod_) + 0.5);
+      const Location location = locate(p, level);
+      if (const Current* brick = resident(level, location.brick)) {
+        const glm::ivec3& c = location.cell;
+        const glm::vec3& f = location.frac;
+        if (filter == SampleFilter::nearest) {
+          brick->data->nearest(c, f, result.values.data());
+        } else if (channels_ == 3) {
+          // RGB straight from the kept sample pointer with the sampler's own strides: one
+          // dependent load less than going through the brick.
+          trilinear_u8<3>(brick->samples + c.z * z_stride_ + c.y * y_stride_ + c.x * 3, y_stride_,
+                          z_stride_, f.x, f.y, f.z, result.values.data());
+        } else {
+          brick->data->trilinear(c, f, result.values.data());
+        }
+        result.level = level;
+        result.complete = true;
+        if (missed != nullptr) missed->count = 0;
+        return result;
+      }
+    }
+    sample_general(p, lod, filter, missed, result);
+    return result;
+  }
 
   SampleResult sample_footprint(const glm::dvec3& p, double footprint, SampleFilter filter,
                                 MissedBricks* missed = nullptr) {
@@ -102,6 +138,15 @@ class TextureSampler {
   void flush_statistics() { accessor_.flush_statistics(); }
 
  private:
+  // A brick resident() found, kept with what its samples are read through.
+  struct Current {
+    glm::ivec3 brick{0};
+    int level = -1;
+    uint64_t generation = 0;
+    const CachedBrick* data = nullptr;
+    const uint8_t* samples = nullptr;  // data->sample(0, 0, 0)
+  };
+
   // Where a point falls at one level: its brick, its cell inside the brick, the fraction.
   struct Location {
     glm::ivec3 brick;
@@ -109,23 +154,72 @@ class TextureSampler {
     glm::vec3 frac;
   };
 
-  Location locate(const glm::dvec3& u0, int level) const;
+  Location locate(const glm::dvec3& p, int level) const {
+    const auto l = static_cast<std::size_t>(level);
+    // h_l = h_0 * 2^level, so (p - min) / h_0 * 2^-level is (p - min) / h_l exactly.
+    const CellSplit split = split_cell(p, min_, finest_spacing_, level_scale_[l], cells_[l]);
+    const glm::ivec3& i = split.cell;
+    return {{i.x >> brick_shift_, i.y >> brick_shift_, i.z >> brick_shift_},
+            {i.x & brick_mask_, i.y & brick_mask_, i.z & brick_mask_},
+            split.frac};
+  }
+
+  // The resident brick, or nullptr (also for a brick of the wrong shape: keys are
+  // content-addressed, so that is a caller's mistake, but it must not be read out of bounds).
+  const CachedBrick* find(int level, const glm::ivec3& brick) {
+    const CachedBrick* found = accessor_.find(BrickKey{texture_, level, brick});
+    if (found != nullptr &&
+        (found->channels() != channels_ || found->brick_size() != brick_mask_ + 1)) {
+      return nullptr;
+    }
+    return found;
+  }
+
+  // find() with the brick used last at this level's parity kept in front of it (OpenVDB's
+  // accessors keep the last leaf the same way; two, so that quadrilinear's two adjacent
+  // levels each keep theirs): a run of samples in one brick compares a level, a brick
+  // coordinate and the generation, and needs no key and no microcache probe.
+  const Current* resident(int level, const glm::ivec3& brick) {
+    const uint64_t generation = accessor_.generation();
+    Current& current = current_[static_cast<std::size_t>(level & 1)];
+    if ((level == current.level) & (brick.x == current.brick.x) & (brick.y == current.brick.y) &
+        (brick.z == current.brick.z) & (generation == current.generation)) {
+      accessor_.count_microcache_hit();
+      return &current;
+    }
+    const CachedBrick* found = find(level, brick);
+    if (found == nullptr) {
+      current = Current{};
+      return nullptr;
+    }
+    current = Current{brick, level, generation, found, found->sample(0, 0, 0)};
+    return &current;
+  }
+
+  void sample_general(const glm::dvec3& p, double lod, SampleFilter filter, MissedBricks* missed,
+                      SampleResult& result);
   // Samples the finest resident level at or above `level`; returns it, or -1.
-  int sample_level(const glm::dvec3& u0, int level, bool nearest, float* out, bool& missing,
+  int sample_level(const glm::dvec3& p, int level, bool nearest, float* out, bool& missing,
                    MissedBricks* missed);
 
   BrickLayout layout_;
   uint64_t texture_;
   int channels_;
   int coarsest_level_;
+  double coarsest_lod_;  // coarsest_level_ as a double
   int brick_shift_;
   int brick_mask_;
+  int y_stride_;  // bytes between samples along y in a brick of this texture: (B + 1) * channels
+  int z_stride_;  // ... along z: (B + 1)^2 * channels
   glm::dvec3 min_;
   glm::dvec3 finest_spacing_;
-  // Per level: 2^-level (u at level l is u at level 0 times it, exactly) and cells per axis.
+  // Per level: 2^-level and cells per axis.
   std::array<double, SpecLimits::kMaxFinestLevelLog2 + 1> level_scale_;
   std::array<double, SpecLimits::kMaxFinestLevelLog2 + 1> cells_;
   BrickCache::Accessor accessor_;
+  // The bricks resident() found last, per level parity; each valid while the cache's
+  // generation is the one it was found in (no eviction since: still resident and alive).
+  std::array<Current, 2> current_;
 };
 
 }  // namespace soltex

@@ -1,0 +1,49 @@
+// soltex-load: puts a measured, bounded load on one soltexd and reports per-brick throughput,
+// latency percentiles and errors by status code.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <iostream>
+
+#include "load_generator.h"
+#include "load_options.h"
+#include "load_report.h"
+
+int main(int argc, char** argv) {
+  using namespace soltex::load;
+  LoadOptions options;
+  CLI::App app{"soltex-load: load generator for soltexd (closed or open loop, per-brick latency)"};
+  add_load_options(app, options);
+  CLI11_PARSE(app, argc, argv);
+
+  if (options.mix == MixKind::hot && !options.open_loop() && options.in_flight > options.hot_set) {
+    // A stream never waits for one key twice at once, so it cannot keep more than the hot
+    // set outstanding; the rest wait on the client and the run measures that, not the server.
+    std::fprintf(stderr,
+                 "soltex-load: warning: --in-flight %d exceeds --hot-set %d; at most %d bricks "
+                 "can be outstanding per stream\n",
+                 options.in_flight, options.hot_set, options.hot_set);
+  }
+  // On a terminal the line is redrawn in place; into a file or pipe, one line per second.
+  const bool terminal = isatty(STDERR_FILENO) != 0;
+  ProgressCallback progress;
+  if (options.progress) {
+    progress = [terminal](const ProgressLine& line) {
+      std::fprintf(stderr, terminal ? "\r%s\033[K" : "%s\n", format_progress(line).c_str());
+      std::fflush(stderr);
+    };
+  }
+  try {
+    const LoadResult result = run_load(options, progress);
+    if (options.progress && terminal) std::fputc('\n', stderr);
+    std::cout << format_result(result, options.format) << std::flush;
+  } catch (const LoadOptionsError& e) {
+    std::fprintf(stderr, "soltex-load: %s\n", e.what());
+    return 2;
+  } catch (const LoadSetupError& e) {
+    std::fprintf(stderr, "soltex-load: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,92 @@
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
+
+#include "soltex/common/brick_cache.h"
+#include "soltex/common/brick_evaluator.h"
+#include "soltex/common/brick_key.h"
+#include "soltex/common/texture_spec.h"
+#include "soltex/net/brick_source.h"
+
+namespace soltex::net {
+
+struct FetcherOptions {
+  std::size_t max_in_flight = 256;  // bricks requested and not yet received
+  std::chrono::milliseconds initial_backoff{100};
+  std::chrono::milliseconds max_backoff{4000};
+  std::chrono::milliseconds register_timeout{10000};
+};
+
+// The client's one gRPC stream to soltexd. Render threads hand it each frame's misses; a
+// reader thread decodes arriving bricks (checksum verified) and inserts them into the local
+// cache, so the render threads never decode. When the server goes away the fetcher
+// reconnects with exponential backoff, re-registers its textures and asks again, while the
+// renderer draws on from what the cache holds.
+class BrickFetcher final : public BrickSource {
+ public:
+  BrickFetcher(std::string server_address, BrickCache& cache, FetcherOptions options = {});
+  ~BrickFetcher() override;
+
+  BrickFetcher(const BrickFetcher&) = delete;
+  BrickFetcher& operator=(const BrickFetcher&) = delete;
+
+  // Registers a texture (idempotent) and returns its id; waits for the server up to
+  // FetcherOptions::register_timeout. Throws std::runtime_error with the server's message.
+  uint64_t register_texture(const TextureSpec& spec, const Volume& volume, int brick_size,
+                            const MipSettings& mip) override;
+
+  // This frame's misses (duplicates allowed). Keys already resident or in flight are skipped;
+  // keys in flight that this frame no longer wants are cancelled; the rest are sent in order,
+  // up to the in-flight bound.
+  void want(std::vector<BrickWant> wants) override;
+
+  // Nothing requested, waiting or in flight.
+  bool idle() const override;
+  // Blocks until idle() or the timeout passes; returns idle().
+  bool wait_idle(std::chrono::milliseconds timeout) override;
+  SourceStats stats() const override;
+
+  // Round-trip time of GetServerInfo, and throughput of a short brick burst, for the
+  // capability probe.
+  std::chrono::microseconds measure_round_trip();
+
+ private:
+  struct Channel;
+  struct Stream;
+
+  void supervise();   // connect, re-register, read until the stream breaks, back off, repeat
+  void write_loop();  // sends wants and cancellations as they come
+  bool reregister(const std::chrono::milliseconds timeout);
+  void receive(const std::vector<std::pair<BrickKey, std::string>>& payloads);
+
+  const std::string address_;
+  BrickCache& cache_;
+  const FetcherOptions options_;
+  std::unique_ptr<Channel> channel_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable changed_;
+  std::shared_ptr<Stream> stream_;                           // null while disconnected
+  std::unordered_map<uint64_t, std::string> registrations_;  // id -> serialized request
+  std::vector<BrickWant> waiting_;                           // best first, not yet sent
+  std::unordered_set<BrickKey, BrickKeyHash> in_flight_;
+  std::unordered_set<BrickKey, BrickKeyHash> failed_;  // refused by the server: not asked again
+  std::vector<BrickKey> to_cancel_;
+  bool resend_ = false;  // a new stream: everything in flight must be asked for again
+  SourceStats stats_;
+  bool stopping_ = false;
+  std::thread supervisor_;
+  std::thread writer_;
+};
+
+}  // namespace soltex::net

@@ -1,0 +1,49 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <vector>
+
+#include "soltex/common/brick_evaluator.h"
+#include "soltex/common/brick_key.h"
+#include "soltex/common/texture_spec.h"
+
+namespace soltex::net {
+
+// A brick the renderer wants this frame. Coarser levels are fetched first (each is the
+// fallback for many finer ones), then by the screen area that needs it.
+struct BrickWant {
+  BrickKey key;
+  uint32_t screen_pixels = 0;
+};
+
+struct SourceStats {
+  uint64_t requested = 0;  // keys asked for
+  uint64_t received = 0;   // bricks that arrived in the cache
+  uint64_t bytes = 0;      // encoded bytes that travelled (0 for an in-process source)
+  uint64_t cancelled = 0;  // keys dropped because no frame wanted them any more
+  uint64_t errors = 0;     // refused or undecodable bricks
+  uint64_t reconnects = 0;
+  std::size_t in_flight = 0;
+  std::size_t waiting = 0;
+  bool connected = false;
+};
+
+// Where a client's bricks come from: soltexd over gRPC (BrickFetcher) or an in-process
+// evaluator (LocalBrickSource). Either fills the client's BrickCache in the background.
+class BrickSource {
+ public:
+  virtual ~BrickSource() = default;
+
+  // Registers a texture and returns its content-addressed id; throws std::runtime_error (or
+  // SpecError) with a message naming what was refused.
+  virtual uint64_t register_texture(const TextureSpec& spec, const Volume& volume, int brick_size,
+                                    const MipSettings& mip) = 0;
+  // This frame's misses; replaces the previous frame's wants (stale ones are cancelled).
+  virtual void want(std::vector<BrickWant> wants) = 0;
+  virtual bool idle() const = 0;
+  virtual bool wait_idle(std::chrono::milliseconds timeout) = 0;
+  virtual SourceStats stats() const = 0;
+};
+
+}  // namespace soltex::net

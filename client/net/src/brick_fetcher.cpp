@@ -1,0 +1,341 @@
+#include "soltex/net/brick_fetcher.h"
+
+#include <grpcpp/grpcpp.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "soltex/common/brick_codec.h"
+#include "soltex/common/texture_id.h"
+#include "soltex/spec_proto/spec_from_proto.h"
+#include "soltex/v1/brick_service.grpc.pb.h"
+
+namespace soltex::net {
+
+struct BrickFetcher::Channel {
+  std::shared_ptr<grpc::Channel> channel;
+  std::unique_ptr<v1::BrickService::Stub> stub;
+};
+
+struct BrickFetcher::Stream {
+  grpc::ClientContext context;
+  std::mutex write_mutex;  // Write and Finish never overlap
+  std::unique_ptr<grpc::ClientReaderWriter<v1::BrickRequest, v1::BrickBatch>> call;
+};
+
+namespace {
+
+v1::BrickKey to_proto(const BrickKey& key) {
+  v1::BrickKey m;
+  m.set_texture_id(key.texture);
+  m.set_level(static_cast<uint32_t>(key.level));
+  m.set_x(key.brick.x);
+  m.set_y(key.brick.y);
+  m.set_z(key.brick.z);
+  return m;
+}
+
+BrickKey from_proto(const v1::BrickKey& m) {
+  return {m.texture_id(), static_cast<int32_t>(m.level()), {m.x(), m.y(), m.z()}};
+}
+
+v1::MipMode to_proto(MipMode mode) {
+  switch (mode) {
+    case MipMode::point:
+      return v1::MIP_MODE_POINT;
+    case MipMode::supersampled:
+      return v1::MIP_MODE_SUPERSAMPLED;
+    case MipMode::band_limited:
+      break;
+  }
+  return v1::MIP_MODE_BAND_LIMITED;
+}
+
+bool better(const BrickWant& a, const BrickWant& b) {
+  if (a.key.level != b.key.level) return a.key.level > b.key.level;
+  return a.screen_pixels > b.screen_pixels;
+}
+
+}  // namespace
+
+BrickFetcher::BrickFetcher(std::string server_address, BrickCache& cache, FetcherOptions options)
+    : address_(std::move(server_address)),
+      cache_(cache),
+      options_(options),
+      channel_(std::make_unique<Channel>()) {
+  grpc::ChannelArguments args;
+  args.SetMaxReceiveMessageSize(64 << 20);
+  // Reconnect promptly after a server restart; our own backoff paces the streams.
+  args.SetInt(GRPC_ARG_INITIAL_RECONNECT_BACKOFF_MS, 100);
+  args.SetInt(GRPC_ARG_MAX_RECONNECT_BACKOFF_MS, static_cast<int>(options_.max_backoff.count()));
+  channel_->channel = grpc::CreateCustomChannel(address_, grpc::InsecureChannelCredentials(), args);
+  channel_->stub = v1::BrickService::NewStub(channel_->channel);
+  supervisor_ = std::thread([this] { supervise(); });
+  writer_ = std::thread([this] { write_loop(); });
+}
+
+BrickFetcher::~BrickFetcher() {
+  std::shared_ptr<Stream> stream;
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+    stream = stream_;
+  }
+  if (stream) stream->context.TryCancel();
+  changed_.notify_all();
+  writer_.join();
+  supervisor_.join();
+}
+
+uint64_t BrickFetcher::register_texture(const TextureSpec& spec, const Volume& volume,
+                                        int brick_size, const MipSettings& mip) {
+  v1::RegisterTextureRequest request;
+  *request.mutable_spec() = soltex::to_proto(spec);
+  *request.mutable_volume() = soltex::to_proto(volume);
+  request.set_brick_size(static_cast<uint32_t>(brick_size));
+  request.set_mip_mode(to_proto(mip.mode));
+  request.set_supersample(static_cast<uint32_t>(mip.supersample));
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + options_.register_timeout);
+  context.set_wait_for_ready(true);
+  v1::TextureHandle handle;
+  const grpc::Status status = channel_->stub->RegisterTexture(&context, request, &handle);
+  if (!status.ok()) {
+    throw std::runtime_error("registering the texture with " + address_ +
+                             " failed: " + status.error_message());
+  }
+  std::lock_guard lock(mutex_);
+  registrations_[handle.id()] = request.SerializeAsString();
+  // The coarsest level is every lookup's last resort: keep it resident.
+  cache_.pin_levels(handle.id(), static_cast<int>(handle.levels()) - 1);
+  return handle.id();
+}
+
+bool BrickFetcher::reregister(const std::chrono::milliseconds timeout) {
+  std::vector<std::string> requests;
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [id, request] : registrations_) requests.push_back(request);
+  }
+  for (const std::string& bytes : requests) {
+    v1::RegisterTextureRequest request;
+    request.ParseFromString(bytes);
+    grpc::ClientContext context;
+    context.set_deadline(std::chrono::system_clock::now() + timeout);
+    v1::TextureHandle handle;
+    if (!channel_->stub->RegisterTexture(&context, request, &handle).ok()) return false;
+  }
+  return true;
+}
+
+void BrickFetcher::supervise() {
+  auto backoff = options_.initial_backoff;
+  bool first = true;
+  for (;;) {
+    {
+      std::unique_lock lock(mutex_);
+      if (stopping_) return;
+    }
+    // A restarted server has forgotten our textures: register them again first.
+    if (first || reregister(std::chrono::milliseconds(2000))) {
+      auto stream = std::make_shared<Stream>();
+      stream->call = channel_->stub->StreamBricks(&stream->context);
+      {
+        std::lock_guard lock(mutex_);
+        if (stopping_) return;
+        stream_ = stream;
+        stats_.connected = true;
+        resend_ = true;
+        if (!first) ++stats_.reconnects;
+      }
+      changed_.notify_all();
+      v1::BrickBatch batch;
+      bool received_any = false;
+      while (stream->call->Read(&batch)) {
+        received_any = true;
+        backoff = options_.initial_backoff;
+        std::vector<std::pair<BrickKey, std::string>> payloads;
+        payloads.reserve(static_cast<std::size_t>(batch.bricks_size()));
+        for (auto& brick : *batch.mutable_bricks()) {
+          payloads.emplace_back(from_proto(brick.key()), std::move(*brick.mutable_payload()));
+        }
+        receive(payloads);
+        if (batch.errors_size() > 0 || batch.request_errors_size() > 0) {
+          std::lock_guard lock(mutex_);
+          for (const auto& error : batch.errors()) {
+            const BrickKey key = from_proto(error.key());
+            in_flight_.erase(key);
+            failed_.insert(key);
+            ++stats_.errors;
+            spdlog::warn("brick refused: {}", error.message());
+          }
+          for (const auto& error : batch.request_errors()) {
+            ++stats_.errors;
+            spdlog::warn("request refused: {}", error.message());
+          }
+        }
+        changed_.notify_all();
+      }
+      {
+        std::lock_guard writes(mutex_);
+        stream_.reset();
+        stats_.connected = false;
+      }
+      grpc::Status status;
+      {
+        // Take the stream from the writer; if it is stuck in a Write waiting on flow control,
+        // cancel the call to release it (the status then reads CANCELLED).
+        std::unique_lock writing(stream->write_mutex, std::try_to_lock);
+        if (!writing.owns_lock()) {
+          stream->context.TryCancel();
+          writing.lock();
+        }
+        status = stream->call->Finish();
+      }
+      {
+        std::lock_guard lock(mutex_);
+        if (stopping_) return;
+      }
+      if (!status.ok() || !received_any) {
+        spdlog::warn("brick stream to {} ended ({}); reconnecting in {} ms", address_,
+                     status.ok() ? "closed" : status.error_message(), backoff.count());
+      }
+    }
+    first = false;
+    std::unique_lock lock(mutex_);
+    changed_.wait_for(lock, backoff, [this] { return stopping_; });
+    backoff = std::min(backoff * 2, options_.max_backoff);
+  }
+}
+
+void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& payloads) {
+  for (const auto& [key, payload] : payloads) {
+    bool ok = false;
+    try {
+      const DecodedBrick decoded =
+          decode_brick(std::span(reinterpret_cast<const uint8_t*>(payload.data()), payload.size()));
+      cache_.insert(key, decoded.brick_size, decoded.channels, decoded.samples);
+      ok = true;
+    } catch (const CodecError& e) {
+      spdlog::warn("undecodable brick from {}: {}", address_, e.what());
+    }
+    std::lock_guard lock(mutex_);
+    in_flight_.erase(key);
+    if (ok) {
+      ++stats_.received;
+      stats_.bytes += payload.size();
+    } else {
+      failed_.insert(key);
+      ++stats_.errors;
+    }
+  }
+}
+
+void BrickFetcher::want(std::vector<BrickWant> wants) {
+  std::sort(wants.begin(), wants.end(), better);
+  std::unordered_set<BrickKey, BrickKeyHash> wanted;
+  std::vector<BrickWant> fresh;
+  for (const BrickWant& w : wants) {
+    if (!wanted.insert(w.key).second) continue;  // duplicate
+    fresh.push_back(w);
+  }
+  {
+    std::lock_guard lock(mutex_);
+    // What is in flight and no frame wants any more is stale: cancel it.
+    for (auto it = in_flight_.begin(); it != in_flight_.end();) {
+      if (!wanted.contains(*it)) {
+        to_cancel_.push_back(*it);
+        ++stats_.cancelled;
+        it = in_flight_.erase(it);
+      } else {
+        ++it;
+      }
+    }
+    waiting_.clear();
+    for (const BrickWant& w : fresh) {
+      if (in_flight_.contains(w.key) || failed_.contains(w.key) || cache_.contains(w.key)) continue;
+      waiting_.push_back(w);
+    }
+  }
+  changed_.notify_all();
+}
+
+void BrickFetcher::write_loop() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    changed_.wait(lock, [this] {
+      return stopping_ ||
+             (stream_ && (resend_ || !to_cancel_.empty() ||
+                          (!waiting_.empty() && in_flight_.size() < options_.max_in_flight)));
+    });
+    if (stopping_) return;
+    std::shared_ptr<Stream> stream = stream_;
+    v1::BrickRequest request;
+    if (resend_) {
+      // A new stream knows nothing of the old one's requests.
+      for (const BrickKey& key : in_flight_) *request.add_want()->mutable_key() = to_proto(key);
+      request.add_accept_codecs(v1::CODEC_ZSTD);
+      resend_ = false;
+    }
+    for (const BrickKey& key : to_cancel_) *request.add_cancel() = to_proto(key);
+    to_cancel_.clear();
+    std::size_t taken = 0;
+    while (taken < waiting_.size() && in_flight_.size() < options_.max_in_flight) {
+      const BrickWant& w = waiting_[taken++];
+      if (cache_.contains(w.key) || in_flight_.contains(w.key)) continue;
+      in_flight_.insert(w.key);
+      auto* want = request.add_want();
+      *want->mutable_key() = to_proto(w.key);
+      want->set_priority(static_cast<int32_t>(std::min<uint32_t>(w.screen_pixels, 1u << 30)));
+      ++stats_.requested;
+    }
+    waiting_.erase(waiting_.begin(), waiting_.begin() + static_cast<std::ptrdiff_t>(taken));
+    // Write outside the lock: it may wait for flow control.
+    lock.unlock();
+    bool ok;
+    {
+      std::lock_guard writing(stream->write_mutex);
+      ok = stream->call->Write(request);
+    }
+    lock.lock();
+    if (!ok && stream_ == stream) {
+      // The stream is broken; the supervisor will notice on its read and reconnect.
+      changed_.wait_for(lock, std::chrono::milliseconds(50));
+    }
+  }
+}
+
+bool BrickFetcher::idle() const {
+  std::lock_guard lock(mutex_);
+  return waiting_.empty() && in_flight_.empty();
+}
+
+bool BrickFetcher::wait_idle(std::chrono::milliseconds timeout) {
+  std::unique_lock lock(mutex_);
+  return changed_.wait_for(lock, timeout,
+                           [this] { return waiting_.empty() && in_flight_.empty(); });
+}
+
+SourceStats BrickFetcher::stats() const {
+  std::lock_guard lock(mutex_);
+  SourceStats s = stats_;
+  s.in_flight = in_flight_.size();
+  s.waiting = waiting_.size();
+  return s;
+}
+
+std::chrono::microseconds BrickFetcher::measure_round_trip() {
+  const auto start = std::chrono::steady_clock::now();
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
+  v1::ServerInfo info;
+  const grpc::Status status = channel_->stub->GetServerInfo(&context, {}, &info);
+  if (!status.ok()) {
+    throw std::runtime_error("server " + address_ + " did not answer: " + status.error_message());
+  }
+  return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() -
+                                                               start);
+}
+
+}  // namespace soltex::net

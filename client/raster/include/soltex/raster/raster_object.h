@@ -1,0 +1,28 @@
+#pragma once
+
+#include <cstdint>
+#include <glm/mat4x4.hpp>
+
+#include "soltex/raster/raster_mesh.h"
+
+// One object to draw: a mesh, where it is, and where its texture space is.
+namespace soltex {
+
+struct RasterObject {
+  RasterMesh mesh;
+  glm::mat4 model{1.0f};  // object space -> world space
+  // Object space -> texture space, in double: an object's texture space may sit far from the
+  // origin (1e6, 1e9), where a float could not tell neighbouring samples apart. For a
+  // world-space texture pass texture_from_world * model.
+  glm::dmat4 texture_from_object{1.0};
+  uint32_t object_id = 0;  // copied to every pixel the object wins
+  // The mesh bounds a solid (closed, consistently wound). Only then is a back face seen
+  // through a user clip plane the inside of the solid, drawn as a cap; for an open mesh
+  // (a sheet, a ground plane) it stays a back face.
+  // Which of the view's clip planes cut this object: bit j selects RasterView::clip_planes[j].
+  // A scene's plane usually cuts one object and leaves the others whole.
+  uint32_t clip_plane_mask = ~0u;
+  bool closed = true;
+};
+
+}  // namespace soltex

@@ -1,0 +1,57 @@
+#pragma once
+
+#include <memory>
+#include <span>
+
+#include "soltex/raster/gbuffer.h"
+#include "soltex/raster/raster_object.h"
+#include "soltex/raster/raster_stats.h"
+#include "soltex/raster/raster_view.h"
+
+// The software rasterizer: objects in, a G-buffer out.
+//
+// Pipeline (details in src/rasterizer.cpp): vertices are transformed, triangles are clipped
+// in homogeneous space (near plane, guard band), snapped to 1/256 pixel and binned into
+// 64 x 64 tiles; threads take whole tiles, so no two threads write one pixel. Within a tile,
+// triangles are drawn in submission order with integer edge functions and a top-left fill
+// rule (a pixel centre on an edge shared by two triangles belongs to exactly one), and float
+// depth where the strictly nearer fragment wins: on a tie the earlier triangle stays, so the
+// image does not depend on the thread count. Attributes are resolved once per pixel, for the
+// winner only, perspective-correct (attribute/w and 1/w interpolated).
+//
+// Both faces are drawn; GBuffer::kBackFace records which won. With user clip planes, a
+// fragment on the removed side is discarded, and a pixel whose nearest remaining fragment is
+// a back face of a closed object looks into the cut solid: it becomes a cap, at the point
+// where its view ray enters the kept region (computed in double).
+namespace soltex {
+
+struct RasterOptions {
+  int threads = 0;  // render threads including the caller's; 0: std::thread::hardware_concurrency
+  bool count_coverage = false;  // fill GBuffer::coverage_count (debug, tests)
+};
+
+class Rasterizer {
+ public:
+  explicit Rasterizer(RasterOptions options = {});
+  ~Rasterizer();
+  Rasterizer(Rasterizer&&) noexcept;
+  Rasterizer& operator=(Rasterizer&&) noexcept;
+  Rasterizer(const Rasterizer&) = delete;
+  Rasterizer& operator=(const Rasterizer&) = delete;
+
+  int thread_count() const;
+
+  // Draws the objects, in order, into `target` (resized to the view; every pixel written).
+  // Throws std::invalid_argument for a bad view (size out of range, too many or malformed
+  // clip planes) or a malformed mesh view (indices not a multiple of 3, normals neither empty
+  // nor one per position), before drawing anything. Bad triangles are skipped and counted.
+  // One render at a time per Rasterizer; the render itself uses thread_count() threads.
+  RasterStats render(const RasterView& view, std::span<const RasterObject> objects,
+                     GBuffer& target);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace soltex

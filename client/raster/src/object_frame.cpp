@@ -1,0 +1,26 @@
+#include "object_frame.h"
+
+#include <glm/matrix.hpp>
+
+namespace soltex::raster_internal {
+
+ObjectFrame make_object_frame(const RasterObject& object, const RasterView& view,
+                              std::size_t first_vertex) {
+  const glm::dmat4 model(object.model);
+  ObjectFrame frame;
+  frame.source = &object;
+  frame.clip_from_object = glm::mat4(glm::dmat4(view.view_projection) * model);
+  frame.world_normal_from_object = glm::mat3(glm::transpose(glm::inverse(glm::dmat3(model))));
+  frame.texture_from_world = object.texture_from_object * glm::inverse(model);
+  const glm::dmat4 model_transposed = glm::transpose(model);
+  for (std::size_t j = 0; j < view.clip_planes.size(); ++j) {
+    // A plane that does not cut this object becomes one that keeps everything (distance 1).
+    frame.object_planes[j] = (object.clip_plane_mask >> j) & 1u
+                                 ? model_transposed * view.clip_planes[j]
+                                 : glm::dvec4(0.0, 0.0, 0.0, 1.0);
+  }
+  frame.first_vertex = first_vertex;
+  return frame;
+}
+
+}  // namespace soltex::raster_internal

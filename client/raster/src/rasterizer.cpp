@@ -1,0 +1,260 @@
+#include "soltex/raster/rasterizer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cap_tracer.h"
+#include "object_frame.h"
+#include "screen_triangle.h"
+#include "tile_rasterizer.h"
+#include "transformed_vertices.h"
+#include "triangle_setup.h"
+#include "worker_pool.h"
+
+// A frame in three parallel passes:
+//   1. vertices: every object's vertices transformed once (clip position, texture position in
+//      double, world normal, clip-plane distances), in blocks;
+//   2. setup: triangles in fixed chunks of the submission order, each chunk set up and binned
+//      into tiles on its own (no shared state, no locks);
+//   3. tiles: each tile drawn by one thread, visiting the chunks in order, so triangles are
+//      drawn in submission order whatever the thread count; then resolved into the G-buffer.
+namespace soltex {
+
+using raster_internal::AffineForm;
+using raster_internal::CapTracer;
+using raster_internal::kTileSize;
+using raster_internal::ObjectFrame;
+using raster_internal::ScreenTriangle;
+using raster_internal::TileFrame;
+using raster_internal::TileRasterizer;
+using raster_internal::TransformedVertices;
+using raster_internal::TriangleSetup;
+using raster_internal::WorkerPool;
+
+namespace {
+
+constexpr std::size_t kVerticesPerBlock = 4096;
+constexpr std::size_t kTrianglesPerChunk = 2048;
+constexpr int kMaxThreads = 256;
+
+// The screen triangles of one chunk of submitted triangles, and their tile bins: the
+// triangles of tile t are bin_items[bin_start[t] .. bin_start[t + 1]), in submission order.
+struct SetupChunk {
+  std::vector<ScreenTriangle> triangles;
+  std::vector<AffineForm> clip_forms;
+  std::vector<uint32_t> bin_start;
+  std::vector<uint32_t> bin_items;
+  RasterStats stats;
+};
+
+struct TileGrid {
+  int columns = 0;
+  int rows = 0;
+  int count() const { return columns * rows; }
+};
+
+int resolve_thread_count(int requested) {
+  if (requested < 0) {
+    throw std::invalid_argument(
+        "RasterOptions::threads must be >= 0 (0: one per hardware "
+        "thread), got " +
+        std::to_string(requested));
+  }
+  if (requested == 0) requested = static_cast<int>(std::thread::hardware_concurrency());
+  return std::clamp(requested, 1, kMaxThreads);
+}
+
+void validate(const RasterView& view, std::span<const RasterObject> objects) {
+  if (view.width < 1 || view.width > RasterView::kMaxSize || view.height < 1 ||
+      view.height > RasterView::kMaxSize) {
+    throw std::invalid_argument("RasterView size must be 1.." +
+                                std::to_string(RasterView::kMaxSize) + " on each side, got " +
+                                std::to_string(view.width) + "x" + std::to_string(view.height));
+  }
+  if (view.clip_planes.size() > RasterView::kMaxClipPlanes) {
+    throw std::invalid_argument("RasterView has " + std::to_string(view.clip_planes.size()) +
+                                " clip planes; at most " +
+                                std::to_string(RasterView::kMaxClipPlanes) + " are supported");
+  }
+  for (std::size_t j = 0; j < view.clip_planes.size(); ++j) {
+    const glm::dvec4& plane = view.clip_planes[j];
+    const bool finite = std::isfinite(plane.x) && std::isfinite(plane.y) &&
+                        std::isfinite(plane.z) && std::isfinite(plane.w);
+    if (!finite || (plane.x == 0.0 && plane.y == 0.0 && plane.z == 0.0)) {
+      throw std::invalid_argument("RasterView clip plane " + std::to_string(j) +
+                                  " must be finite with a non-zero normal (a, b, c)");
+    }
+  }
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const RasterMesh& mesh = objects[i].mesh;
+    if (mesh.indices.size() % 3 != 0) {
+      throw std::invalid_argument("RasterObject " + std::to_string(i) + ": " +
+                                  std::to_string(mesh.indices.size()) +
+                                  " indices is not a multiple of 3");
+    }
+    if (!mesh.normals.empty() && mesh.normals.size() != mesh.positions.size()) {
+      throw std::invalid_argument("RasterObject " + std::to_string(i) + ": " +
+                                  std::to_string(mesh.normals.size()) + " normals for " +
+                                  std::to_string(mesh.positions.size()) +
+                                  " positions (need one per position, or none)");
+    }
+    if (mesh.triangle_count() > UINT32_MAX / 3) {
+      throw std::invalid_argument("RasterObject " + std::to_string(i) + " has too many triangles");
+    }
+  }
+  if (objects.size() > UINT32_MAX) throw std::invalid_argument("too many RasterObjects");
+}
+
+// Sorts the chunk's triangles into tile bins (a counting sort, stable: submission order).
+void bin_triangles(SetupChunk& chunk, const TileGrid& grid) {
+  chunk.bin_start.assign(static_cast<std::size_t>(grid.count()) + 1, 0);
+  const auto for_each_tile = [&grid](const ScreenTriangle& t, auto&& visit) {
+    for (int row = t.min_py / kTileSize; row <= t.max_py / kTileSize; ++row) {
+      for (int column = t.min_px / kTileSize; column <= t.max_px / kTileSize; ++column) {
+        visit(static_cast<std::size_t>(row * grid.columns + column));
+      }
+    }
+  };
+  for (const ScreenTriangle& t : chunk.triangles) {
+    for_each_tile(t, [&](std::size_t tile) { ++chunk.bin_start[tile + 1]; });
+  }
+  for (std::size_t tile = 0; tile < static_cast<std::size_t>(grid.count()); ++tile) {
+    chunk.bin_start[tile + 1] += chunk.bin_start[tile];
+  }
+  chunk.bin_items.resize(chunk.bin_start.back());
+  std::vector<uint32_t> fill(chunk.bin_start.begin(), chunk.bin_start.end() - 1);
+  for (std::size_t i = 0; i < chunk.triangles.size(); ++i) {
+    for_each_tile(chunk.triangles[i], [&](std::size_t tile) {
+      chunk.bin_items[fill[tile]++] = static_cast<uint32_t>(i);
+    });
+  }
+}
+
+}  // namespace
+
+struct Rasterizer::Impl {
+  explicit Impl(RasterOptions opts) : options(opts), pool(resolve_thread_count(opts.threads)) {
+    for (int i = 0; i < pool.thread_count(); ++i) {
+      tiles.push_back(std::make_unique<TileRasterizer>());
+    }
+    worker_stats.resize(static_cast<std::size_t>(pool.thread_count()));
+  }
+
+  RasterOptions options;
+  WorkerPool pool;
+  // Kept between frames so that a steady scene renders without allocating.
+  std::vector<ObjectFrame> objects;
+  std::vector<std::size_t> first_triangle;  // per object, plus the total at the end
+  TransformedVertices vertices;
+  std::vector<SetupChunk> chunks;
+  std::vector<std::unique_ptr<TileRasterizer>> tiles;  // one per thread
+  std::vector<RasterStats> worker_stats;
+};
+
+Rasterizer::Rasterizer(RasterOptions options) : impl_(std::make_unique<Impl>(options)) {}
+Rasterizer::~Rasterizer() = default;
+Rasterizer::Rasterizer(Rasterizer&&) noexcept = default;
+Rasterizer& Rasterizer::operator=(Rasterizer&&) noexcept = default;
+
+int Rasterizer::thread_count() const {
+  return impl_->pool.thread_count();
+}
+
+RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObject> objects,
+                               GBuffer& target) {
+  validate(view, objects);
+  Impl& impl = *impl_;
+  target.resize(view.width, view.height, impl.options.count_coverage);
+  std::fill(target.coverage_count.begin(), target.coverage_count.end(), 0u);
+  const int plane_count = static_cast<int>(view.clip_planes.size());
+
+  // 1. Vertices.
+  impl.objects.clear();
+  impl.first_triangle.assign(1, 0);
+  std::size_t vertex_count = 0;
+  struct VertexBlock {
+    std::size_t object, begin, end;
+  };
+  std::vector<VertexBlock> blocks;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    impl.objects.push_back(raster_internal::make_object_frame(objects[i], view, vertex_count));
+    const std::size_t positions = objects[i].mesh.positions.size();
+    for (std::size_t begin = 0; begin < positions; begin += kVerticesPerBlock) {
+      blocks.push_back({i, begin, std::min(positions, begin + kVerticesPerBlock)});
+    }
+    vertex_count += positions;
+    impl.first_triangle.push_back(impl.first_triangle.back() + objects[i].mesh.triangle_count());
+  }
+  impl.vertices.resize(vertex_count, plane_count);
+  impl.pool.parallel_for(blocks.size(), [&](std::size_t b, int) {
+    raster_internal::transform_vertices(impl.objects[blocks[b].object], blocks[b].begin,
+                                        blocks[b].end, impl.vertices);
+  });
+
+  // 2. Setup and binning.
+  const TileGrid grid{(view.width + kTileSize - 1) / kTileSize,
+                      (view.height + kTileSize - 1) / kTileSize};
+  const std::size_t triangle_count = impl.first_triangle.back();
+  const std::size_t chunk_count = (triangle_count + kTrianglesPerChunk - 1) / kTrianglesPerChunk;
+  if (impl.chunks.size() < chunk_count) impl.chunks.resize(chunk_count);
+  const TriangleSetup setup(view.width, view.height, plane_count);
+  impl.pool.parallel_for(chunk_count, [&](std::size_t c, int) {
+    SetupChunk& chunk = impl.chunks[c];
+    chunk.triangles.clear();
+    chunk.clip_forms.clear();
+    chunk.stats = {};
+    const std::size_t begin = c * kTrianglesPerChunk;
+    const std::size_t end = std::min(triangle_count, begin + kTrianglesPerChunk);
+    // The object holding triangle `begin`, then walk on.
+    std::size_t object = static_cast<std::size_t>(
+        std::upper_bound(impl.first_triangle.begin(), impl.first_triangle.end(), begin) -
+        impl.first_triangle.begin() - 1);
+    for (std::size_t global = begin; global < end; ++global) {
+      while (global >= impl.first_triangle[object + 1]) ++object;
+      const std::size_t local = global - impl.first_triangle[object];
+      const std::span<const uint32_t> indices = objects[object].mesh.indices;
+      setup.setup(impl.objects[object], static_cast<uint32_t>(object), impl.vertices,
+                  indices[3 * local], indices[3 * local + 1], indices[3 * local + 2],
+                  chunk.triangles, chunk.clip_forms, chunk.stats);
+    }
+    bin_triangles(chunk, grid);
+  });
+
+  // 3. Tiles.
+  const std::optional<CapTracer> caps =
+      plane_count > 0 ? std::optional<CapTracer>(std::in_place, view) : std::nullopt;
+  const TileFrame tile_frame{impl.objects, caps ? &*caps : nullptr};
+  uint32_t* coverage = target.coverage_count.empty() ? nullptr : target.coverage_count.data();
+  std::fill(impl.worker_stats.begin(), impl.worker_stats.end(), RasterStats{});
+  impl.pool.parallel_for(static_cast<std::size_t>(grid.count()), [&](std::size_t tile, int worker) {
+    const int column = static_cast<int>(tile) % grid.columns;
+    const int row = static_cast<int>(tile) / grid.columns;
+    TileRasterizer& tiles = *impl.tiles[static_cast<std::size_t>(worker)];
+    RasterStats& stats = impl.worker_stats[static_cast<std::size_t>(worker)];
+    tiles.begin(column * kTileSize, row * kTileSize, std::min(view.width, (column + 1) * kTileSize),
+                std::min(view.height, (row + 1) * kTileSize));
+    for (std::size_t c = 0; c < chunk_count; ++c) {
+      const SetupChunk& chunk = impl.chunks[c];
+      for (uint32_t k = chunk.bin_start[tile]; k < chunk.bin_start[tile + 1]; ++k) {
+        tiles.draw(chunk.triangles[chunk.bin_items[k]], chunk.clip_forms, coverage, view.width,
+                   stats);
+      }
+    }
+    tiles.resolve(tile_frame, target, stats);
+  });
+
+  RasterStats total;
+  for (std::size_t c = 0; c < chunk_count; ++c) total += impl.chunks[c].stats;
+  for (const RasterStats& stats : impl.worker_stats) total += stats;
+  return total;
+}
+
+}  // namespace soltex

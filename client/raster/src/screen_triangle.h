@@ -1,0 +1,67 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <glm/vec3.hpp>
+
+// A triangle ready to rasterize: what triangle setup hands to the tile rasterizer.
+namespace soltex::raster_internal {
+
+// Screen positions are fixed point with kSubpixelBits fractional bits, so edge functions are
+// exact integers: a pixel centre is on an edge or not, the same for both triangles that share
+// it, and the top-left rule can settle the tie.
+inline constexpr int kSubpixelBits = 8;
+inline constexpr int64_t kSubpixelScale = int64_t{1} << kSubpixelBits;
+
+// An affine function of the pixel position (px, py), relative to the triangle's first
+// vertex so that float keeps its precision: value(px, py) = at_vertex0 + per_x * (px - x0) +
+// per_y * (py - y0).
+struct AffineForm {
+  float at_vertex0 = 0.0f;
+  float per_x = 0.0f;
+  float per_y = 0.0f;
+};
+
+struct ScreenTriangle {
+  // Fixed-point positions, y down, ordered so that double_area > 0 (clockwise on screen).
+  std::array<int32_t, 3> x{};
+  std::array<int32_t, 3> y{};
+  int64_t double_area = 0;
+  // Pixels whose centres can be inside, clamped to the viewport (inclusive).
+  int32_t min_px = 0, min_py = 0, max_px = 0, max_py = 0;
+
+  AffineForm depth;  // window depth, affine on screen
+  // Per vertex (in the order above): 1/w, and attributes to interpolate perspective-correctly.
+  std::array<float, 3> inv_w{};
+  std::array<glm::vec3, 3> texture_offset{};  // texture position - texture_origin
+  std::array<glm::vec3, 3> normal{};          // world space
+  glm::dvec3 texture_origin{0.0};
+
+  uint32_t object = 0;  // index of the object in the render call
+  // User clip planes this triangle straddles (bit j: plane j needs a per-fragment test), and
+  // where their forms (signed distance / w, affine on screen; one per clip plane of the frame)
+  // start in the chunk's clip-form array.
+  uint32_t clip_mask = 0;
+  uint32_t first_clip_form = 0;
+  bool back_face = false;
+
+  float x0_pixels() const { return static_cast<float>(x[0]) / static_cast<float>(kSubpixelScale); }
+  float y0_pixels() const { return static_cast<float>(y[0]) / static_cast<float>(kSubpixelScale); }
+};
+
+// Twice the signed area of (a, b, p), in fixed-point units squared: positive when p is to the
+// inside of the edge a -> b for a triangle with double_area > 0. Exact in int64: coordinates
+// stay below 2^24 in magnitude (see the guard band), so products stay below 2^50.
+inline int64_t edge_function(int64_t ax, int64_t ay, int64_t bx, int64_t by, int64_t px,
+                             int64_t py) {
+  return (bx - ax) * (py - ay) - (by - ay) * (px - ax);
+}
+
+// The top-left rule for a clockwise-on-screen (y down) triangle: a top edge is horizontal and
+// runs to the right; a left edge runs up. A pixel centre exactly on an edge is inside only
+// when the edge is top or left; the triangle across the edge runs it the other way round.
+inline bool is_top_left(int64_t ax, int64_t ay, int64_t bx, int64_t by) {
+  return (ay == by && bx > ax) || by < ay;
+}
+
+}  // namespace soltex::raster_internal

@@ -1,0 +1,49 @@
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <span>
+
+#include "cap_tracer.h"
+#include "object_frame.h"
+#include "screen_triangle.h"
+#include "soltex/raster/gbuffer.h"
+#include "soltex/raster/raster_stats.h"
+
+// Rasterizing into one tile, then resolving it into the G-buffer.
+//
+// Drawing keeps only depth and the winning triangle per pixel (a visibility buffer), so the
+// attributes (texture position, normal, footprint; or a traced cap) are computed once per
+// pixel, for the surface that is finally seen, however many triangles were drawn over it.
+// One TileRasterizer per thread; a tile is drawn by one thread only.
+namespace soltex::raster_internal {
+
+inline constexpr int kTileSize = 64;
+
+// What resolving needs of the frame.
+struct TileFrame {
+  std::span<const ObjectFrame> objects;
+  const CapTracer* caps = nullptr;  // null when the frame has no clip planes
+};
+
+class TileRasterizer {
+ public:
+  // Starts the tile of pixels [x0, x1) x [y0, y1), at most kTileSize on a side.
+  void begin(int x0, int y0, int x1, int y1);
+
+  // Draws the triangle's pixels in this tile. `clip_forms`: the frame's clip-form array of the
+  // triangle's chunk (used when triangle.clip_mask != 0). `coverage`: the G-buffer's coverage
+  // counts, or null.
+  void draw(const ScreenTriangle& triangle, std::span<const AffineForm> clip_forms,
+            uint32_t* coverage, int coverage_stride, RasterStats& stats);
+
+  // Writes every pixel of the tile to `target`.
+  void resolve(const TileFrame& frame, GBuffer& target, RasterStats& stats) const;
+
+ private:
+  int x0_ = 0, y0_ = 0, x1_ = 0, y1_ = 0;
+  std::array<float, kTileSize * kTileSize> depth_{};
+  std::array<const ScreenTriangle*, kTileSize * kTileSize> winner_{};
+};
+
+}  // namespace soltex::raster_internal

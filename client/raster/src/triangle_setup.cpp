@@ -1,0 +1,264 @@
+#include "triangle_setup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
+#include <utility>
+
+#include "saturating_cast.h"
+
+namespace soltex::raster_internal {
+
+struct TriangleSetup::SourceTriangle {
+  uint32_t object_index = 0;
+  std::array<glm::dvec3, 3> texture{};
+  std::array<glm::vec3, 3> normal{};
+  std::array<std::array<float, RasterView::kMaxClipPlanes>, 3> plane_distance{};
+  uint32_t straddling_planes = 0;
+};
+
+namespace {
+
+// The sides of the view volume a clip-space point is outside of, for trivial rejection.
+uint32_t frustum_outcode(const glm::vec4& c) {
+  return (c.x < -c.w ? 1u : 0u) | (c.x > c.w ? 2u : 0u) | (c.y < -c.w ? 4u : 0u) |
+         (c.y > c.w ? 8u : 0u) | (c.z < -c.w ? 16u : 0u) | (c.z > c.w ? 32u : 0u);
+}
+
+int64_t floor_div(int64_t numerator, int64_t denominator) {
+  const int64_t quotient = numerator / denominator;
+  return (numerator % denominator != 0 && numerator < 0) ? quotient - 1 : quotient;
+}
+
+// The first and last pixel whose centre (at fixed-point k * scale + scale / 2) lies in
+// [low, high].
+std::pair<int64_t, int64_t> pixel_centre_span(int64_t low, int64_t high) {
+  constexpr int64_t kHalf = kSubpixelScale / 2;
+  return {-floor_div(-(low - kHalf), kSubpixelScale), floor_div(high - kHalf, kSubpixelScale)};
+}
+
+// The affine form through three values at three fixed-point positions.
+AffineForm affine_form(const std::array<int64_t, 3>& x, const std::array<int64_t, 3>& y,
+                       int64_t double_area, const std::array<double, 3>& value) {
+  const double scale = static_cast<double>(kSubpixelScale);
+  const double x1 = static_cast<double>(x[1] - x[0]) / scale;
+  const double y1 = static_cast<double>(y[1] - y[0]) / scale;
+  const double x2 = static_cast<double>(x[2] - x[0]) / scale;
+  const double y2 = static_cast<double>(y[2] - y[0]) / scale;
+  const double area = static_cast<double>(double_area) / (scale * scale);
+  const double d1 = value[1] - value[0];
+  const double d2 = value[2] - value[0];
+  return {to_float_saturated(value[0]), to_float_saturated((d1 * y2 - d2 * y1) / area),
+          to_float_saturated((d2 * x1 - d1 * x2) / area)};
+}
+
+// In double throughout: the cross product of float differences can pass float's range.
+glm::vec3 face_normal(const ObjectFrame& object, uint32_t i0, uint32_t i1, uint32_t i2) {
+  const auto& positions = object.source->mesh.positions;
+  const glm::dvec3 p0(positions[i0]);
+  const glm::dvec3 n = glm::dmat3(object.world_normal_from_object) *
+                       glm::cross(glm::dvec3(positions[i1]) - p0, glm::dvec3(positions[i2]) - p0);
+  const double length = glm::length(n);
+  return length > 0.0 && std::isfinite(length) ? glm::vec3(n / length)
+                                               : glm::vec3(0.0f, 0.0f, 1.0f);
+}
+
+}  // namespace
+
+TriangleSetup::TriangleSetup(int width, int height, int clip_plane_count)
+    : width_(width),
+      height_(height),
+      clip_plane_count_(clip_plane_count),
+      clip_planes_(
+          1.0f + 2.0f * static_cast<float>(kGuardBandPixels) / static_cast<float>(width),
+          1.0f + 2.0f * static_cast<float>(kGuardBandPixels) / static_cast<float>(height)) {}
+
+TriangleSetup::ProjectedVertex TriangleSetup::project(const glm::vec4& clip) const {
+  // In double, and from the vertex alone: a vertex shared by two triangles lands on the same
+  // fixed-point position in both.
+  const double inv_w = 1.0 / static_cast<double>(clip.w);
+  const double ndc_x = static_cast<double>(clip.x) * inv_w;
+  const double ndc_y = static_cast<double>(clip.y) * inv_w;
+  const double ndc_z = static_cast<double>(clip.z) * inv_w;
+  const double screen_x = (ndc_x * 0.5 + 0.5) * static_cast<double>(width_);
+  const double screen_y = (0.5 - ndc_y * 0.5) * static_cast<double>(height_);
+  // The guard band bounds these; the clamp only keeps a rounding overshoot defined.
+  constexpr double kLimit = double{1 << 24};
+  const double scale = static_cast<double>(kSubpixelScale);
+  return {static_cast<int64_t>(std::nearbyint(std::clamp(screen_x * scale, -kLimit, kLimit))),
+          static_cast<int64_t>(std::nearbyint(std::clamp(screen_y * scale, -kLimit, kLimit))),
+          ndc_z * 0.5 + 0.5};
+}
+
+void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
+                          const TransformedVertices& vertices, uint32_t i0, uint32_t i1,
+                          uint32_t i2, std::vector<ScreenTriangle>& triangles,
+                          std::vector<AffineForm>& clip_forms, RasterStats& stats) const {
+  ++stats.triangles_in;
+  const RasterMesh& mesh = object.source->mesh;
+  const std::size_t vertex_count = mesh.positions.size();
+  if (i0 >= vertex_count || i1 >= vertex_count || i2 >= vertex_count) {
+    ++stats.triangles_invalid;
+    return;
+  }
+  const std::array<std::size_t, 3> at = {object.first_vertex + i0, object.first_vertex + i1,
+                                         object.first_vertex + i2};
+  if (!vertices.valid[at[0]] || !vertices.valid[at[1]] || !vertices.valid[at[2]]) {
+    ++stats.triangles_invalid;
+    return;
+  }
+  const glm::vec4& a = vertices.clip[at[0]];
+  const glm::vec4& b = vertices.clip[at[1]];
+  const glm::vec4& c = vertices.clip[at[2]];
+  if ((frustum_outcode(a) & frustum_outcode(b) & frustum_outcode(c)) != 0) {
+    ++stats.triangles_culled;
+    return;
+  }
+
+  SourceTriangle source;
+  source.object_index = object_index;
+  if (clip_plane_count_ > 0) {
+    ++stats.triangles_clip_tested;
+    const auto planes = static_cast<std::size_t>(clip_plane_count_);
+    for (std::size_t j = 0; j < planes; ++j) {
+      int removed = 0;
+      for (std::size_t k = 0; k < 3; ++k) {
+        const float distance = vertices.plane_distance[at[k] * planes + j];
+        source.plane_distance[k][j] = distance;
+        removed += distance < 0.0f ? 1 : 0;
+      }
+      if (removed == 3) {
+        ++stats.triangles_clip_rejected;
+        return;
+      }
+      if (removed > 0) source.straddling_planes |= 1u << j;
+    }
+    if (source.straddling_planes != 0) ++stats.triangles_clip_straddling;
+  }
+
+  const uint32_t outside =
+      clip_planes_.outside(a) | clip_planes_.outside(b) | clip_planes_.outside(c);
+  ClipPolygon polygon;
+  if (outside == 0) {
+    polygon.vertices[0] = {a, {1.0f, 0.0f, 0.0f}};
+    polygon.vertices[1] = {b, {0.0f, 1.0f, 0.0f}};
+    polygon.vertices[2] = {c, {0.0f, 0.0f, 1.0f}};
+    polygon.size = 3;
+  } else {
+    if ((outside & (kClipNear | kClipPositiveW)) != 0) ++stats.triangles_clipped_near;
+    if ((outside & ~(kClipNear | kClipPositiveW)) != 0) ++stats.triangles_clipped_guard_band;
+    polygon = clip_triangle(clip_planes_, outside, a, b, c);
+    if (polygon.size < 3) {
+      ++stats.triangles_culled;
+      return;
+    }
+  }
+
+  for (std::size_t k = 0; k < 3; ++k) source.texture[k] = vertices.texture[at[k]];
+  const bool has_normals = glm::dot(vertices.normal[at[0]], vertices.normal[at[0]]) > 0.0f &&
+                           glm::dot(vertices.normal[at[1]], vertices.normal[at[1]]) > 0.0f &&
+                           glm::dot(vertices.normal[at[2]], vertices.normal[at[2]]) > 0.0f;
+  if (has_normals) {
+    for (std::size_t k = 0; k < 3; ++k) source.normal[k] = vertices.normal[at[k]];
+  } else {
+    source.normal.fill(face_normal(object, i0, i1, i2));
+  }
+
+  std::array<ProjectedVertex, ClipPolygon::kCapacity> projected;
+  for (int k = 0; k < polygon.size; ++k) {
+    const auto index = static_cast<std::size_t>(k);
+    projected[index] = project(polygon.vertices[index].clip);
+  }
+  for (int k = 1; k + 1 < polygon.size; ++k) {
+    emit(source, polygon, projected, {0, k, k + 1}, triangles, clip_forms, stats);
+  }
+}
+
+void TriangleSetup::emit(const SourceTriangle& source, const ClipPolygon& polygon,
+                         const std::array<ProjectedVertex, ClipPolygon::kCapacity>& projected,
+                         std::array<int, 3> corners, std::vector<ScreenTriangle>& triangles,
+                         std::vector<AffineForm>& clip_forms, RasterStats& stats) const {
+  const auto vertex = [&](int k) -> const ProjectedVertex& {
+    return projected[static_cast<std::size_t>(corners[static_cast<std::size_t>(k)])];
+  };
+  int64_t double_area =
+      edge_function(vertex(0).x, vertex(0).y, vertex(1).x, vertex(1).y, vertex(2).x, vertex(2).y);
+  if (double_area == 0) {
+    ++stats.triangles_degenerate;
+    return;
+  }
+  // Counter-clockwise in NDC (y up) is clockwise on screen (y down): negative area here.
+  const bool back_face = double_area > 0;
+  if (!back_face) {
+    std::swap(corners[1], corners[2]);
+    double_area = -double_area;
+  }
+
+  std::array<int64_t, 3> x{}, y{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    x[k] = vertex(static_cast<int>(k)).x;
+    y[k] = vertex(static_cast<int>(k)).y;
+  }
+  const auto [min_px, max_px] = pixel_centre_span(*std::min_element(x.begin(), x.end()),
+                                                  *std::max_element(x.begin(), x.end()));
+  const auto [min_py, max_py] = pixel_centre_span(*std::min_element(y.begin(), y.end()),
+                                                  *std::max_element(y.begin(), y.end()));
+  ScreenTriangle triangle;
+  triangle.min_px = static_cast<int32_t>(std::max<int64_t>(min_px, 0));
+  triangle.min_py = static_cast<int32_t>(std::max<int64_t>(min_py, 0));
+  triangle.max_px = static_cast<int32_t>(std::min<int64_t>(max_px, width_ - 1));
+  triangle.max_py = static_cast<int32_t>(std::min<int64_t>(max_py, height_ - 1));
+  if (triangle.min_px > triangle.max_px || triangle.min_py > triangle.max_py) {
+    ++stats.triangles_culled;  // off screen, or between pixel centres
+    return;
+  }
+  for (std::size_t k = 0; k < 3; ++k) {
+    triangle.x[k] = static_cast<int32_t>(x[k]);
+    triangle.y[k] = static_cast<int32_t>(y[k]);
+  }
+  triangle.double_area = double_area;
+
+  std::array<double, 3> depth{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const int corner = corners[k];
+    const ClipVertex& clip_vertex = polygon.vertices[static_cast<std::size_t>(corner)];
+    const glm::dvec3 weights(clip_vertex.weights);
+    depth[k] = vertex(static_cast<int>(k)).depth;
+    triangle.inv_w[k] = static_cast<float>(1.0 / static_cast<double>(clip_vertex.clip.w));
+    // Offsets from vertex 0's texture position, combined in double, small enough for float.
+    const glm::dvec3 offset = weights.y * (source.texture[1] - source.texture[0]) +
+                              weights.z * (source.texture[2] - source.texture[0]);
+    triangle.texture_offset[k] = glm::vec3(
+        to_float_saturated(offset.x), to_float_saturated(offset.y), to_float_saturated(offset.z));
+    triangle.normal[k] = clip_vertex.weights.x * source.normal[0] +
+                         clip_vertex.weights.y * source.normal[1] +
+                         clip_vertex.weights.z * source.normal[2];
+  }
+  triangle.depth = affine_form(x, y, double_area, depth);
+  triangle.texture_origin = source.texture[0];
+  triangle.object = source.object_index;
+  triangle.back_face = back_face;
+
+  if (source.straddling_planes != 0) {
+    triangle.clip_mask = source.straddling_planes;
+    triangle.first_clip_form = static_cast<uint32_t>(clip_forms.size());
+    for (std::size_t j = 0; j < static_cast<std::size_t>(clip_plane_count_); ++j) {
+      // Signed distance / w is affine on screen, and w > 0 here, so its sign is the
+      // distance's sign: no division per fragment.
+      std::array<double, 3> distance_over_w{};
+      for (std::size_t k = 0; k < 3; ++k) {
+        const glm::vec3& weights = polygon.vertices[static_cast<std::size_t>(corners[k])].weights;
+        const double distance = static_cast<double>(weights.x) * source.plane_distance[0][j] +
+                                static_cast<double>(weights.y) * source.plane_distance[1][j] +
+                                static_cast<double>(weights.z) * source.plane_distance[2][j];
+        distance_over_w[k] = distance * static_cast<double>(triangle.inv_w[k]);
+      }
+      clip_forms.push_back(affine_form(x, y, double_area, distance_over_w));
+    }
+  }
+  triangles.push_back(triangle);
+  ++stats.triangles_rasterized;
+}
+
+}  // namespace soltex::raster_internal

@@ -1,0 +1,55 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "homogeneous_clipper.h"
+#include "object_frame.h"
+#include "screen_triangle.h"
+#include "soltex/raster/raster_stats.h"
+#include "transformed_vertices.h"
+
+// Triangle setup: from three transformed vertices to zero or more screen triangles.
+//
+// In order: skip invalid triangles (index out of range, non-finite vertex); cull a triangle
+// wholly outside one side of the view volume; classify it against the user clip planes (wholly
+// removed: dropped; straddling: its fragments will be tested); clip it in homogeneous space
+// against the near plane (and the guard band, when a vertex is far outside the viewport);
+// project, snap to fixed point, orient, and write the affine forms of depth and clip distance.
+namespace soltex::raster_internal {
+
+// Screen coordinates are kept within this many pixels outside the viewport (by clipping),
+// so fixed-point coordinates stay below 2^23 in magnitude.
+inline constexpr int kGuardBandPixels = 8192;
+
+class TriangleSetup {
+ public:
+  TriangleSetup(int width, int height, int clip_plane_count);
+
+  // Appends the screen triangles of the object's triangle (i0, i1, i2) to `triangles`, their
+  // clip-plane forms to `clip_forms`, and counts what it did.
+  void setup(const ObjectFrame& object, uint32_t object_index, const TransformedVertices& vertices,
+             uint32_t i0, uint32_t i1, uint32_t i2, std::vector<ScreenTriangle>& triangles,
+             std::vector<AffineForm>& clip_forms, RasterStats& stats) const;
+
+ private:
+  struct ProjectedVertex {
+    int64_t x = 0;  // fixed point
+    int64_t y = 0;
+    double depth = 0.0;  // window depth
+  };
+  struct SourceTriangle;
+
+  ProjectedVertex project(const glm::vec4& clip) const;
+  void emit(const SourceTriangle& source, const ClipPolygon& polygon,
+            const std::array<ProjectedVertex, ClipPolygon::kCapacity>& projected,
+            std::array<int, 3> corners, std::vector<ScreenTriangle>& triangles,
+            std::vector<AffineForm>& clip_forms, RasterStats& stats) const;
+
+  int width_;
+  int height_;
+  int clip_plane_count_;
+  ClipPlanes clip_planes_;
+};
+
+}  // namespace soltex::raster_internal

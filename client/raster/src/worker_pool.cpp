@@ -1,0 +1,65 @@
+#include "worker_pool.h"
+
+namespace soltex::raster_internal {
+
+WorkerPool::WorkerPool(int thread_count) {
+  for (int worker = 1; worker < thread_count; ++worker) {
+    threads_.emplace_back([this, worker](std::stop_token stop) { worker_loop(stop, worker); });
+  }
+}
+
+WorkerPool::~WorkerPool() {
+  for (std::jthread& thread : threads_) thread.request_stop();
+  wake_.notify_all();
+  threads_.clear();  // joins
+}
+
+void WorkerPool::parallel_for(std::size_t count,
+                              const std::function<void(std::size_t, int)>& task) {
+  if (count == 0) return;
+  {
+    std::lock_guard lock(mutex_);
+    task_ = &task;
+    count_ = count;
+    next_.store(0, std::memory_order_relaxed);
+    error_ = nullptr;
+    busy_workers_ = static_cast<int>(threads_.size());
+    ++generation_;
+  }
+  wake_.notify_all();
+  run_tasks(0);
+  std::unique_lock lock(mutex_);
+  done_.wait(lock, [this] { return busy_workers_ == 0; });
+  task_ = nullptr;
+  if (error_) std::rethrow_exception(std::exchange(error_, nullptr));
+}
+
+void WorkerPool::worker_loop(const std::stop_token& stop, int worker) {
+  unsigned long long seen = 0;
+  while (true) {
+    {
+      std::unique_lock lock(mutex_);
+      if (!wake_.wait(lock, stop, [&] { return generation_ != seen; })) return;
+      seen = generation_;
+    }
+    run_tasks(worker);
+    std::lock_guard lock(mutex_);
+    if (--busy_workers_ == 0) done_.notify_one();
+  }
+}
+
+void WorkerPool::run_tasks(int worker) {
+  while (true) {
+    const std::size_t index = next_.fetch_add(1, std::memory_order_relaxed);
+    if (index >= count_) return;
+    try {
+      (*task_)(index, worker);
+    } catch (...) {
+      std::lock_guard lock(mutex_);
+      if (!error_) error_ = std::current_exception();
+      next_.store(count_, std::memory_order_relaxed);  // the others stop at their next index
+    }
+  }
+}
+
+}  // namespace soltex::raster_internal

@@ -1,0 +1,70 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "soltex/common/brick_cache.h"
+#include "soltex/common/texture_sampler.h"
+#include "soltex/net/brick_source.h"
+#include "soltex/raster/gbuffer.h"
+#include "soltex/raster/raster_stats.h"
+#include "soltex/raster/rasterizer.h"
+#include "soltex/render/image.h"
+#include "soltex/render/prepared_scene.h"
+
+namespace soltex {
+
+struct RenderOptions {
+  SampleFilter filter = SampleFilter::trilinear;
+  double level_bias = 0.0;           // added to every pixel's level of detail (negative: finer)
+  bool false_colour_levels = false;  // show the level each pixel drew from instead of shading
+  int threads = 0;                   // 0: one per core
+};
+
+struct FrameStats {
+  double raster_ms = 0.0;
+  double shade_ms = 0.0;
+  std::size_t covered_pixels = 0;
+  std::size_t fallback_pixels = 0;  // drawn from a coarser level than they asked for
+  std::size_t empty_pixels = 0;     // nothing resident at all yet
+  std::size_t shaded_pixels = 0;    // lit (not unlit materials)
+  RasterStats raster;
+};
+
+struct Frame {
+  Image image;
+  std::vector<net::BrickWant> misses;  // distinct keys, with the pixels that wanted each
+  FrameStats stats;
+  bool complete() const { return misses.empty(); }
+};
+
+// Draws a prepared scene from what the cache holds: rasterize into a G-buffer, then per pixel
+// look the texture up at the level its footprint asks for (a coarser resident level when that
+// one is missing), and shade (Lambert + Blinn-Phong, the texture as albedo). Reports the
+// bricks it missed so the caller can fetch them; the next frame refines.
+class FrameRenderer {
+ public:
+  FrameRenderer(BrickCache& cache, RenderOptions options);
+
+  Frame render(const PreparedScene& scene, const Camera& camera, int width, int height);
+
+  // The same frame with the texture evaluated per pixel (band-limited to the footprint, and
+  // averaged over supersample^2 sub-pixel positions when supersample > 1): the reference the
+  // cached path is compared with.
+  Image render_reference(const PreparedScene& scene, const Camera& camera, int width, int height,
+                         int supersample = 1);
+
+  const RenderOptions& options() const { return options_; }
+  void set_level_bias(double bias) { options_.level_bias = bias; }
+
+ private:
+  BrickCache& cache_;
+  RenderOptions options_;
+  Rasterizer rasterizer_;
+  GBuffer gbuffer_;
+};
+
+// Camera matrices shared by the renderer and tools.
+glm::dmat4 view_projection(const Camera& camera, int width, int height);
+
+}  // namespace soltex

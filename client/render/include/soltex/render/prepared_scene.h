@@ -1,0 +1,44 @@
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "soltex/common/brick_evaluator.h"
+#include "soltex/common/brick_layout.h"
+#include "soltex/net/brick_source.h"
+#include "soltex/raster/raster_object.h"
+#include "soltex/scene/scene.h"
+
+namespace soltex {
+
+// How finely textures are cached: chosen per client from its capability (or by hand).
+struct TextureResolution {
+  int finest_level_log2 = 8;  // used where a material does not set its own
+  int brick_size = 16;
+  MipSettings mip;
+};
+
+// One scene object ready to draw: its raster input and its registered texture.
+struct PreparedObject {
+  const SceneObject* object = nullptr;
+  RasterObject raster;
+  TextureSpec texture;
+  Volume volume;
+  BrickLayout layout;
+  uint64_t texture_id = 0;
+  int channels = 0;
+};
+
+struct PreparedScene {
+  const Scene* scene = nullptr;
+  std::vector<PreparedObject> objects;
+  std::vector<glm::dvec4> clip_planes;  // raster convention: a.x + b.y + c.z + d >= 0 keeps
+};
+
+// Builds the raster objects and registers every material's texture with `source`. The
+// default volume is a cube around the object's bounds (in its texture space), padded a little
+// so trilinear lookups at the surface stay inside. `scene` must outlive the result.
+PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolution,
+                            net::BrickSource& source);
+
+}  // namespace soltex

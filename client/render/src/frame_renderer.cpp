@@ -1,0 +1,251 @@
+#include "soltex/render/frame_renderer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/matrix.hpp>
+#include <memory>
+#include <thread>
+#include <unordered_map>
+
+#include "soltex/common/texture_evaluator.h"
+#include "soltex/render/shading.h"
+
+namespace soltex {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double ms_since(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+constexpr glm::vec3 kBackground{0.12f, 0.12f, 0.14f};
+
+// Distinct colours for levels 0.. in false-colour mode.
+glm::vec3 level_colour(int level) {
+  static constexpr glm::vec3 kPalette[] = {
+      {0.90f, 0.10f, 0.10f}, {0.95f, 0.55f, 0.10f}, {0.95f, 0.90f, 0.15f}, {0.30f, 0.80f, 0.20f},
+      {0.15f, 0.70f, 0.85f}, {0.20f, 0.35f, 0.95f}, {0.60f, 0.25f, 0.90f}, {0.85f, 0.85f, 0.85f}};
+  if (level < 0) return glm::vec3(0.0f);
+  return kPalette[std::min<std::size_t>(static_cast<std::size_t>(level), std::size(kPalette) - 1)];
+}
+
+int thread_count(int requested) {
+  if (requested > 0) return requested;
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+// Runs body(first_row, end_row) over `threads` bands of rows; returns when all are done.
+template <typename Body>
+void parallel_rows(int height, int threads, Body body) {
+  const int bands = std::min(threads, std::max(height, 1));
+  std::vector<std::jthread> workers;
+  for (int b = 1; b < bands; ++b) {
+    workers.emplace_back([&, b] { body(height * b / bands, height * (b + 1) / bands); });
+  }
+  body(0, height / bands);
+}
+
+std::vector<RasterObject> raster_objects(const PreparedScene& scene) {
+  std::vector<RasterObject> objects;
+  objects.reserve(scene.objects.size());
+  for (const PreparedObject& o : scene.objects) objects.push_back(o.raster);
+  return objects;
+}
+
+// The lighting inputs of pixel i: world position (unprojected from depth), normal facing the
+// viewer, direction to the viewer.
+struct Surface {
+  glm::dvec3 position;
+  glm::dvec3 normal;
+  glm::dvec3 to_viewer;
+};
+
+Surface surface_at(const GBuffer& g, std::size_t i, int x, int y, const glm::dmat4& inverse_vp,
+                   const glm::dvec3& eye) {
+  const double ndc_x = (x + 0.5) / g.width * 2.0 - 1.0;
+  const double ndc_y = 1.0 - (y + 0.5) / g.height * 2.0;
+  const double ndc_z = static_cast<double>(g.depth[i]) * 2.0 - 1.0;
+  const glm::dvec4 h = inverse_vp * glm::dvec4(ndc_x, ndc_y, ndc_z, 1.0);
+  Surface s;
+  s.position = glm::dvec3(h) / h.w;
+  const glm::dvec3 view = eye - s.position;
+  const double length = glm::length(view);
+  s.to_viewer = length > 0.0 ? view / length : glm::dvec3(0.0, 0.0, 1.0);
+  glm::dvec3 n(g.normal[i]);
+  const double n_length = glm::length(n);
+  n = n_length > 0.0 ? n / n_length : s.to_viewer;
+  if (g.back_face(i) || glm::dot(n, s.to_viewer) < 0.0) n = -n;  // seen from inside
+  s.normal = n;
+  return s;
+}
+
+// Texture channel values -> shaded colour, the same for the cached and the reference path.
+glm::vec3 shade_pixel(const Scene& scene, const PreparedObject& object, const float* values,
+                      const Surface& surface) {
+  const ChannelSet& channels = object.texture.channels;
+  const Material& material = object.object->material;
+  const glm::vec3 albedo =
+      channels.colour ? glm::vec3(values[0], values[1], values[2]) : glm::vec3(values[0]);
+  int next = channels.colour ? 3 : 0;
+  const float opacity = channels.opacity ? values[next++] : 1.0f;
+  const float specular = channels.specular ? values[next++] : material.specular;
+  glm::vec3 colour = material.unlit ? albedo
+                                    : shade(scene, albedo, specular, material.shininess,
+                                            surface.position, surface.normal, surface.to_viewer);
+  if (opacity < 1.0f) colour = kBackground + opacity * (colour - kBackground);
+  return colour;
+}
+
+}  // namespace
+
+glm::dmat4 view_projection(const Camera& camera, int width, int height) {
+  const double aspect = static_cast<double>(width) / static_cast<double>(std::max(height, 1));
+  const glm::dmat4 projection =
+      glm::perspective(glm::radians(camera.fov_y_degrees), aspect, camera.near, camera.far);
+  return projection * glm::lookAt(camera.position, camera.target, camera.up);
+}
+
+FrameRenderer::FrameRenderer(BrickCache& cache, RenderOptions options)
+    : cache_(cache), options_(options), rasterizer_(RasterOptions{options.threads, false}) {}
+
+Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, int width,
+                            int height) {
+  Frame frame;
+  frame.image = Image(width, height);
+  const auto raster_start = Clock::now();
+  const glm::dmat4 vp = view_projection(camera, width, height);
+  const std::vector<RasterObject> objects = raster_objects(scene);
+  RasterView view;
+  view.width = width;
+  view.height = height;
+  view.view_projection = glm::mat4(vp);
+  view.clip_planes = scene.clip_planes;
+  frame.stats.raster = rasterizer_.render(view, objects, gbuffer_);
+  frame.stats.raster_ms = ms_since(raster_start);
+
+  const auto shade_start = Clock::now();
+  cache_.begin_frame();
+  const glm::dmat4 inverse_vp = glm::inverse(vp);
+  const int threads = thread_count(options_.threads);
+  struct Band {
+    std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
+    std::size_t covered = 0, fallback = 0, empty = 0, shaded = 0;
+  };
+  std::vector<Band> bands(static_cast<std::size_t>(threads));
+  std::atomic<int> next_band{0};
+  const GBuffer& g = gbuffer_;
+  parallel_rows(height, threads, [&](int first, int end) {
+    Band& band = bands[static_cast<std::size_t>(next_band.fetch_add(1))];
+    // Samplers hold per-thread microcaches: one per thread and object.
+    std::vector<std::unique_ptr<TextureSampler>> samplers;
+    samplers.reserve(scene.objects.size());
+    for (const PreparedObject& o : scene.objects) {
+      samplers.push_back(
+          std::make_unique<TextureSampler>(cache_, o.texture_id, o.layout, o.channels));
+    }
+    MissedBricks missed;
+    for (int y = first; y < end; ++y) {
+      for (int x = 0; x < width; ++x) {
+        const std::size_t i = g.index(x, y);
+        if (!g.covered(i) || g.object_id[i] >= scene.objects.size()) {
+          frame.image.set(x, y, kBackground.r, kBackground.g, kBackground.b);
+          continue;
+        }
+        ++band.covered;
+        const PreparedObject& object = scene.objects[g.object_id[i]];
+        TextureSampler& sampler = *samplers[g.object_id[i]];
+        const double lod = sampler.level_of_detail(g.footprint[i]) + options_.level_bias;
+        const SampleResult result =
+            sampler.sample(g.texture_position[i], lod, options_.filter, &missed);
+        for (const BrickKey& key : missed.view()) ++band.misses[key];
+        if (!result.complete) ++band.fallback;
+        if (result.level < 0) ++band.empty;
+        glm::vec3 colour;
+        if (options_.false_colour_levels) {
+          colour = level_colour(result.level);
+        } else {
+          colour = shade_pixel(*scene.scene, object, result.values.data(),
+                               surface_at(g, i, x, y, inverse_vp, camera.position));
+          band.shaded += object.object->material.unlit ? 0 : 1;
+        }
+        frame.image.set(x, y, colour.r, colour.g, colour.b);
+      }
+    }
+    for (auto& s : samplers) s->flush_statistics();
+  });
+  std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
+  for (const Band& band : bands) {
+    for (const auto& [key, pixels] : band.misses) misses[key] += pixels;
+    frame.stats.covered_pixels += band.covered;
+    frame.stats.fallback_pixels += band.fallback;
+    frame.stats.empty_pixels += band.empty;
+    frame.stats.shaded_pixels += band.shaded;
+  }
+  frame.misses.reserve(misses.size());
+  for (const auto& [key, pixels] : misses) frame.misses.push_back({key, pixels});
+  frame.stats.shade_ms = ms_since(shade_start);
+  return frame;
+}
+
+Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& camera, int width,
+                                      int height, int supersample) {
+  const int k = std::clamp(supersample, 1, 8);
+  const int w = width * k, h = height * k;
+  const glm::dmat4 vp = view_projection(camera, w, h);
+  const std::vector<RasterObject> objects = raster_objects(scene);
+  RasterView view;
+  view.width = w;
+  view.height = h;
+  view.view_projection = glm::mat4(vp);
+  view.clip_planes = scene.clip_planes;
+  GBuffer g;
+  rasterizer_.render(view, objects, g);
+  std::vector<TextureEvaluator> evaluators;
+  for (const PreparedObject& o : scene.objects) evaluators.emplace_back(o.texture);
+  const glm::dmat4 inverse_vp = glm::inverse(vp);
+  std::vector<glm::vec3> colours(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  parallel_rows(h, thread_count(options_.threads), [&](int first, int end) {
+    for (int y = first; y < end; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const std::size_t i = g.index(x, y);
+        if (!g.covered(i) || g.object_id[i] >= scene.objects.size()) {
+          colours[i] = kBackground;
+          continue;
+        }
+        const PreparedObject& object = scene.objects[g.object_id[i]];
+        // The footprint as the cached path sees it, so both band-limit alike.
+        const Texel texel =
+            evaluators[g.object_id[i]].sample(g.texture_position[i], g.footprint[i]);
+        float values[5] = {texel.colour.r, texel.colour.g, texel.colour.b, 0.0f, 0.0f};
+        const ChannelSet& c = object.texture.channels;
+        int next = c.colour ? 3 : 0;
+        if (!c.colour) values[0] = texel.field;
+        const auto scalar = [&](const ScalarRange& r) {
+          return r.low + (r.high - r.low) * texel.field;
+        };
+        if (c.opacity) values[next++] = scalar(object.texture.opacity);
+        if (c.specular) values[next++] = scalar(object.texture.specular);
+        colours[i] = shade_pixel(*scene.scene, object, values,
+                                 surface_at(g, i, x, y, inverse_vp, camera.position));
+      }
+    }
+  });
+  Image image(width, height);
+  const float weight = 1.0f / static_cast<float>(k * k);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      glm::vec3 sum(0.0f);
+      for (int sy = 0; sy < k; ++sy)
+        for (int sx = 0; sx < k; ++sx) sum += colours[g.index(x * k + sx, y * k + sy)];
+      sum *= weight;
+      image.set(x, y, sum.r, sum.g, sum.b);
+    }
+  }
+  return image;
+}
+
+}  // namespace soltex

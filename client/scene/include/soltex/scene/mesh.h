@@ -1,0 +1,39 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <vector>
+
+#include "soltex/scene/bounding_box.h"
+
+namespace soltex {
+
+// An indexed triangle mesh. Triangles are counter-clockwise seen from outside, so
+// cross(b - a, c - a) points out of a closed mesh. `normals` has one unit-length normal per
+// position; `bounds` is the box of `positions`. The builders and the OBJ loader keep all
+// three consistent; code that edits positions calls update_bounds() (and
+// compute_vertex_normals() when the shape changes).
+struct Mesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<uint32_t> indices;  // three per triangle
+  BoundingBox bounds;
+
+  std::size_t vertex_count() const { return positions.size(); }
+  std::size_t triangle_count() const { return indices.size() / 3; }
+  void update_bounds() { bounds = bounds_of(positions); }
+};
+
+// Smooth vertex normals: the sum of the normals of the triangles around a vertex, each
+// weighted by its area (the unnormalised cross product), then normalised. A vertex whose
+// sum cancels takes the normal of one of its triangles; an isolated vertex gets +z.
+void compute_vertex_normals(Mesh& mesh);
+
+// Moves and uniformly scales the mesh so that its bounding box is centred at the origin and
+// its longest side spans [-1, 1], the box of the unit sphere: a model then replaces a
+// built-in sphere without changing the look of a texture. Normals are unchanged (uniform
+// scale). A mesh with no extent is only centred.
+void normalize_to_unit_box(Mesh& mesh);
+
+}  // namespace soltex

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+#include "soltex/scene/mesh.h"
+
+// Wavefront OBJ files as they come: polygons are triangulated, exact duplicate vertices are
+// merged, degenerate triangles (a repeated vertex or zero area) are dropped, unreferenced
+// vertices are removed, and smooth normals are computed from the positions (any normals in
+// the file are ignored: many real files have none or wrong ones). Materials, texture
+// coordinates and groups are ignored; all groups become one mesh.
+namespace soltex {
+
+// The file (or the name given for a string) and what is wrong with it.
+class ObjError : public std::runtime_error {
+ public:
+  ObjError(std::string file, std::string problem);
+
+  const std::string& file() const { return file_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string file_;
+  std::string problem_;
+};
+
+struct ObjLoadOptions {
+  bool normalize = false;  // see normalize_to_unit_box()
+};
+
+// What loading did to the file's contents, for logs and tests.
+struct ObjLoadStats {
+  std::size_t vertices_read = 0;
+  std::size_t faces_read = 0;
+  std::size_t polygons_triangulated = 0;  // faces with more than three vertices
+  std::size_t degenerate_triangles_dropped = 0;
+  std::size_t duplicate_vertices_merged = 0;
+  std::size_t unreferenced_vertices_removed = 0;
+};
+
+struct LoadedObj {
+  Mesh mesh;
+  ObjLoadStats stats;
+};
+
+LoadedObj load_obj(const std::filesystem::path& path, const ObjLoadOptions& options = {});
+
+// The same from text; name_for_errors stands for the file in messages.
+LoadedObj parse_obj(std::string_view text, const std::string& name_for_errors,
+                    const ObjLoadOptions& options = {});
+
+}  // namespace soltex

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "soltex/scene/builtin_meshes.h"
+#include "soltex/scene/camera.h"
+#include "soltex/scene/clip_plane.h"
+#include "soltex/scene/lights.h"
+#include "soltex/scene/material.h"
+#include "soltex/scene/mesh.h"
+#include "soltex/scene/transform.h"
+
+namespace soltex {
+
+// An OBJ file a mesh came from (the path as resolved against the scene file's folder).
+struct ObjFile {
+  std::filesystem::path path;
+  bool normalize = true;
+};
+
+using MeshSource = std::variant<BuiltinShape, ObjFile>;
+
+struct SceneObject {
+  std::string name;
+  MeshSource source;
+  std::shared_ptr<const Mesh> mesh;  // shared by objects that name the same source
+  Transform transform;
+  Material material;
+  std::vector<ClipPlane> clip_planes;  // the scene's planes that cut this object
+};
+
+struct ImageSize {
+  int width = 1280;
+  int height = 720;
+};
+
+struct Scene {
+  std::string name;  // the file it came from, for messages
+  std::string description;
+  ImageSize image;
+  Camera camera;
+  std::optional<CameraOrbit> orbit;
+  AmbientLight ambient;
+  std::vector<Light> lights;
+  std::vector<SceneObject> objects;
+};
+
+}  // namespace soltex

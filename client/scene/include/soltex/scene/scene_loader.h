@@ -1,0 +1,33 @@
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "soltex/scene/scene.h"
+
+// Scene files (JSON; the format is docs/SCENES.md). Every field is checked: unknown keys,
+// wrong types, missing required fields and out-of-range numbers throw SceneError naming the
+// file, the field path and the bound. Meshes are built or loaded while parsing, so a scene
+// that loads is ready to draw.
+namespace soltex {
+
+// Reads a scene file; OBJ paths in it are relative to the file's folder.
+Scene load_scene(const std::filesystem::path& path);
+
+// Parses scene text; name_for_errors stands for the file in messages and relative OBJ paths
+// are resolved against obj_directory.
+Scene parse_scene(std::string_view json_text, const std::string& name_for_errors,
+                  const std::filesystem::path& obj_directory = {});
+
+// Bounds on the size of a scene.
+struct SceneLimits {
+  static constexpr int kMaxImageSide = 16384;
+  static constexpr int kMaxObjects = 1024;
+  static constexpr int kMaxLights = 64;
+  static constexpr int kMaxClipPlanes = 16;
+  static constexpr int kMaxOrbitFrames = 100000;
+  static constexpr double kMaxCoordinate = 1e6;  // camera, lights, clip planes
+};
+
+}  // namespace soltex

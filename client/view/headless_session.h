@@ -1,0 +1,34 @@
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "soltex/common/texture_sampler.h"
+#include "soltex/net/brick_source.h"
+#include "soltex/render/frame_renderer.h"
+
+namespace soltex::view {
+
+struct HeadlessOptions {
+  std::chrono::milliseconds max_time{30000};  // give up converging after this
+  bool exact = false;                         // fail unless every brick arrived
+};
+
+struct HeadlessResult {
+  Image image;
+  int frames = 0;
+  double first_frame_ms = 0.0;
+  double converged_ms = -1.0;  // -1: did not converge in time
+  double last_frame_ms = 0.0;  // raster + shade of the final frame
+  FrameStats last_stats;
+};
+
+// Draws frames until nothing is missing and nothing is pending (converged), handing each
+// frame's misses to the source; every frame is drawn at once from what the cache holds.
+HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedScene& scene,
+                                      const Camera& camera, int width, int height,
+                                      net::BrickSource& source, const HeadlessOptions& options);
+
+}  // namespace soltex::view

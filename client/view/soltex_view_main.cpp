@@ -1,0 +1,227 @@
+// soltex-view: objects carved out of procedural solid textures, drawn in software from a local
+// sparse brick cache that fills from soltexd (or from an in-process evaluator with --local).
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "headless_session.h"
+#include "soltex/capability/capability.h"
+#include "soltex/net/brick_fetcher.h"
+#include "soltex/net/local_brick_source.h"
+#include "soltex/render/frame_renderer.h"
+#include "soltex/scene/default_scene.h"
+#include "soltex/scene/scene_error.h"
+#include "soltex/scene/scene_loader.h"
+
+namespace {
+
+using namespace soltex;
+
+SampleFilter filter_from(const std::string& name) {
+  if (name == "nearest") return SampleFilter::nearest;
+  if (name == "quadrilinear") return SampleFilter::quadrilinear;
+  return SampleFilter::trilinear;
+}
+
+MipMode mip_from(const std::string& name) {
+  if (name == "point") return MipMode::point;
+  if (name == "supersampled") return MipMode::supersampled;
+  return MipMode::band_limited;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"soltex-view: software-rendered solid textures from a sparse brick cache"};
+  std::string server;
+  bool local = false;
+  std::filesystem::path scene_path;
+  std::filesystem::path out = "soltex-view.png";
+  bool headless = false;
+  bool exact = false;
+  bool reference = false;
+  int supersample = 1;
+  std::string capability_text;
+  std::string filter_name = "trilinear";
+  std::string mip_name = "band-limited";
+  double level_bias = 0.0;
+  bool false_colour = false;
+  double max_seconds = 30.0;
+  int threads = 0;
+  int finest_level = 0;
+  int width = 0, height = 0;
+  std::string log_level = "info";
+  app.add_option("--server", server, "soltexd address HOST:PORT");
+  app.add_flag("--local", local, "evaluate bricks in this process instead of fetching them");
+  app.add_option("--scene", scene_path, "scene file (JSON); default: the built-in scene")
+      ->check(CLI::ExistingFile);
+  app.add_option("--out", out, "PNG to write (headless)")->capture_default_str();
+  app.add_flag("--headless", headless, "render until converged, write --out, print statistics");
+  app.add_flag("--exact", exact,
+               "wait for every brick (fail if one does not come), so the image depends on the "
+               "settings alone");
+  app.add_flag("--reference", reference,
+               "also render by evaluating the texture per pixel; print PSNR and speed ratio");
+  app.add_option("--supersample", supersample, "reference sub-pixels per axis")
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
+  app.add_option("--capability", capability_text,
+                 "simulate a weaker machine: cpu=FACTOR,mem=MB,bandwidth=MBPS");
+  app.add_option("--filter", filter_name, "texture filter")
+      ->check(CLI::IsMember({"nearest", "trilinear", "quadrilinear"}))
+      ->capture_default_str();
+  app.add_option("--mip", mip_name, "MIP construction")
+      ->check(CLI::IsMember({"point", "band-limited", "supersampled"}))
+      ->capture_default_str();
+  app.add_option("--level-bias", level_bias, "added to every pixel's level (negative: finer)")
+      ->check(CLI::Range(-8.0, 8.0));
+  app.add_flag("--false-colour", false_colour, "show each pixel's level in false colour");
+  app.add_option("--max-seconds", max_seconds, "give up converging after this long")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
+  app.add_option("--threads", threads, "render threads (0: one per core)")
+      ->check(CLI::Range(0, 256));
+  app.add_option("--finest-level", finest_level,
+                 "finest texture level log2 (0: chosen from this machine's capability)")
+      ->check(CLI::Range(0, 14));
+  app.add_option("--width", width, "frame width (0: the scene's, scaled to this machine)")
+      ->check(CLI::Range(0, 16384));
+  app.add_option("--height", height, "frame height (0: the scene's, scaled to this machine)")
+      ->check(CLI::Range(0, 16384));
+  app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
+      ->capture_default_str();
+  CLI11_PARSE(app, argc, argv);
+  spdlog::set_level(spdlog::level::from_str(log_level));
+  spdlog::set_pattern("%^%l%$ soltex-view: %v");
+  if (!local && server.empty()) {
+    std::fprintf(stderr, "soltex-view: give --server HOST:PORT, or --local to run without one\n");
+    return 2;
+  }
+  if (!headless) {
+    std::fprintf(stderr,
+                 "soltex-view: this build has no window support; use --headless --out IMAGE.png\n");
+    return 2;
+  }
+
+  try {
+    const Scene scene = scene_path.empty() ? default_scene() : load_scene(scene_path);
+    capability::CapabilityOverride override;
+    if (!capability_text.empty()) override = capability::parse_override(capability_text);
+
+    const auto start = std::chrono::steady_clock::now();
+    capability::Capability measured = capability::measure_machine();
+    // The cache exists before the link probe so that the probe's bricks have a home; its
+    // budget is set from the choice below.
+    auto cache = std::make_unique<BrickCache>(256u << 20);
+    std::unique_ptr<net::BrickSource> source;
+    if (local) {
+      source = std::make_unique<net::LocalBrickSource>(*cache);
+    } else {
+      auto fetcher = std::make_unique<net::BrickFetcher>(server, *cache);
+      measured.round_trip_ms = static_cast<double>(fetcher->measure_round_trip().count()) / 1e3;
+      source = std::move(fetcher);
+    }
+    if (!scene.objects.empty()) {
+      capability::measure_link(*source, scene.objects.front().material.texture, measured);
+    }
+    const capability::Capability effective = capability::apply(measured, override);
+    capability::Choice choice =
+        capability::choose(effective, scene, scene.image.width, scene.image.height);
+    if (finest_level > 0) choice.finest_level_log2 = finest_level;
+    if (width > 0) choice.width = width;
+    if (height > 0) choice.height = height;
+    spdlog::info(
+        "capability: {:.1f} Mpixel/s, {} MiB available, round trip {:.2f} ms, link {:.1f} MB/s{}",
+        effective.pixels_per_second / 1e6, effective.available_memory_mb, measured.round_trip_ms,
+        effective.bandwidth_mb_per_s,
+        capability_text.empty() ? "" : " (simulated: " + capability_text + ")");
+    for (std::size_t begin = 0; begin < choice.reason.size();) {
+      const std::size_t end = choice.reason.find('\n', begin);
+      spdlog::info("choice: {}", choice.reason.substr(begin, end - begin));
+      begin = end == std::string::npos ? choice.reason.size() : end + 1;
+    }
+
+    // The real cache, with the chosen budget; the probe's cache goes with its source.
+    source.reset();
+    cache = std::make_unique<BrickCache>(choice.cache_budget_bytes);
+    if (local) {
+      source = std::make_unique<net::LocalBrickSource>(*cache);
+    } else {
+      source = std::make_unique<net::BrickFetcher>(server, *cache);
+    }
+    const TextureResolution resolution{choice.finest_level_log2, 16,
+                                       MipSettings{mip_from(mip_name), 2}};
+    const PreparedScene prepared = prepare_scene(scene, resolution, *source);
+    RenderOptions render_options;
+    render_options.filter = filter_from(filter_name);
+    render_options.level_bias = level_bias;
+    render_options.false_colour_levels = false_colour;
+    render_options.threads = threads;
+    FrameRenderer renderer(*cache, render_options);
+
+    view::HeadlessOptions options;
+    options.max_time = std::chrono::milliseconds(static_cast<long>(max_seconds * 1000));
+    options.exact = exact;
+    const view::HeadlessResult result = view::render_until_converged(
+        renderer, prepared, scene.camera, choice.width, choice.height, *source, options);
+    const net::SourceStats fetched = source->stats();
+    const BrickCacheStats cached = cache->stats();
+    std::printf("scene:      %s, %zu objects, %dx%d, finest level 2^%d, %s filter\n",
+                scene.name.c_str(), scene.objects.size(), choice.width, choice.height,
+                choice.finest_level_log2, filter_name.c_str());
+    std::printf("frames:     %d; first frame after %.1f ms; ", result.frames,
+                result.first_frame_ms);
+    if (result.converged_ms >= 0.0) {
+      std::printf("converged after %.1f ms\n", result.converged_ms);
+    } else {
+      std::printf("NOT converged within %.1f s (%zu bricks still missing)\n", max_seconds,
+                  fetched.waiting + fetched.in_flight);
+    }
+    std::printf("last frame: %.2f ms (raster %.2f, shade %.2f), %zu pixels covered\n",
+                result.last_frame_ms, result.last_stats.raster_ms, result.last_stats.shade_ms,
+                result.last_stats.covered_pixels);
+    std::printf(
+        "bricks:     %llu received, %.2f MB, %llu errors, %llu cancelled, %llu reconnects\n",
+        static_cast<unsigned long long>(fetched.received), fetched.bytes / 1e6,
+        static_cast<unsigned long long>(fetched.errors),
+        static_cast<unsigned long long>(fetched.cancelled),
+        static_cast<unsigned long long>(fetched.reconnects));
+    std::printf("cache:      %llu bricks, %.1f MB resident, hit rate %.2f %%\n",
+                static_cast<unsigned long long>(cached.resident_bricks),
+                cached.resident_bytes / 1e6, 100.0 * cached.hit_rate());
+    if (!out.parent_path().empty()) std::filesystem::create_directories(out.parent_path());
+    write_png(out, result.image);
+    std::printf("wrote:      %s\n", out.c_str());
+    if (reference) {
+      const auto ref_start = std::chrono::steady_clock::now();
+      const Image ref = renderer.render_reference(prepared, scene.camera, choice.width,
+                                                  choice.height, supersample);
+      const double ref_ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - ref_start)
+              .count();
+      const Frame warm = renderer.render(prepared, scene.camera, choice.width, choice.height);
+      const double warm_ms = warm.stats.raster_ms + warm.stats.shade_ms;
+      std::filesystem::path ref_path = out;
+      ref_path.replace_filename(out.stem().string() + "-reference.png");
+      write_png(ref_path, ref);
+      std::printf(
+          "reference:  %.1f ms per pixel-evaluated frame (%dx supersampled) vs %.2f ms "
+          "cached: %.1fx; PSNR %.2f dB; wrote %s\n",
+          ref_ms, supersample, warm_ms, ref_ms / warm_ms, psnr(result.image, ref),
+          ref_path.c_str());
+    }
+    (void)start;
+    if (exact && result.converged_ms < 0.0) return 1;
+    return 0;
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "soltex-view: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "soltex-view: %s\n", e.what());
+    return 1;
+  }
+}

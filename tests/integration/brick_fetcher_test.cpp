@@ -1,0 +1,125 @@
+// The client's brick fetcher against a real soltexd on loopback.
+#include "soltex/net/brick_fetcher.h"
+
+#include <gtest/gtest.h>
+
+#include <optional>
+
+#include "soltex/common/brick_codec.h"
+#include "soltex/common/brick_evaluator.h"
+#include "soltexd_process.h"
+
+namespace soltex {
+namespace {
+
+using testing::SoltexdProcess;
+
+TextureSpec marble() {
+  TextureSpec spec;
+  spec.pattern = MarbleParams{};
+  return spec;
+}
+
+Volume unit_volume(int finest_level_log2) {
+  Volume v;
+  v.min = glm::dvec3(-1.0);
+  v.max = glm::dvec3(1.0);
+  v.finest_level_log2 = finest_level_log2;
+  return v;
+}
+
+std::vector<net::BrickWant> level(uint64_t texture, int level, int bricks) {
+  std::vector<net::BrickWant> wants;
+  for (int z = 0; z < bricks; ++z)
+    for (int y = 0; y < bricks; ++y)
+      for (int x = 0; x < bricks; ++x) wants.push_back({{texture, level, {x, y, z}}, 1});
+  return wants;
+}
+
+TEST(BrickFetcher, FetchedBricksEqualLocalEvaluation) {
+  SoltexdProcess server;
+  BrickCache cache(64 << 20);
+  net::BrickFetcher fetcher(server.grpc_address(), cache);
+  const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  fetcher.want(level(id, 1, 4));
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
+  const net::SourceStats stats = fetcher.stats();
+  EXPECT_EQ(stats.received, 64u);
+  EXPECT_EQ(stats.errors, 0u);
+  EXPECT_GT(stats.bytes, 0u);
+
+  const TextureEvaluator evaluator(marble());
+  const BrickLayout layout(unit_volume(6), 8);
+  std::vector<float> samples(static_cast<std::size_t>(layout.samples_per_brick()) * 3);
+  evaluate_brick(evaluator, layout, 1, {2, 1, 3}, {}, samples);
+  const std::vector<uint8_t> expected = quantize(samples);
+  const auto brick = cache.find({id, 1, {2, 1, 3}});
+  ASSERT_TRUE(brick);
+  const std::size_t n = static_cast<std::size_t>(layout.samples_per_brick());
+  for (int z = 0; z < 9; ++z)
+    for (int y = 0; y < 9; ++y)
+      for (int x = 0; x < 9; ++x)
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_EQ(brick->at(x, y, z, c),
+                    expected[c * n + static_cast<std::size_t>((z * 9 + y) * 9 + x)]);
+        }
+}
+
+TEST(BrickFetcher, DuplicatesResidentAndStaleWantsAreNotFetchedTwice) {
+  SoltexdProcess server;
+  BrickCache cache(64 << 20);
+  net::BrickFetcher fetcher(server.grpc_address(), cache);
+  const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  std::vector<net::BrickWant> wants = level(id, 2, 2);
+  const std::vector<net::BrickWant> again = wants;
+  wants.insert(wants.end(), again.begin(), again.end());  // every key twice
+  fetcher.want(wants);
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
+  fetcher.want(again);  // all resident now
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(5)));
+  EXPECT_EQ(fetcher.stats().requested, 8u);
+  EXPECT_EQ(fetcher.stats().received, 8u);
+}
+
+TEST(BrickFetcher, RefusedKeysAreReportedAndNotAskedAgain) {
+  SoltexdProcess server;
+  BrickCache cache(64 << 20);
+  net::BrickFetcher fetcher(server.grpc_address(), cache);
+  const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  fetcher.want({{{id, 0, {99, 0, 0}}, 1}});
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(10)));
+  fetcher.want({{{id, 0, {99, 0, 0}}, 1}});
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(10)));
+  EXPECT_EQ(fetcher.stats().errors, 1u);
+  EXPECT_EQ(fetcher.stats().requested, 1u);
+}
+
+TEST(BrickFetcher, SurvivesAServerRestart) {
+  const int port = testing::free_port();
+  std::optional<SoltexdProcess> server(std::in_place, std::vector<std::string>{}, port);
+  BrickCache cache(64 << 20);
+  net::FetcherOptions options;
+  options.initial_backoff = std::chrono::milliseconds(50);
+  options.max_backoff = std::chrono::milliseconds(400);
+  net::BrickFetcher fetcher("127.0.0.1:" + std::to_string(port), cache, options);
+  const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  fetcher.want(level(id, 2, 2));
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
+
+  EXPECT_EQ(server->terminate(), 0);
+  server.reset();
+  // While the server is away the fetcher keeps what it has and queues what it is asked for.
+  EXPECT_TRUE(cache.contains({id, 2, {1, 1, 1}}));
+  fetcher.want(level(id, 1, 4));
+  EXPECT_FALSE(fetcher.idle());
+
+  server.emplace(std::vector<std::string>{}, port);  // same port: the fetcher reconnects
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
+  const net::SourceStats stats = fetcher.stats();
+  EXPECT_GE(stats.reconnects, 1u);
+  EXPECT_EQ(stats.received, 8u + 64u);
+  EXPECT_TRUE(cache.contains({id, 1, {3, 3, 3}}));
+}
+
+}  // namespace
+}  // namespace soltex

@@ -1,0 +1,149 @@
+// The client's rendering path against a real soltexd on loopback.
+#include <gtest/gtest.h>
+
+#include <optional>
+
+#include "headless_session.h"
+#include "soltex/capability/capability.h"
+#include "soltex/net/brick_fetcher.h"
+#include "soltex/net/local_brick_source.h"
+#include "soltex/render/frame_renderer.h"
+#include "soltex/scene/default_scene.h"
+#include "soltexd_process.h"
+
+namespace soltex {
+namespace {
+
+using testing::SoltexdProcess;
+
+constexpr int kWidth = 320;
+constexpr int kHeight = 180;
+
+struct Rendered {
+  Image image;
+  net::SourceStats stats;
+  bool converged;
+};
+
+Rendered render_with(net::BrickSource& source, BrickCache& cache, const Scene& scene,
+                     int finest_level, RenderOptions options = {}) {
+  const PreparedScene prepared =
+      prepare_scene(scene, TextureResolution{finest_level, 16, {}}, source);
+  FrameRenderer renderer(cache, options);
+  view::HeadlessOptions headless;
+  headless.max_time = std::chrono::seconds(60);
+  const view::HeadlessResult result = view::render_until_converged(
+      renderer, prepared, scene.camera, kWidth, kHeight, source, headless);
+  return {result.image, source.stats(), result.converged_ms >= 0.0};
+}
+
+TEST(ViewRender, ConvergedImageEqualsTheInProcessSourceBitForBit) {
+  const Scene scene = default_scene();
+  SoltexdProcess server;
+  BrickCache remote_cache(256u << 20);
+  net::BrickFetcher fetcher(server.grpc_address(), remote_cache);
+  const Rendered remote = render_with(fetcher, remote_cache, scene, 7);
+
+  BrickCache local_cache(256u << 20);
+  net::LocalBrickSource local(local_cache);
+  const Rendered in_process = render_with(local, local_cache, scene, 7);
+
+  ASSERT_TRUE(remote.converged);
+  ASSERT_TRUE(in_process.converged);
+  EXPECT_GT(remote.stats.received, 0u);
+  EXPECT_GT(remote.stats.bytes, 0u);
+  EXPECT_TRUE(remote.image == in_process.image);
+}
+
+// Smooth textures (marble, turbulence): their cached, trilinearly filtered image approaches
+// the per-pixel evaluation. Two-colour patterns (checker, wood) differ along every colour edge,
+// where interpolation ramps what point evaluation keeps sharp; docs/PERFORMANCE.md measures it.
+TEST(ViewRender, CachedImageIsWithin40DbOfThePerPixelReference) {
+  Scene scene = default_scene();
+  std::erase_if(scene.objects, [](const SceneObject& o) {
+    return std::holds_alternative<CheckerParams>(o.material.texture.pattern) ||
+           std::holds_alternative<WoodParams>(o.material.texture.pattern);
+  });
+  ASSERT_EQ(scene.objects.size(), 2u);
+  BrickCache cache(512u << 20);
+  net::LocalBrickSource source(cache);
+  const PreparedScene prepared = prepare_scene(scene, TextureResolution{9, 16, {}}, source);
+  FrameRenderer renderer(cache, RenderOptions{});
+  view::HeadlessOptions headless;
+  const view::HeadlessResult cached = view::render_until_converged(
+      renderer, prepared, scene.camera, kWidth, kHeight, source, headless);
+  ASSERT_GE(cached.converged_ms, 0.0);
+  const Image reference = renderer.render_reference(prepared, scene.camera, kWidth, kHeight, 1);
+  const double db = psnr(cached.image, reference);
+  RecordProperty("psnr_db", std::to_string(db));
+  EXPECT_GE(db, 40.0);
+}
+
+TEST(ViewRender, AWeakClientChoosesCoarserLevelsAndFetchesFewerBytes) {
+  const Scene scene = default_scene();
+  capability::Capability strong;
+  strong.pixels_per_second = 50e6;
+  strong.available_memory_mb = 16000;
+  strong.bandwidth_mb_per_s = 500.0;
+  const capability::Capability weak =
+      capability::apply(strong, capability::parse_override("cpu=0.05,mem=256,bandwidth=0.5"));
+  const capability::Choice strong_choice = capability::choose(strong, scene, kWidth, kHeight);
+  const capability::Choice weak_choice = capability::choose(weak, scene, kWidth, kHeight);
+  EXPECT_LT(weak_choice.finest_level_log2, strong_choice.finest_level_log2) << weak_choice.reason;
+  EXPECT_LT(weak_choice.cache_budget_bytes, strong_choice.cache_budget_bytes);
+  EXPECT_LE(weak_choice.width, strong_choice.width);
+
+  SoltexdProcess server;
+  BrickCache strong_cache(strong_choice.cache_budget_bytes);
+  net::BrickFetcher strong_fetcher(server.grpc_address(), strong_cache);
+  const Rendered strong_render =
+      render_with(strong_fetcher, strong_cache, scene, strong_choice.finest_level_log2);
+  BrickCache weak_cache(weak_choice.cache_budget_bytes);
+  net::BrickFetcher weak_fetcher(server.grpc_address(), weak_cache);
+  const Rendered weak_render =
+      render_with(weak_fetcher, weak_cache, scene, weak_choice.finest_level_log2);
+  EXPECT_TRUE(strong_render.converged);
+  EXPECT_TRUE(weak_render.converged);
+  EXPECT_LT(weak_render.stats.bytes, strong_render.stats.bytes);
+}
+
+TEST(ViewRender, KeepsDrawingThroughAServerRestart) {
+  const Scene scene = default_scene();
+  const int port = testing::free_port();
+  std::optional<SoltexdProcess> server(std::in_place, std::vector<std::string>{}, port);
+  BrickCache cache(256u << 20);
+  net::FetcherOptions options;
+  options.initial_backoff = std::chrono::milliseconds(50);
+  options.max_backoff = std::chrono::milliseconds(400);
+  net::BrickFetcher fetcher("127.0.0.1:" + std::to_string(port), cache, options);
+  const PreparedScene prepared = prepare_scene(scene, TextureResolution{8, 16, {}}, fetcher);
+  FrameRenderer renderer(cache, RenderOptions{});
+
+  // A few frames: some bricks arrive, then the server goes away mid-render.
+  for (int i = 0; i < 2; ++i) {
+    Frame frame = renderer.render(prepared, scene.camera, kWidth, kHeight);
+    fetcher.want(std::move(frame.misses));
+    fetcher.wait_idle(std::chrono::milliseconds(30));
+  }
+  ASSERT_EQ(server->terminate(), 0);
+  server.reset();
+  // Frames still draw from what the cache holds.
+  const Frame offline = renderer.render(prepared, scene.camera, kWidth, kHeight);
+  EXPECT_GT(offline.stats.covered_pixels, 0u);
+  fetcher.want(offline.misses);
+
+  server.emplace(std::vector<std::string>{}, port);
+  // Ask for finer bricks than before, so the frames after the restart need the new server.
+  renderer.set_level_bias(-1.0);
+  const uint64_t received_before = fetcher.stats().received;
+  view::HeadlessOptions headless;
+  headless.max_time = std::chrono::seconds(60);
+  const view::HeadlessResult result = view::render_until_converged(
+      renderer, prepared, scene.camera, kWidth, kHeight, fetcher, headless);
+  EXPECT_GE(result.converged_ms, 0.0);
+  EXPECT_GE(fetcher.stats().reconnects, 1u);
+  EXPECT_GT(fetcher.stats().received, received_before);
+}
+
+}  // namespace
+}  // namespace soltex

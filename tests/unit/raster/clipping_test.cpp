@@ -1,0 +1,477 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <random>
+#include <vector>
+
+#include "raster_test_scenes.h"
+#include "soltex/raster/rasterizer.h"
+
+namespace soltex {
+namespace {
+
+using raster_test::Mesh;
+
+constexpr int kWidth = 160;
+constexpr int kHeight = 120;
+
+RasterStats render_one(Rasterizer& rasterizer, const RasterView& view, const RasterObject& object,
+                       GBuffer& g) {
+  return rasterizer.render(view, std::span<const RasterObject>(&object, 1), g);
+}
+
+// Is (x, z) inside the triangle (a, b, c) of the xz plane by more than `margin`?
+// Returns +1 inside, -1 outside, 0 within the margin of an edge.
+int side_of_triangle_xz(const glm::dvec2& p, const glm::dvec2& a, const glm::dvec2& b,
+                        const glm::dvec2& c, double margin) {
+  const glm::dvec2 corners[3] = {a, b, c};
+  double nearest = 1e300;
+  int outside = 0;
+  for (int k = 0; k < 3; ++k) {
+    const glm::dvec2 u = corners[k], v = corners[(k + 1) % 3];
+    const double side =
+        ((v.x - u.x) * (p.y - u.y) - (v.y - u.y) * (p.x - u.x)) / glm::length(v - u);
+    // The corners are counter-clockwise in (x, z): inside is side > 0.
+    nearest = std::min(nearest, std::abs(side));
+    outside += side < 0.0;
+  }
+  if (nearest < margin) return 0;
+  return outside == 0 ? 1 : -1;
+}
+
+// --- Near plane -----------------------------------------------------------------------------
+
+TEST(NearPlaneClipping, TriangleWithAVertexBehindTheCameraShowsItsVisiblePart) {
+  Mesh floor;
+  // In (x, z), counter-clockwise: the third vertex is 5 units behind the camera.
+  floor.positions = {{-3.0f, -1.0f, -6.0f}, {0.0f, -1.0f, 5.0f}, {3.0f, -1.0f, -6.0f}};
+  floor.add_triangle(0, 1, 2);
+  RasterObject object;
+  object.mesh = floor.view();
+  const glm::mat4 view_projection =
+      raster_test::perspective_look_at({0, 0, 0}, {0, 0, -1}, kWidth, kHeight);
+  Rasterizer rasterizer({.threads = 2});
+  GBuffer g;
+  const RasterStats stats =
+      render_one(rasterizer, {kWidth, kHeight, view_projection, {}}, object, g);
+  EXPECT_EQ(stats.triangles_clipped_near, 1u);
+  EXPECT_GE(stats.triangles_rasterized, 1u);
+  EXPECT_TRUE(raster_test::all_values_sane(g));
+
+  int covered = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const std::size_t i = g.index(x, y);
+      const auto hit = raster_test::hit_plane(
+          raster_test::pixel_ray(view_projection, kWidth, kHeight, x, y), {0, 1, 0, 1});
+      const int side =
+          hit ? side_of_triangle_xz({hit->x, hit->z}, {-3, -6}, {3, -6}, {0, 5}, 1e-3) : -1;
+      if (side == 0) continue;
+      ASSERT_EQ(g.covered(i), side > 0) << "pixel " << x << "," << y;
+      if (!g.covered(i)) continue;
+      ++covered;
+      EXPECT_NEAR(g.texture_position[i].y, -1.0, 1e-5);
+      EXPECT_LE(glm::length(g.texture_position[i] - *hit), 0.01 * g.footprint[i] + 1e-5);
+    }
+  }
+  EXPECT_GT(covered, kWidth * kHeight / 4);
+}
+
+TEST(NearPlaneClipping, VerticesAtAndBehindTheEyeNeverBlowUp) {
+  Mesh mesh;
+  mesh.positions = {{0.0f, 0.0f, 0.0f},  // at the eye: w = 0
+                    {1.0f, -1.0f, -3.0f},
+                    {-1.0f, -1.0f, -3.0f},
+                    {0.0f, 1.0f, 2.0f},      // behind
+                    {0.0f, 1e-7f, -1e-7f}};  // just in front of the eye, inside the near plane
+  mesh.add_triangle(0, 1, 2);
+  mesh.add_triangle(3, 2, 1);
+  mesh.add_triangle(4, 1, 2);
+  RasterObject object;
+  object.mesh = mesh.view();
+  Rasterizer rasterizer({.threads = 2});
+  GBuffer g;
+  const RasterStats stats =
+      render_one(rasterizer,
+                 {kWidth,
+                  kHeight,
+                  raster_test::perspective_look_at({0, 0, 0}, {0, 0, -1}, kWidth, kHeight),
+                  {}},
+                 object, g);
+  EXPECT_EQ(stats.triangles_clipped_near, 3u);
+  EXPECT_GT(stats.pixels_covered, 0u);
+  EXPECT_TRUE(raster_test::all_values_sane(g));
+}
+
+TEST(NearPlaneClipping, TriangleWhollyBehindTheCameraIsCulled) {
+  Mesh mesh;
+  mesh.positions = {{-1.0f, -1.0f, 2.0f}, {1.0f, -1.0f, 2.0f}, {0.0f, 1.0f, 3.0f}};
+  mesh.add_triangle(0, 1, 2);
+  RasterObject object;
+  object.mesh = mesh.view();
+  Rasterizer rasterizer({.threads = 1});
+  GBuffer g;
+  const RasterStats stats =
+      render_one(rasterizer,
+                 {kWidth,
+                  kHeight,
+                  raster_test::perspective_look_at({0, 0, 0}, {0, 0, -1}, kWidth, kHeight),
+                  {}},
+                 object, g);
+  EXPECT_EQ(stats.triangles_culled, 1u);
+  EXPECT_EQ(stats.pixels_covered, 0u);
+}
+
+// A jittered floor grid running from far ahead to behind the camera: the near-plane cuts of
+// shared edges must meet exactly, leaving no pixel twice and none out.
+TEST(NearPlaneClipping, ClippedGridStaysWatertight) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> jitter(-0.3f, 0.3f);
+  const int columns = 16, rows = 32;
+  Mesh grid;
+  for (int j = 0; j <= rows; ++j) {
+    for (int i = 0; i <= columns; ++i) {
+      const bool border = i == 0 || j == 0 || i == columns || j == rows;
+      const float u = static_cast<float>(i) + (border ? 0.0f : jitter(random));
+      const float v = static_cast<float>(j) + (border ? 0.0f : jitter(random));
+      grid.positions.push_back({u / columns * 8.0f - 4.0f, -1.0f, v / rows * 16.0f - 10.0f});
+    }
+  }
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < columns; ++i) {
+      const auto v = [columns](int a, int b) {
+        return static_cast<uint32_t>(b * (columns + 1) + a);
+      };
+      grid.add_triangle(v(i, j), v(i, j + 1), v(i + 1, j + 1));
+      grid.add_triangle(v(i, j), v(i + 1, j + 1), v(i + 1, j));
+    }
+  }
+  // 0.2 above the floor, looking 30 degrees down, near plane at 0.5: the floor crosses the
+  // near plane inside the view.
+  const glm::mat4 view_projection = raster_test::perspective_look_at(
+      {0.3f, -0.8f, 0.0f}, {0.1f, -1.377f, -1.0f}, kWidth, kHeight, 70.0f, 0.5f, 100.0f);
+  Rasterizer rasterizer({.threads = 2, .count_coverage = true});
+  GBuffer g;
+  const RasterStats stats =
+      render_one(rasterizer, {kWidth, kHeight, view_projection, {}}, RasterObject{grid.view()}, g);
+  EXPECT_GT(stats.triangles_clipped_near, 0u);
+  int checked = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const uint32_t count = g.coverage_count[g.index(x, y)];
+      ASSERT_LE(count, 1u) << "pixel " << x << "," << y;
+      const auto hit = raster_test::hit_plane(
+          raster_test::pixel_ray(view_projection, kWidth, kHeight, x, y), {0, 1, 0, 1});
+      if (hit && std::abs(hit->x) < 3.95 && hit->z > -9.95 && hit->z < 5.95) {
+        ASSERT_EQ(count, 1u) << "hole at " << x << "," << y;
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GT(checked, kWidth * kHeight / 4);
+  EXPECT_TRUE(raster_test::all_values_sane(g));
+}
+
+// A quad hundreds of thousands of pixels wide: clipped to the guard band, it still covers
+// every pixel once.
+TEST(GuardBandClipping, HugeQuadCoversTheScreenOnce) {
+  Mesh quad;
+  quad.positions = {
+      {-1e4f, -1e4f, -1.0f}, {1e4f, -1e4f, -1.0f}, {1e4f, 1e4f, -1.0f}, {-1e4f, 1e4f, -1.0f}};
+  quad.add_triangle(0, 1, 2);
+  quad.add_triangle(0, 2, 3);
+  Rasterizer rasterizer({.threads = 2, .count_coverage = true});
+  GBuffer g;
+  const RasterStats stats =
+      render_one(rasterizer,
+                 {kWidth,
+                  kHeight,
+                  raster_test::perspective_look_at({0, 0, 0}, {0, 0, -1}, kWidth, kHeight),
+                  {}},
+                 RasterObject{quad.view()}, g);
+  EXPECT_EQ(stats.triangles_clipped_guard_band, 2u);
+  for (std::size_t i = 0; i < g.pixel_count(); ++i) ASSERT_EQ(g.coverage_count[i], 1u) << i;
+  EXPECT_TRUE(raster_test::all_values_sane(g));
+}
+
+// --- User clip planes and caps ---------------------------------------------------------------
+
+const Mesh& unit_sphere() {
+  static const Mesh sphere = raster_test::uv_sphere(64, 128);
+  return sphere;
+}
+
+TEST(ClipPlanes, WithoutClipPlanesNoClipWorkIsDone) {
+  RasterObject object{unit_sphere().view()};
+  Rasterizer rasterizer({.threads = 2});
+  GBuffer g;
+  // From outside, and from inside (where only back faces are seen).
+  for (const glm::vec3 eye : {glm::vec3(0.5f, 1.0f, 3.0f), glm::vec3(0.1f, 0.0f, 0.2f)}) {
+    const RasterStats stats = render_one(
+        rasterizer,
+        {kWidth, kHeight, raster_test::perspective_look_at(eye, {0, 0, -1}, kWidth, kHeight), {}},
+        object, g);
+    EXPECT_GT(stats.pixels_covered, 0u);
+    EXPECT_EQ(stats.triangles_clip_tested, 0u);
+    EXPECT_EQ(stats.fragments_clip_tested, 0u);
+    EXPECT_EQ(stats.cap_rays, 0u);
+    EXPECT_EQ(stats.cap_pixels, 0u);
+    EXPECT_EQ(stats.clip_plane_work(), 0u);
+    for (std::size_t i = 0; i < g.pixel_count(); ++i) EXPECT_FALSE(g.is_cap(i));
+  }
+}
+
+// The plane z = 0 keeping z <= 0, seen from the front: the whole visible sphere is the cap.
+TEST(ClipPlanes, SphereCutThroughItsCentreShowsTheCutFace) {
+  RasterObject object{unit_sphere().view()};
+  const std::vector<glm::dvec4> planes = {{0.0, 0.0, -1.0, 0.0}};
+  const glm::mat4 view_projection =
+      raster_test::perspective_look_at({0, 0, 3}, {0, 0, 0}, kWidth, kHeight);
+  Rasterizer rasterizer({.threads = 2});
+  GBuffer g;
+  const RasterStats stats =
+      render_one(rasterizer, {kWidth, kHeight, view_projection, planes}, object, g);
+  EXPECT_GT(stats.fragments_clip_discarded, 0u);
+  EXPECT_EQ(stats.back_face_pixels, 0u);
+  int caps = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const std::size_t i = g.index(x, y);
+      const auto hit = raster_test::hit_plane(
+          raster_test::pixel_ray(view_projection, kWidth, kHeight, x, y), planes[0]);
+      ASSERT_TRUE(hit.has_value());
+      const double radius = glm::length(glm::dvec2(hit->x, hit->y));
+      if (radius < 0.98) {
+        ASSERT_TRUE(g.is_cap(i)) << "pixel " << x << "," << y;
+      }
+      if (radius > 1.01) {
+        ASSERT_FALSE(g.covered(i)) << "pixel " << x << "," << y;
+      }
+      if (!g.is_cap(i)) continue;
+      ++caps;
+      EXPECT_TRUE(g.covered(i));
+      EXPECT_FALSE(g.back_face(i));
+      EXPECT_NEAR(g.texture_position[i].z, 0.0, 1e-12);
+      EXPECT_LE(glm::length(g.texture_position[i] - *hit), 1e-9);
+      EXPECT_EQ(g.normal[i], glm::vec3(0.0f, 0.0f, 1.0f));
+      EXPECT_GT(g.footprint[i], 0.0f);
+      EXPECT_TRUE(std::isfinite(g.footprint[i]));
+    }
+  }
+  EXPECT_EQ(stats.cap_pixels, static_cast<uint64_t>(caps));
+  EXPECT_GT(caps, 1500);
+  EXPECT_TRUE(raster_test::all_values_sane(g));
+}
+
+// Seen from above, the cut sphere shows both the cap and the outside of what is left.
+TEST(ClipPlanes, ObliqueViewShowsCapAndRemainingSurface) {
+  RasterObject object{unit_sphere().view()};
+  const std::vector<glm::dvec4> planes = {{0.0, 0.0, -1.0, 0.0}};
+  Rasterizer rasterizer({.threads = 2});
+  GBuffer g;
+  const RasterStats stats = render_one(
+      rasterizer,
+      {kWidth, kHeight, raster_test::perspective_look_at({0, 2.5f, 2}, {0, 0, 0}, kWidth, kHeight),
+       planes},
+      object, g);
+  int caps = 0, surface = 0;
+  for (std::size_t i = 0; i < g.pixel_count(); ++i) {
+    if (!g.covered(i)) continue;
+    const glm::dvec3 p = g.texture_position[i];
+    if (g.is_cap(i)) {
+      ++caps;
+      EXPECT_NEAR(p.z, 0.0, 1e-12);
+      EXPECT_LE(glm::length(p), 1.0 + 1e-9);
+    } else {
+      ++surface;
+      EXPECT_FALSE(g.back_face(i));
+      EXPECT_LE(p.z, 1e-3);  // on the kept side (up to a pixel's worth at the rim)
+      EXPECT_NEAR(glm::length(p), 1.0, 2e-3);
+    }
+  }
+  EXPECT_GT(caps, 500);
+  EXPECT_GT(surface, 200);
+  EXPECT_EQ(stats.back_face_pixels, 0u);
+  EXPECT_TRUE(raster_test::all_values_sane(g));
+}
+
+// A moved, turned box whose texture space is far away, cut obliquely through its centre: cap
+// positions are the exact ray-plane points mapped into texture space.
+TEST(ClipPlanes, CapPositionsAreRayPlaneIntersectionsInTextureSpace) {
+  const glm::vec3 half(1.0f, 0.7f, 0.5f);
+  const Mesh cube = raster_test::box(half);
+  RasterObject object{cube.view()};
+  const glm::vec3 centre(5.0f, 0.0f, -2.0f);
+  object.model =
+      glm::rotate(glm::translate(glm::mat4(1.0f), centre), glm::radians(30.0f), glm::vec3(0, 1, 0));
+  object.texture_from_object =
+      glm::scale(glm::translate(glm::dmat4(1.0), glm::dvec3(1e6, 2e6, -3e6)), glm::dvec3(2.0));
+  const glm::vec3 eye = centre + glm::vec3(0.5f, 1.5f, 4.0f);
+  const glm::dvec3 normal = glm::normalize(-glm::dvec3(eye - centre) + glm::dvec3(0.3, -0.2, 0.1));
+  const std::vector<glm::dvec4> planes = {
+      glm::dvec4(normal, -glm::dot(normal, glm::dvec3(centre)))};
+  const glm::mat4 view_projection = raster_test::perspective_look_at(eye, centre, kWidth, kHeight);
+  Rasterizer rasterizer({.threads = 2});
+  GBuffer g;
+  const RasterStats stats =
+      render_one(rasterizer, {kWidth, kHeight, view_projection, planes}, object, g);
+
+  const glm::dmat4 object_from_world = glm::inverse(glm::dmat4(object.model));
+  int caps = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const std::size_t i = g.index(x, y);
+      if (!g.is_cap(i)) continue;
+      ++caps;
+      const auto hit = raster_test::hit_plane(
+          raster_test::pixel_ray(view_projection, kWidth, kHeight, x, y), planes[0]);
+      ASSERT_TRUE(hit.has_value());
+      const glm::dvec3 in_object = glm::dvec3(object_from_world * glm::dvec4(*hit, 1.0));
+      EXPECT_LE(std::abs(in_object.x), half.x + 1e-3);
+      EXPECT_LE(std::abs(in_object.y), half.y + 1e-3);
+      EXPECT_LE(std::abs(in_object.z), half.z + 1e-3);
+      const glm::dvec3 expected =
+          glm::dvec3(object.texture_from_object * glm::dvec4(in_object, 1.0));
+      EXPECT_LE(glm::length(g.texture_position[i] - expected), 1e-6);
+      EXPECT_LE(glm::length(glm::dvec3(g.normal[i]) + normal), 1e-6);
+      EXPECT_GT(g.footprint[i], 0.0f);
+    }
+  }
+  EXPECT_GT(caps, 1000);
+  EXPECT_EQ(stats.cap_pixels, static_cast<uint64_t>(caps));
+  EXPECT_EQ(stats.back_face_pixels, 0u);
+  EXPECT_TRUE(raster_test::all_values_sane(g));
+}
+
+TEST(ClipPlanes, TwoPlanesCutAWedgeWithTwoCapFaces) {
+  RasterObject object{unit_sphere().view()};
+  const std::vector<glm::dvec4> planes = {{0.0, 0.0, -1.0, 0.0}, {-1.0, 0.0, 0.0, 0.0}};
+  Rasterizer rasterizer({.threads = 2});
+  GBuffer g;
+  const RasterStats stats = render_one(
+      rasterizer,
+      {kWidth, kHeight,
+       raster_test::perspective_look_at({2.5f, 1.0f, 2.5f}, {0, 0, 0}, kWidth, kHeight), planes},
+      object, g);
+  int on_z = 0, on_x = 0;
+  for (std::size_t i = 0; i < g.pixel_count(); ++i) {
+    if (!g.is_cap(i)) continue;
+    const glm::dvec3 p = g.texture_position[i];
+    EXPECT_LE(p.x, 1e-12);
+    EXPECT_LE(p.z, 1e-12);
+    if (std::abs(p.z) < 1e-12) {
+      ++on_z;
+      EXPECT_EQ(g.normal[i], glm::vec3(0, 0, 1));
+    } else {
+      EXPECT_NEAR(p.x, 0.0, 1e-12);
+      ++on_x;
+      EXPECT_EQ(g.normal[i], glm::vec3(1, 0, 0));
+    }
+  }
+  EXPECT_GT(on_z, 300);
+  EXPECT_GT(on_x, 300);
+  EXPECT_EQ(stats.back_face_pixels, 0u);
+}
+
+TEST(ClipPlanes, OpenMeshesAndCamerasOnTheKeptSideGetNoCaps) {
+  const std::vector<glm::dvec4> planes = {{0.0, 0.0, -1.0, 0.0}};
+  const RasterView view{kWidth, kHeight,
+                        raster_test::perspective_look_at({0, 0.5f, 3}, {0, 0, 0}, kWidth, kHeight),
+                        planes};
+  Rasterizer rasterizer({.threads = 2});
+  GBuffer g;
+
+  RasterObject open{unit_sphere().view()};
+  open.closed = false;
+  RasterStats stats = render_one(rasterizer, view, open, g);
+  EXPECT_EQ(stats.cap_rays, 0u);
+  EXPECT_EQ(stats.cap_pixels, 0u);
+  EXPECT_GT(stats.back_face_pixels, 1000u);
+
+  // Keeping the half facing the camera: no back face ever wins, nothing to trace.
+  const std::vector<glm::dvec4> keep_front = {{0.0, 0.0, 1.0, 0.0}};
+  stats = render_one(rasterizer, {view.width, view.height, view.view_projection, keep_front},
+                     RasterObject{unit_sphere().view()}, g);
+  EXPECT_EQ(stats.cap_pixels, 0u);
+  EXPECT_EQ(stats.back_face_pixels, 0u);
+  EXPECT_GT(stats.pixels_covered, 1000u);
+}
+
+// Triangle-level classification: wholly kept and wholly removed triangles need no fragment
+// tests; only straddling ones do.
+TEST(ClipPlanes, OnlyStraddlingTrianglesAreTestedPerFragment) {
+  Mesh quad;
+  quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+  quad.add_triangle(0, 1, 2);
+  quad.add_triangle(0, 2, 3);
+  RasterObject object{quad.view()};
+  object.closed = false;
+  const glm::mat4 view_projection =
+      raster_test::perspective_look_at({0, 0, 3}, {0, 0, 0}, kWidth, kHeight);
+  Rasterizer rasterizer({.threads = 2});
+  GBuffer g;
+
+  const std::vector<glm::dvec4> keep_all = {{1.0, 0.0, 0.0, 5.0}};
+  RasterStats stats =
+      render_one(rasterizer, {kWidth, kHeight, view_projection, keep_all}, object, g);
+  EXPECT_EQ(stats.triangles_clip_tested, 2u);
+  EXPECT_EQ(stats.triangles_clip_straddling, 0u);
+  EXPECT_EQ(stats.fragments_clip_tested, 0u);
+  EXPECT_GT(stats.pixels_covered, 1000u);
+
+  const std::vector<glm::dvec4> remove_all = {{1.0, 0.0, 0.0, -5.0}};
+  stats = render_one(rasterizer, {kWidth, kHeight, view_projection, remove_all}, object, g);
+  EXPECT_EQ(stats.triangles_clip_rejected, 2u);
+  EXPECT_EQ(stats.fragments_clip_tested, 0u);
+  EXPECT_EQ(stats.pixels_covered, 0u);
+
+  const std::vector<glm::dvec4> keep_right = {{1.0, 0.0, 0.0, -0.1}};  // x >= 0.1
+  stats = render_one(rasterizer, {kWidth, kHeight, view_projection, keep_right}, object, g);
+  EXPECT_EQ(stats.triangles_clip_straddling, 2u);
+  EXPECT_GT(stats.fragments_clip_discarded, 0u);
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const auto hit = raster_test::hit_plane(
+          raster_test::pixel_ray(view_projection, kWidth, kHeight, x, y), {0, 0, 1, 0});
+      if (!hit || std::abs(hit->y) > 0.98 || hit->x > 0.98) continue;
+      if (hit->x < 0.09) {
+        EXPECT_FALSE(g.covered(g.index(x, y))) << x << "," << y;
+      }
+      if (hit->x > 0.11) {
+        EXPECT_TRUE(g.covered(g.index(x, y))) << x << "," << y;
+      }
+    }
+  }
+}
+
+TEST(ClipPlanes, CapFootprintIsFiniteAndGrowsAtGrazingAngles) {
+  RasterObject object{unit_sphere().view()};
+  Rasterizer rasterizer({.threads = 1});
+  GBuffer g;
+  float previous = 0.0f;
+  for (const double degrees : {0.0, 45.0, 70.0, 80.0}) {
+    // The camera turns about the cut face's centre, 3 units away.
+    const double angle = glm::radians(degrees);
+    const glm::vec3 eye(0.0f, static_cast<float>(3.0 * std::sin(angle)),
+                        static_cast<float>(3.0 * std::cos(angle)));
+    const std::vector<glm::dvec4> planes = {{0.0, 0.0, -1.0, 0.0}};
+    render_one(rasterizer,
+               {kWidth, kHeight, raster_test::perspective_look_at(eye, {0, 0, 0}, kWidth, kHeight),
+                planes},
+               object, g);
+    const std::size_t centre = g.index(kWidth / 2, kHeight / 2);
+    ASSERT_TRUE(g.is_cap(centre)) << degrees;
+    EXPECT_TRUE(std::isfinite(g.footprint[centre]));
+    EXPECT_GT(g.footprint[centre], previous) << degrees;
+    previous = g.footprint[centre];
+    EXPECT_TRUE(raster_test::all_values_sane(g));
+  }
+}
+
+}  // namespace
+}  // namespace soltex
