@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Builds soltex and runs every test through ctest, then builds the unit tests again with
-# AddressSanitizer + UndefinedBehaviorSanitizer and runs them.
+# Builds soltex and runs every test through ctest (unit, integration over loopback), then the
+# unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer, then the libFuzzer
+# targets for a bounded time.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${SOLTEX_BUILD_DIR:-$root/build}
 asan=${SOLTEX_ASAN_DIR:-$root/build-asan}
+fuzz=${SOLTEX_FUZZ_DIR:-$root/build-fuzz}
 jobs=${SOLTEX_JOBS:-2}
 
 "$root/deploy/install-deps.sh"
@@ -20,3 +22,10 @@ cmake -S "$root" -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOLTEX_
 cmake --build "$asan" --target unit_tests -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir "$asan" -L unit --output-on-failure -j "$jobs"
+
+echo "== libFuzzer (clang): decoders, ${SOLTEX_FUZZ_SECONDS:-60} s each"
+CC=clang CXX=clang++ cmake -S "$root" -B "$fuzz" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DSOLTEX_FUZZ=ON -DSOLTEX_NATIVE=OFF -DSOLTEX_BUILD_BENCHMARKS=OFF \
+  -DSOLTEX_FUZZ_SECONDS="${SOLTEX_FUZZ_SECONDS:-60}" >/dev/null
+cmake --build "$fuzz" --target fuzz_targets -j "$jobs"
+ctest --test-dir "$fuzz" -L fuzz --output-on-failure
