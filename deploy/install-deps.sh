@@ -10,6 +10,7 @@ packages=(
   libglm-dev libspdlog-dev libcli11-dev libstb-dev libxxhash-dev libzstd-dev liblz4-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libtinyobjloader-dev
+  libsdl2-dev xvfb x11-apps imagemagick   # soltex-view's window and its test on a virtual X server
 )
 
 missing=()

@@ -9,14 +9,14 @@
 #include <vector>
 
 #include "gallery_scenes.h"
-#include "png_writer.h"
 #include "soltex/common/texture_evaluator.h"
+#include "soltex/render/image.h"
 
 namespace {
 
 using soltex::Grid;
+using soltex::Image;
 using soltex::TextureEvaluator;
-using soltex::gallery::Image;
 
 // Left half: the plane z = 0.3 over [-1, 1]^2 (negative coordinates included), evaluated as
 // one batch grid band-limited to the pixel spacing.
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
     draw_slice(texture, image, size);
     draw_sphere(texture, image, size);
     const auto path = out_dir / (entry.name + ".png");
-    soltex::gallery::write_png(path, image);
+    soltex::write_png(path, image);
     const double ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     std::printf("  %-20s %7.1f ms  %s  (%s)\n", entry.name.c_str(), ms, path.c_str(),

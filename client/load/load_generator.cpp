@@ -80,8 +80,7 @@ ServerSetup set_up_server(const LoadOptions& options) {
     return setup.stubs[0]->GetServerInfo(&context, {}, &setup.info);
   });
   call_with_deadline("RegisterTexture", [&](grpc::ClientContext& context) {
-    return setup.stubs[0]->RegisterTexture(&context, texture_registration(options),
-                                           &setup.handle);
+    return setup.stubs[0]->RegisterTexture(&context, texture_registration(options), &setup.handle);
   });
   setup.shape = {setup.handle.id(), static_cast<int>(setup.handle.levels()),
                  static_cast<int>(setup.handle.brick_size())};
@@ -158,6 +157,7 @@ LoadResult run_load(LoadOptions options, const ProgressCallback& progress) {
 
   std::thread scheduler;
   std::atomic<bool> stop_scheduler{false};
+  bool schedule_ran_out = false;  // written by the scheduler, read after joining it
   Clock::duration max_send_lag{0};
   if (schedule) {
     // Request i goes to stream i mod S at its intended time; when the sender falls behind it
@@ -165,7 +165,10 @@ LoadResult run_load(LoadOptions options, const ProgressCallback& progress) {
     scheduler = std::thread([&] {
       for (uint64_t i = 0;; ++i) {
         const Clock::time_point intended = start + seconds(schedule->seconds(i));
-        if (intended >= stop_at) break;
+        if (intended >= stop_at) {
+          schedule_ran_out = true;
+          break;
+        }
         // A plain sleep, not a condition variable: at tens of thousands of requests per
         // second the futex traffic of a timed wait per request cost more than the sends.
         // Sliced, so that a stop is seen within kStopCheck.
@@ -228,6 +231,12 @@ LoadResult run_load(LoadOptions options, const ProgressCallback& progress) {
   wait(stop_at, [&] { return all_done() || signal.scheduler_done; });
   stop_scheduler = true;
   if (scheduler.joinable()) scheduler.join();
+  // The measured window: a count run ends with its last answer; a schedule that ran out
+  // offered load until the stop time; otherwise (the stop time, or every stream ended) now.
+  Clock::time_point window_end = measure_from;
+  if (!budget.exhausted()) {
+    window_end = schedule_ran_out ? stop_at : std::min(stop_at, Clock::now());
+  }
 
   // Drain: what was issued is still sent and answered, up to the drain timeout.
   draining = true;
@@ -253,7 +262,7 @@ LoadResult run_load(LoadOptions options, const ProgressCallback& progress) {
   result.server_workers = static_cast<int>(server.info.worker_threads());
   result.elapsed_seconds = std::chrono::duration<double>(end - start).count();
   result.max_send_lag_seconds = std::chrono::duration<double>(max_send_lag).count();
-  recorder.fill(result, end);
+  recorder.fill(result, window_end);
   return result;
 }
 

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <map>
+#include <vector>
 
 namespace soltex::load {
 
@@ -63,9 +64,16 @@ void add_choice(CLI::App& app, const char* name, Enum& value,
                 const std::map<std::string, Enum>& names, const char* help,
                 const char* default_name) {
   std::string choices;
-  for (const auto& [text, unused] : names) choices += (choices.empty() ? "" : "|") + text;
+  std::vector<std::string> keys;
+  for (const auto& [text, unused] : names) {
+    choices += (choices.empty() ? "" : "|") + text;
+    keys.push_back(text);
+  }
+  // CLI11 runs the transform added last first: the membership check sees the text the user
+  // typed, so a typo is answered with the names rather than with the name-to-value mapping.
   app.add_option(name, value, help)
-      ->transform(CLI::CheckedTransformer(names, CLI::ignore_case).description(""))
+      ->transform(CLI::Transformer(names, CLI::ignore_case).description(""))
+      ->transform(CLI::IsMember(keys, CLI::ignore_case).description(""))
       ->type_name(choices)
       ->default_str(default_name);
 }

@@ -67,7 +67,7 @@ LoadRecorder::Progress LoadRecorder::progress() const {
   return p;
 }
 
-void LoadRecorder::fill(LoadResult& r, Clock::time_point end) const {
+void LoadRecorder::fill(LoadResult& r, Clock::time_point window_end) const {
   const auto relaxed = std::memory_order_relaxed;
   r.requests = requests_.load(relaxed);
   r.bricks = bricks_.load(relaxed);
@@ -86,10 +86,9 @@ void LoadRecorder::fill(LoadResult& r, Clock::time_point end) const {
   r.checksum_failures = checksum_failures_.load(relaxed);
   r.injected_out_of_range = injected_out_of_range_.load(relaxed);
   r.injected_unknown_texture = injected_unknown_texture_.load(relaxed);
-  const int64_t last = last_measured_answer_ns_.load(relaxed);
+  const double last = static_cast<double>(last_measured_answer_ns_.load(relaxed)) * 1e-9;
   r.measured_seconds =
-      last > 0 ? static_cast<double>(last) * 1e-9
-               : std::max(0.0, std::chrono::duration<double>(end - measure_from_).count());
+      std::max({0.0, last, std::chrono::duration<double>(window_end - measure_from_).count()});
 }
 
 }  // namespace soltex::load

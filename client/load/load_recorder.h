@@ -39,9 +39,10 @@ class LoadRecorder {
 
   Progress progress() const;
 
-  // Fills the counters and latency of `result`; `measured_seconds` runs from measure_from to
-  // the last measured answer (or to `end` when there was none).
-  void fill(LoadResult& result, Clock::time_point end) const;
+  // Fills the counters and latency of `result`. The measured window runs from measure_from
+  // to the last measured answer, but not shorter than to `window_end` (a duration run whose
+  // last request went out before the stop time still offered load until then).
+  void fill(LoadResult& result, Clock::time_point window_end) const;
 
  private:
   using Counter = std::atomic<uint64_t>;

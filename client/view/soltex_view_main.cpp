@@ -4,11 +4,15 @@
 
 #include <CLI/CLI.hpp>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include "headless_session.h"
+#ifdef SOLTEX_HAVE_SDL2
+#include "viewer_window.h"
+#endif
 #include "soltex/capability/capability.h"
 #include "soltex/net/brick_fetcher.h"
 #include "soltex/net/local_brick_source.h"
@@ -33,6 +37,46 @@ MipMode mip_from(const std::string& name) {
   return MipMode::band_limited;
 }
 
+#ifdef SOLTEX_HAVE_SDL2
+// The interactive window; with max_frames it closes by itself (screenshots, tests).
+int run_window(const Scene& scene, const TextureResolution& resolution, BrickCache& cache,
+               net::BrickSource& source, const RenderOptions& render_options,
+               const capability::Choice& choice, int max_frames,
+               const std::filesystem::path& screenshot) {
+  view::ViewerSettings settings;
+  settings.width = choice.width;
+  settings.height = choice.height;
+  settings.max_frames = max_frames;
+  settings.screenshot = screenshot;
+  std::unique_ptr<view::ViewerWindow> window;
+  try {
+    window = std::make_unique<view::ViewerWindow>(scene, resolution, cache, source, render_options,
+                                                  settings);
+  } catch (const view::WindowUnavailable& e) {
+    std::fprintf(stderr, "soltex-view: %s; use --headless --out IMAGE.png without a display\n",
+                 e.what());
+    return 2;
+  }
+  spdlog::info(
+      "window {}x{}: left drag orbits, wheel zooms, 1..9/Tab switch textures (0: the scene's), "
+      "Up/Down move the clip plane, L levels, F filter, A adaptive bias, R reset, Esc/Q quit",
+      choice.width, choice.height);
+  const view::ViewerResult result = window->run();
+  window.reset();
+  const net::SourceStats fetched = source.stats();
+  const BrickCacheStats cached = cache.stats();
+  std::printf("frames:     %d; first frame after %.1f ms\n", result.frames, result.first_frame_ms);
+  std::printf("bricks:     %llu received, %.2f MB, %zu still pending\n",
+              static_cast<unsigned long long>(fetched.received), fetched.bytes / 1e6,
+              fetched.waiting + fetched.in_flight);
+  std::printf("cache:      %llu bricks, %.1f MB resident, hit rate %.2f %%\n",
+              static_cast<unsigned long long>(cached.resident_bricks), cached.resident_bytes / 1e6,
+              100.0 * cached.hit_rate());
+  if (!screenshot.empty()) std::printf("wrote:      %s\n", screenshot.c_str());
+  return 0;
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -55,6 +99,8 @@ int main(int argc, char** argv) {
   int finest_level = 0;
   int width = 0, height = 0;
   std::string log_level = "info";
+  int window_frames = 0;
+  std::filesystem::path screenshot;
   app.add_option("--server", server, "soltexd address HOST:PORT");
   app.add_flag("--local", local, "evaluate bricks in this process instead of fetching them");
   app.add_option("--scene", scene_path, "scene file (JSON); default: the built-in scene")
@@ -92,6 +138,13 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 16384));
   app.add_option("--height", height, "frame height (0: the scene's, scaled to this machine)")
       ->check(CLI::Range(0, 16384));
+  auto* headless_flag = app.get_option("--headless");
+  app.add_option("--frames", window_frames,
+                 "window: close after this many frames (0: when closed by the user)")
+      ->check(CLI::Range(0, 1000000))
+      ->excludes(headless_flag);
+  app.add_option("--screenshot", screenshot, "window: write the last frame shown to this PNG")
+      ->excludes(headless_flag);
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
@@ -101,11 +154,13 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "soltex-view: give --server HOST:PORT, or --local to run without one\n");
     return 2;
   }
+#ifndef SOLTEX_HAVE_SDL2
   if (!headless) {
     std::fprintf(stderr,
                  "soltex-view: this build has no window support; use --headless --out IMAGE.png\n");
     return 2;
   }
+#endif
 
   try {
     const Scene scene = scene_path.empty() ? default_scene() : load_scene(scene_path);
@@ -155,12 +210,22 @@ int main(int argc, char** argv) {
     }
     const TextureResolution resolution{choice.finest_level_log2, 16,
                                        MipSettings{mip_from(mip_name), 2}};
-    const PreparedScene prepared = prepare_scene(scene, resolution, *source);
     RenderOptions render_options;
     render_options.filter = filter_from(filter_name);
     render_options.level_bias = level_bias;
     render_options.false_colour_levels = false_colour;
     render_options.threads = threads;
+#ifdef SOLTEX_HAVE_SDL2
+    if (!headless) {
+      for (const char* option :
+           {"--out", "--exact", "--reference", "--supersample", "--max-seconds"}) {
+        if (app.count(option) > 0) spdlog::warn("{} applies to --headless only; ignored", option);
+      }
+      return run_window(scene, resolution, *cache, *source, render_options, choice, window_frames,
+                        screenshot);
+    }
+#endif
+    const PreparedScene prepared = prepare_scene(scene, resolution, *source);
     FrameRenderer renderer(*cache, render_options);
 
     view::HeadlessOptions options;
@@ -190,6 +255,15 @@ int main(int argc, char** argv) {
         static_cast<unsigned long long>(fetched.errors),
         static_cast<unsigned long long>(fetched.cancelled),
         static_cast<unsigned long long>(fetched.reconnects));
+    double dense_bytes = 0.0;  // every object's volume as a dense 8-bit cube at its finest level
+    for (const PreparedObject& o : prepared.objects) {
+      const double side = std::ldexp(1.0, o.volume.finest_level_log2) + 1.0;
+      dense_bytes += side * side * side * o.channels;
+    }
+    std::printf(
+        "traffic:    %.2f MB fetched = %.2f %% of the dense cubes (%.1f MB of 8-bit samples)\n",
+        fetched.bytes / 1e6, 100.0 * static_cast<double>(fetched.bytes) / dense_bytes,
+        dense_bytes / 1e6);
     std::printf("cache:      %llu bricks, %.1f MB resident, hit rate %.2f %%\n",
                 static_cast<unsigned long long>(cached.resident_bricks),
                 cached.resident_bytes / 1e6, 100.0 * cached.hit_rate());

@@ -99,6 +99,32 @@ TEST(SoltexLoad, CountStopsAtExactlyThatManyBricks) {
   EXPECT_EQ(metric(server, "soltex_bricks_served_total"), 500.0);
 }
 
+// The server keeps a key at most once in a stream's queue, so the tool must not ask for a key
+// it already waits for: with a single hot key every request waits for the one before it.
+TEST(SoltexLoad, RepeatedKeysAreAnsweredOneByOne) {
+  SoltexdProcess server;
+  LoadOptions options = options_for(server);
+  options.mix = MixKind::hot;
+  options.hot_set = 1;
+  options.in_flight = 4;
+  options.count = 200;
+  const LoadResult closed = run_load(options);
+  EXPECT_EQ(closed.bricks, 200u);
+  EXPECT_EQ(closed.unanswered, 0u);
+  EXPECT_EQ(closed.unexpected, 0u);
+
+  options.in_flight = 8;
+  options.count.reset();
+  options.rate = 20000.0;  // open loop: requests for the busy key pile up and are parked
+  options.duration_seconds = 0.1;
+  const LoadResult open = run_load(options);
+  EXPECT_GT(open.requests, 100u);
+  EXPECT_EQ(open.bricks, open.requests);
+  EXPECT_EQ(open.unanswered, 0u);
+  EXPECT_EQ(metric(server, "soltex_bricks_served_total"),
+            static_cast<double>(closed.total_bricks + open.total_bricks));
+}
+
 TEST(SoltexLoad, InvalidKeysAreCountedByStatusCode) {
   SoltexdProcess server;
   LoadOptions options = options_for(server);

@@ -38,15 +38,15 @@ int thread_count(int requested) {
   return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
-// Runs body(first_row, end_row) over `threads` bands of rows; returns when all are done.
+// Runs body(band, first_row, end_row) over `threads` bands of rows; returns when all are done.
 template <typename Body>
 void parallel_rows(int height, int threads, Body body) {
   const int bands = std::min(threads, std::max(height, 1));
   std::vector<std::jthread> workers;
   for (int b = 1; b < bands; ++b) {
-    workers.emplace_back([&, b] { body(height * b / bands, height * (b + 1) / bands); });
+    workers.emplace_back([&, b] { body(b, height * b / bands, height * (b + 1) / bands); });
   }
-  body(0, height / bands);
+  body(0, 0, height / bands);
 }
 
 std::vector<RasterObject> raster_objects(const PreparedScene& scene) {
@@ -136,17 +136,24 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
     std::size_t covered = 0, fallback = 0, empty = 0, shaded = 0;
   };
   std::vector<Band> bands(static_cast<std::size_t>(threads));
-  std::atomic<int> next_band{0};
   const GBuffer& g = gbuffer_;
-  parallel_rows(height, threads, [&](int first, int end) {
-    Band& band = bands[static_cast<std::size_t>(next_band.fetch_add(1))];
-    // Samplers hold per-thread microcaches: one per thread and object.
-    std::vector<std::unique_ptr<TextureSampler>> samplers;
-    samplers.reserve(scene.objects.size());
-    for (const PreparedObject& o : scene.objects) {
-      samplers.push_back(
-          std::make_unique<TextureSampler>(cache_, o.texture_id, o.layout, o.channels));
+  // Samplers (and their microcaches) live across frames, one set per band of rows.
+  std::vector<uint64_t> texture_ids;
+  for (const PreparedObject& o : scene.objects) texture_ids.push_back(o.texture_id);
+  if (samplers_.size() != static_cast<std::size_t>(threads) || sampler_textures_ != texture_ids) {
+    samplers_.clear();
+    samplers_.resize(static_cast<std::size_t>(threads));
+    for (auto& band_samplers : samplers_) {
+      for (const PreparedObject& o : scene.objects) {
+        band_samplers.push_back(
+            std::make_unique<TextureSampler>(cache_, o.texture_id, o.layout, o.channels));
+      }
     }
+    sampler_textures_ = std::move(texture_ids);
+  }
+  parallel_rows(height, threads, [&](int band_index, int first, int end) {
+    Band& band = bands[static_cast<std::size_t>(band_index)];
+    auto& samplers = samplers_[static_cast<std::size_t>(band_index)];
     MissedBricks missed;
     for (int y = first; y < end; ++y) {
       for (int x = 0; x < width; ++x) {
@@ -208,7 +215,7 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
   for (const PreparedObject& o : scene.objects) evaluators.emplace_back(o.texture);
   const glm::dmat4 inverse_vp = glm::inverse(vp);
   std::vector<glm::vec3> colours(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-  parallel_rows(h, thread_count(options_.threads), [&](int first, int end) {
+  parallel_rows(h, thread_count(options_.threads), [&](int, int first, int end) {
     for (int y = first; y < end; ++y) {
       for (int x = 0; x < w; ++x) {
         const std::size_t i = g.index(x, y);

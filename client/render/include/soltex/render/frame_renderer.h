@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "soltex/common/brick_cache.h"
@@ -62,6 +63,8 @@ class FrameRenderer {
   RenderOptions options_;
   Rasterizer rasterizer_;
   GBuffer gbuffer_;
+  std::vector<std::vector<std::unique_ptr<TextureSampler>>> samplers_;  // [band][object]
+  std::vector<uint64_t> sampler_textures_;  // the textures samplers_ was made for
 };
 
 // Camera matrices shared by the renderer and tools.

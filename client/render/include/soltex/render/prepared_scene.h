@@ -35,9 +35,9 @@ struct PreparedScene {
   std::vector<glm::dvec4> clip_planes;  // raster convention: a.x + b.y + c.z + d >= 0 keeps
 };
 
-// Builds the raster objects and registers every material's texture with `source`. The
-// default volume is a cube around the object's bounds (in its texture space), padded a little
-// so trilinear lookups at the surface stay inside. `scene` must outlive the result.
+// Builds the raster objects and registers every material's texture with `source`, over the
+// volume scene::texture_volume() gives (the material's, or a padded cube around the object in
+// its texture space). `scene` must outlive the result.
 PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolution,
                             net::BrickSource& source);
 
