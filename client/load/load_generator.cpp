@@ -260,7 +260,7 @@ LoadResult run_load(LoadOptions options, const ProgressCallback& progress) {
   result.texture_id = server.handle.id();
   result.texture_levels = shape.level_count;
   result.server_workers = static_cast<int>(server.info.worker_threads());
-  result.elapsed_seconds = std::chrono::duration<double>(end - start).count();
+  result.elapsed_seconds = std::chrono::duration<double>(std::max(end, window_end) - start).count();
   result.max_send_lag_seconds = std::chrono::duration<double>(max_send_lag).count();
   recorder.fill(result, window_end);
   return result;

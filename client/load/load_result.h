@@ -37,7 +37,7 @@ struct LoadResult {
   int texture_levels = 0;
   int server_workers = 0;
 
-  double elapsed_seconds = 0.0;   // start of the load to the last stream's end
+  double elapsed_seconds = 0.0;   // start of the load to the last stream's end (or stop time)
   double measured_seconds = 0.0;  // end of the warmup to the last measured answer
 
   // Measured.
