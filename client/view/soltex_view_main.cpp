@@ -246,9 +246,11 @@ int main(int argc, char** argv) {
       std::printf("NOT converged within %.1f s (%zu bricks still missing)\n", max_seconds,
                   fetched.waiting + fetched.in_flight);
     }
-    std::printf("last frame: %.2f ms (raster %.2f, shade %.2f), %zu pixels covered\n",
-                result.last_frame_ms, result.last_stats.raster_ms, result.last_stats.shade_ms,
-                result.last_stats.covered_pixels);
+    std::printf(
+        "last frame: %.2f ms (raster %.2f, shade %.2f), %zu pixels covered, %zu from a "
+        "coarser level\n",
+        result.last_frame_ms, result.last_stats.raster_ms, result.last_stats.shade_ms,
+        result.last_stats.covered_pixels, result.last_stats.fallback_pixels);
     std::printf(
         "bricks:     %llu received, %.2f MB, %llu errors, %llu cancelled, %llu reconnects\n",
         static_cast<unsigned long long>(fetched.received), fetched.bytes / 1e6,

@@ -60,8 +60,8 @@ std::vector<RasterObject> raster_objects(const PreparedScene& scene) {
 // viewer, direction to the viewer.
 struct Surface {
   glm::dvec3 position;
-  glm::dvec3 normal;
-  glm::dvec3 to_viewer;
+  glm::vec3 normal;
+  glm::vec3 to_viewer;
 };
 
 Surface surface_at(const GBuffer& g, std::size_t i, int x, int y, const glm::dmat4& inverse_vp,
@@ -72,20 +72,21 @@ Surface surface_at(const GBuffer& g, std::size_t i, int x, int y, const glm::dma
   const glm::dvec4 h = inverse_vp * glm::dvec4(ndc_x, ndc_y, ndc_z, 1.0);
   Surface s;
   s.position = glm::dvec3(h) / h.w;
-  const glm::dvec3 view = eye - s.position;
-  const double length = glm::length(view);
-  s.to_viewer = length > 0.0 ? view / length : glm::dvec3(0.0, 0.0, 1.0);
-  glm::dvec3 n(g.normal[i]);
-  const double n_length = glm::length(n);
-  n = n_length > 0.0 ? n / n_length : s.to_viewer;
-  if (g.back_face(i) || glm::dot(n, s.to_viewer) < 0.0) n = -n;  // seen from inside
+  // Directions only need float, once the large positions have been subtracted in double.
+  const glm::vec3 view(eye - s.position);
+  const float length = glm::length(view);
+  s.to_viewer = length > 0.0f ? view / length : glm::vec3(0.0f, 0.0f, 1.0f);
+  glm::vec3 n = g.normal[i];
+  const float n_length = glm::length(n);
+  n = n_length > 0.0f ? n / n_length : s.to_viewer;
+  if (g.back_face(i) || glm::dot(n, s.to_viewer) < 0.0f) n = -n;  // seen from inside
   s.normal = n;
   return s;
 }
 
 // Texture channel values -> shaded colour, the same for the cached and the reference path.
-glm::vec3 shade_pixel(const Scene& scene, const PreparedObject& object, const float* values,
-                      const Surface& surface) {
+glm::vec3 shade_pixel(const PreparedLights& lights, const PreparedObject& object,
+                      const float* values, const Surface& surface) {
   const ChannelSet& channels = object.texture.channels;
   const Material& material = object.object->material;
   const glm::vec3 albedo =
@@ -94,7 +95,7 @@ glm::vec3 shade_pixel(const Scene& scene, const PreparedObject& object, const fl
   const float opacity = channels.opacity ? values[next++] : 1.0f;
   const float specular = channels.specular ? values[next++] : material.specular;
   glm::vec3 colour = material.unlit ? albedo
-                                    : shade(scene, albedo, specular, material.shininess,
+                                    : shade(lights, albedo, specular, material.shininess,
                                             surface.position, surface.normal, surface.to_viewer);
   if (opacity < 1.0f) colour = kBackground + opacity * (colour - kBackground);
   return colour;
@@ -130,6 +131,7 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
   const auto shade_start = Clock::now();
   cache_.begin_frame();
   const glm::dmat4 inverse_vp = glm::inverse(vp);
+  const PreparedLights lights = prepare_lights(*scene.scene);
   const int threads = thread_count(options_.threads);
   struct Band {
     std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
@@ -175,7 +177,7 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
         if (options_.false_colour_levels) {
           colour = level_colour(result.level);
         } else {
-          colour = shade_pixel(*scene.scene, object, result.values.data(),
+          colour = shade_pixel(lights, object, result.values.data(),
                                surface_at(g, i, x, y, inverse_vp, camera.position));
           band.shaded += object.object->material.unlit ? 0 : 1;
         }
@@ -214,6 +216,7 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
   std::vector<TextureEvaluator> evaluators;
   for (const PreparedObject& o : scene.objects) evaluators.emplace_back(o.texture);
   const glm::dmat4 inverse_vp = glm::inverse(vp);
+  const PreparedLights lights = prepare_lights(*scene.scene);
   std::vector<glm::vec3> colours(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
   parallel_rows(h, thread_count(options_.threads), [&](int, int first, int end) {
     for (int y = first; y < end; ++y) {
@@ -236,7 +239,7 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
         };
         if (c.opacity) values[next++] = scalar(object.texture.opacity);
         if (c.specular) values[next++] = scalar(object.texture.specular);
-        colours[i] = shade_pixel(*scene.scene, object, values,
+        colours[i] = shade_pixel(lights, object, values,
                                  surface_at(g, i, x, y, inverse_vp, camera.position));
       }
     }

@@ -6,30 +6,54 @@
 
 namespace soltex {
 
-glm::vec3 shade(const Scene& scene, const glm::vec3& albedo, float specular, float shininess,
-                const glm::dvec3& position, const glm::dvec3& normal, const glm::dvec3& to_viewer) {
-  glm::vec3 colour = albedo * scene.ambient.colour * scene.ambient.intensity;
+PreparedLights prepare_lights(const Scene& scene) {
+  PreparedLights lights;
+  lights.ambient = scene.ambient.colour * scene.ambient.intensity;
   for (const Light& light : scene.lights) {
-    glm::dvec3 to_light;
-    glm::vec3 radiance;
     if (const auto* d = std::get_if<DirectionalLight>(&light)) {
-      to_light = -glm::normalize(d->direction);
-      radiance = d->colour * d->intensity;
+      lights.directional.push_back(
+          {glm::vec3(-glm::normalize(d->direction)), d->colour * d->intensity});
     } else {
       const auto& p = std::get<PointLight>(light);
-      const glm::dvec3 offset = p.position - position;
-      const double distance2 = std::max(glm::dot(offset, offset), 1e-12);
-      to_light = offset / std::sqrt(distance2);
-      radiance = p.colour * (p.intensity / static_cast<float>(distance2));
+      lights.point.push_back({p.position, p.colour * p.intensity});
     }
-    const double n_dot_l = glm::dot(normal, to_light);
-    if (!(n_dot_l > 0.0)) continue;
-    colour += albedo * radiance * static_cast<float>(n_dot_l);
-    if (specular > 0.0f) {
-      const glm::dvec3 half = glm::normalize(to_light + to_viewer);
-      const double n_dot_h = std::max(glm::dot(normal, half), 0.0);
-      colour += radiance * (specular * static_cast<float>(std::pow(n_dot_h, shininess)));
-    }
+  }
+  return lights;
+}
+
+namespace {
+
+// One light's contribution. pow() through exp2/log2 in float: the exponent is a material
+// constant and n.h is in (0, 1].
+inline glm::vec3 light_term(const glm::vec3& albedo, float specular, float shininess,
+                            const glm::vec3& normal, const glm::vec3& to_viewer,
+                            const glm::vec3& to_light, const glm::vec3& radiance) {
+  const float n_dot_l = glm::dot(normal, to_light);
+  if (!(n_dot_l > 0.0f)) return glm::vec3(0.0f);
+  glm::vec3 colour = albedo * radiance * n_dot_l;
+  if (specular > 0.0f) {
+    const glm::vec3 half = glm::normalize(to_light + to_viewer);
+    const float n_dot_h = glm::dot(normal, half);
+    if (n_dot_h > 0.0f) colour += radiance * (specular * std::exp2(shininess * std::log2(n_dot_h)));
+  }
+  return colour;
+}
+
+}  // namespace
+
+glm::vec3 shade(const PreparedLights& lights, const glm::vec3& albedo, float specular,
+                float shininess, const glm::dvec3& position, const glm::vec3& normal,
+                const glm::vec3& to_viewer) {
+  glm::vec3 colour = albedo * lights.ambient;
+  for (const auto& d : lights.directional) {
+    colour += light_term(albedo, specular, shininess, normal, to_viewer, d.to_light, d.radiance);
+  }
+  for (const auto& p : lights.point) {
+    const glm::dvec3 offset = p.position - position;
+    const double distance2 = std::max(glm::dot(offset, offset), 1e-12);
+    const glm::vec3 to_light(offset / std::sqrt(distance2));
+    colour += light_term(albedo, specular, shininess, normal, to_viewer, to_light,
+                         p.radiance / static_cast<float>(distance2));
   }
   return colour;
 }
