@@ -18,6 +18,8 @@ HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedSce
     result.last_frame_ms = frame.stats.raster_ms + frame.stats.shade_ms;
     result.last_stats = frame.stats;
     const bool complete = frame.complete();
+    if (options.on_misses && !frame.misses.empty())
+      options.on_misses(elapsed_ms() / 1e3, frame.misses);
     source.want(std::move(frame.misses));
     result.image = std::move(frame.image);
     if (complete && source.idle()) {

@@ -3,7 +3,9 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "soltex/common/texture_sampler.h"
 #include "soltex/net/brick_source.h"
@@ -14,6 +16,8 @@ namespace soltex::view {
 struct HeadlessOptions {
   std::chrono::milliseconds max_time{30000};  // give up converging after this
   bool exact = false;                         // fail unless every brick arrived
+  // Called with each frame's misses before they go to the source (e.g. to record them).
+  std::function<void(double seconds, const std::vector<net::BrickWant>& misses)> on_misses;
 };
 
 struct HeadlessResult {

@@ -7,9 +7,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <optional>
 
 #include "headless_session.h"
+#include "request_log.h"
 #ifdef SOLTEX_HAVE_SDL2
 #include "viewer_window.h"
 #endif
@@ -98,6 +101,7 @@ int main(int argc, char** argv) {
   int threads = 0;
   int finest_level = 0;
   int width = 0, height = 0;
+  std::filesystem::path record_path;
   std::string log_level = "info";
   int window_frames = 0;
   std::filesystem::path screenshot;
@@ -145,6 +149,8 @@ int main(int argc, char** argv) {
       ->excludes(headless_flag);
   app.add_option("--screenshot", screenshot, "window: write the last frame shown to this PNG")
       ->excludes(headless_flag);
+  app.add_option("--record", record_path,
+                 "write every brick request to FILE (soltex-load --mix replay plays it back)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
@@ -231,6 +237,19 @@ int main(int argc, char** argv) {
     view::HeadlessOptions options;
     options.max_time = std::chrono::milliseconds(static_cast<long>(max_seconds * 1000));
     options.exact = exact;
+    std::ofstream record_file;
+    std::optional<load::RequestLogWriter> recorder;
+    if (!record_path.empty()) {
+      record_file.open(record_path);
+      if (!record_file) throw std::runtime_error("cannot write " + record_path.string());
+      recorder.emplace(record_file);
+      options.on_misses = [&](double seconds, const std::vector<net::BrickWant>& misses) {
+        for (const net::BrickWant& w : misses) {
+          recorder->append({seconds, w.key.level, w.key.brick.x, w.key.brick.y, w.key.brick.z,
+                            static_cast<int32_t>(std::min<uint32_t>(w.screen_pixels, 1u << 30))});
+        }
+      };
+    }
     const view::HeadlessResult result = view::render_until_converged(
         renderer, prepared, scene.camera, choice.width, choice.height, *source, options);
     const net::SourceStats fetched = source->stats();
