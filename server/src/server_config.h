@@ -12,8 +12,9 @@ struct ServerConfig {
   std::size_t cache_mb = 256;                     // encoded-brick cache budget
   int threads = 0;                                // brick workers; 0 = one per core
   std::string log_level = "info";
-  int zstd_level =
-      1;  // with the 3D predictor, level 1 compresses as well as 3, faster (PERFORMANCE.md)
+  // After the 3D predictor, zstd level 1 compresses as well as 3 and encodes faster
+  // (docs/PERFORMANCE.md, brick codec).
+  int zstd_level = 1;
   uint32_t max_textures = 1024;
   uint32_t max_keys_per_request = 1024;
   uint32_t max_queued_per_stream = 4096;
