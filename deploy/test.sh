@@ -23,9 +23,9 @@ cmake --build "$asan" --target unit_tests -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir "$asan" -L unit --output-on-failure -j "$jobs"
 
-echo "== libFuzzer (clang): decoders, ${SOLTEX_FUZZ_SECONDS:-60} s each"
+echo "== libFuzzer (clang): decoders and parsers, ${SOLTEX_FUZZ_SECONDS:-30} s each"
 CC=clang CXX=clang++ cmake -S "$root" -B "$fuzz" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DSOLTEX_FUZZ=ON -DSOLTEX_NATIVE=OFF -DSOLTEX_BUILD_BENCHMARKS=OFF \
-  -DSOLTEX_FUZZ_SECONDS="${SOLTEX_FUZZ_SECONDS:-60}" >/dev/null
+  -DSOLTEX_FUZZ_SECONDS="${SOLTEX_FUZZ_SECONDS:-30}" >/dev/null
 cmake --build "$fuzz" --target fuzz_targets -j "$jobs"
 ctest --test-dir "$fuzz" -L fuzz --output-on-failure

@@ -45,10 +45,10 @@ RequestLogWriter::RequestLogWriter(std::ostream& out) : out_(out) {
 }
 
 void RequestLogWriter::append(const RecordedRequest& request) {
-  if (!(request.seconds >= last_seconds_) || !std::isfinite(request.seconds)) {
-    throw RequestLogError("request log: time " + std::to_string(request.seconds) +
-                          " s must be finite and not below the previous one (" +
-                          std::to_string(last_seconds_) + " s)");
+  if (!(request.seconds >= last_seconds_) || !(request.seconds <= kMaxRecordedSeconds)) {
+    throw RequestLogError(
+        "request log: time " + std::to_string(request.seconds) +
+        " s must be in [previous time, 1e9] (previous: " + std::to_string(last_seconds_) + " s)");
   }
   if (request.level < 0) {
     throw RequestLogError("request log: level " + std::to_string(request.level) + " must be >= 0");
@@ -87,9 +87,9 @@ std::vector<RecordedRequest> read_request_log(std::istream& in, const std::strin
            std::to_string(fields.size()));
     }
     RecordedRequest request;
-    if (!parse_number(fields[0], request.seconds) || !std::isfinite(request.seconds) ||
-        request.seconds < 0.0) {
-      fail("seconds \"" + std::string(fields[0]) + "\" must be a finite number >= 0");
+    if (!parse_number(fields[0], request.seconds) || !(request.seconds >= 0.0) ||
+        !(request.seconds <= kMaxRecordedSeconds)) {
+      fail("seconds \"" + std::string(fields[0]) + "\" must be a number in [0, 1e9]");
     }
     if (request.seconds < last_seconds) {
       fail("seconds " + std::string(fields[0]) + " is below the previous line's " +

@@ -38,6 +38,9 @@ struct RecordedRequest {
 };
 
 inline constexpr const char* kRequestLogHeader = "# soltex-request-log 1";
+// Times beyond this (about 31 years) are refused: they cannot come from a recording, and a
+// bounded value always fits its column.
+inline constexpr double kMaxRecordedSeconds = 1e9;
 // A log is read whole into memory; this bounds what a file can make the reader hold.
 inline constexpr std::size_t kMaxRecordedRequests = 10'000'000;
 

@@ -162,7 +162,7 @@ std::size_t BrickStream::accept_request() {
                     std::to_string(level));
       continue;
     }
-    if (queue_.size() >= limits.max_queued_per_stream) {
+    if (owed() >= limits.max_queued_per_stream) {
       add_error(k, grpc::StatusCode::RESOURCE_EXHAUSTED,
                 describe(k) + ": stream queue is full (" +
                     std::to_string(limits.max_queued_per_stream) +
@@ -205,6 +205,11 @@ void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick) {
               "evaluating " + describe(to_proto(item.key)) + " failed (see the server log)");
   }
   pump();
+}
+
+std::size_t BrickStream::owed() const {
+  return queue_.size() + outbox_.size() +
+         static_cast<std::size_t>(in_production_.load(std::memory_order_relaxed));
 }
 
 void BrickStream::add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message) {
@@ -269,8 +274,11 @@ void BrickStream::pump() {
     reactor_->StartWrite(&batch_);
   }
 
-  // Backpressure: read on only while a whole request would still fit in the queue.
-  const bool room = queue_.size() + limits.max_keys_per_request <= limits.max_queued_per_stream;
+  // Backpressure: read on only while a whole request would still fit, counting every brick
+  // the stream owes: queued, being produced, and made but not yet written (a client that
+  // stops reading must not make the server hold its answers without bound).
+  const bool room =
+      owed() + limits.max_keys_per_request <= limits.max_queued_per_stream;
   if (!reading_ && !reads_done_ && !shutting_down_ && !cancelled_ && room) {
     reading_ = true;
     request_.Clear();

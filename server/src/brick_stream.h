@@ -30,9 +30,10 @@ struct StreamLimits {
 // the workers producing its bricks (our pool). The reactor object itself belongs to gRPC and
 // is deleted in OnDone; this state outlives it for as long as a worker holds it.
 //
-// One write in flight at a time; the next request is read only while the queue has room for
-// a whole request (backpressure: a client that asks faster than it is served is slowed by
-// HTTP/2 flow control, not by an unbounded queue).
+// One write in flight at a time; the next request is read only while what the stream owes
+// (queued, in production, not yet written) leaves room for a whole request (backpressure: a
+// client that asks faster than it reads is slowed by HTTP/2 flow control, not by an unbounded
+// queue).
 class BrickStream final : public WorkSource, public std::enable_shared_from_this<BrickStream> {
  public:
   struct Context {
@@ -78,6 +79,7 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   void add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message);
   void add_request_error(grpc::StatusCode code, std::string message);
   void pump();  // start the next read, write or finish, whichever is due
+  std::size_t owed() const;  // bricks queued, in production or waiting to be written
 
   Context context_;
   const uint64_t id_;

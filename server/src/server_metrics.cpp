@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "soltex/common/evaluation_counters.h"
+
 namespace soltex::server {
 namespace {
 
@@ -65,6 +67,13 @@ std::string ServerMetrics::render(const BrickStoreStats& store, std::size_t stor
           load(bricks_evaluated));
   counter("soltex_bricks_cancelled_total", "Queued bricks dropped by client cancellations.",
           load(bricks_cancelled));
+  const OctaveCounts octaves = octave_counters().snapshot();
+  counter("soltex_octave_samples_evaluated_total",
+          "Noise octaves evaluated, times the samples they were evaluated at.",
+          octaves.evaluated_octave_samples);
+  counter("soltex_octave_samples_skipped_total",
+          "Noise octaves a level could not show, replaced by their mean, times the samples.",
+          octaves.skipped_octave_samples);
   gauge("soltex_queue_depth", "Bricks queued over all streams.",
         static_cast<double>(load(queue_depth)));
   gauge("soltex_textures_registered", "Textures in the registry.", static_cast<double>(textures));

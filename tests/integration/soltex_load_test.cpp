@@ -215,6 +215,12 @@ TEST(SoltexLoad, RequestLogRoundTrip) {
   EXPECT_THROW(read_request_log(short_line, "short.log"), RequestLogError);
   std::istringstream no_header("0.5 1 2 3 4 5\n");
   EXPECT_THROW(read_request_log(no_header, "headerless.log"), RequestLogError);
+  // Times are bounded, so every accepted line can be written back whole.
+  std::istringstream huge_time(std::string(kRequestLogHeader) + "\n1e300 0 0 0 0 0\n");
+  EXPECT_THROW(read_request_log(huge_time, "huge.log"), RequestLogError);
+  std::ostringstream out;
+  RequestLogWriter writer(out);
+  EXPECT_THROW(writer.append({1e300, 0, 0, 0, 0, 0}), RequestLogError);
 }
 
 TEST(SoltexLoad, ReplaysARecordedLog) {

@@ -114,6 +114,16 @@ LoadedObj load_obj(const std::filesystem::path& path, const ObjLoadOptions& opti
   if (std::filesystem::is_directory(path, error)) {
     throw ObjError(path.string(), "is a directory, not an OBJ file");
   }
+  // Regular files of bounded size only: a device or a huge file must not exhaust memory.
+  if (std::filesystem::exists(path, error) && !std::filesystem::is_regular_file(path, error)) {
+    throw ObjError(path.string(), "is not a regular file");
+  }
+  constexpr std::uintmax_t kMaxObjBytes = 512ull << 20;
+  if (const std::uintmax_t size = std::filesystem::file_size(path, error);
+      !error && size > kMaxObjBytes) {
+    throw ObjError(path.string(), std::to_string(size) + " bytes: OBJ files are limited to " +
+                                      std::to_string(kMaxObjBytes) + " bytes");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ObjError(path.string(), std::string("cannot open: ") + std::strerror(errno));
   std::ostringstream text;

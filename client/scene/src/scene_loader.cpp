@@ -15,6 +15,7 @@
 #include "soltex/scene/obj_loader.h"
 #include "soltex/scene/scene_error.h"
 #include "soltex/scene/texture_spec_json.h"
+#include "soltex/scene/texture_volume.h"
 
 namespace soltex {
 namespace {
@@ -414,10 +415,31 @@ Scene parse_scene(std::string_view json_text, const std::string& name_for_errors
 
   // Everything is checked before the first mesh is built: a typo costs no OBJ load.
   std::map<std::string, std::shared_ptr<const Mesh>> built;
+  std::size_t total_triangles = 0;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     std::shared_ptr<const Mesh>& mesh = built[meshes[i].cache_key];
-    if (!mesh) mesh = build_mesh(meshes[i], file);
+    if (!mesh) {
+      mesh = build_mesh(meshes[i], file);
+      // Checked as meshes are built, so at most one mesh past the bound is ever made.
+      total_triangles += mesh->triangle_count();
+      if (total_triangles > SceneLimits::kMaxTotalTriangles) {
+        throw SceneError(file, "objects[" + std::to_string(i) + "].mesh",
+                         "the scene's distinct meshes reach " + std::to_string(total_triangles) +
+                             " triangles; at most " +
+                             std::to_string(SceneLimits::kMaxTotalTriangles) + " in all");
+      }
+    }
     scene.objects[i].mesh = mesh;
+  }
+  // A scene that loads is ready to draw: every object's texture volume must be valid (size,
+  // scale and translation can each be in bounds and still put it beyond the volume bound).
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    try {
+      (void)texture_volume(scene.objects[i],
+                           scene.objects[i].material.volume.finest_level_log2.value_or(8));
+    } catch (const SpecError& e) {
+      throw SceneError::from_spec_error(file, "objects[" + std::to_string(i) + "]", e);
+    }
   }
   return scene;
 }

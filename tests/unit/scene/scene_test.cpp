@@ -620,3 +620,45 @@ TEST(TextureSpecJson, HandWrittenJsonMatchesTheStruct) {
 
 }  // namespace
 }  // namespace soltex
+
+namespace soltex {
+namespace {
+
+// Each shape is bounded; the scene's total must be too, or a small file asks for billions.
+TEST(SceneBounds, TotalTrianglesAreBounded) {
+  std::string objects;
+  for (int i = 0; i < 40; ++i) {
+    if (i > 0) objects += ",";
+    objects += R"({"mesh":{"sphere":{"radius":)" + std::to_string(1.0 + i * 0.001) +
+               R"(,"segments":1024,"rings":1024}},"material":{"texture":{"noise":{}}}})";
+  }
+  try {
+    (void)parse_scene(R"({"objects":[)" + objects + "]}", "many.json");
+    FAIL() << "expected a SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("at most"), std::string::npos) << e.what();
+  }
+}
+
+// Size, scale and translation each within bounds can still put a world-space texture volume
+// beyond the volume bound: the scene is refused at load time, not when it is drawn.
+TEST(SceneBounds, TextureVolumeBeyondItsBoundIsRefusedAtLoad) {
+  const char* text = R"({"objects":[{"mesh":{"sphere":{"radius":1000000}},
+    "transform":{"scale":1000000,"translate":[1000000,0,0]},
+    "material":{"texture":{"marble":{}},"space":"world"}}]})";
+  try {
+    (void)parse_scene(text, "far.json");
+    FAIL() << "expected a SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("volume.min.x"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneBounds, ObjPathsMustBeRegularFiles) {
+  const char* text = R"({"objects":[{"mesh":{"obj":{"path":"/dev/zero"}},
+    "material":{"texture":{"noise":{}}}}]})";
+  EXPECT_THROW((void)parse_scene(text, "dev.json"), std::exception);
+}
+
+}  // namespace
+}  // namespace soltex

@@ -28,6 +28,8 @@ struct SceneLimits {
   static constexpr int kMaxClipPlanes = 16;
   static constexpr int kMaxOrbitFrames = 100000;
   static constexpr double kMaxCoordinate = 1e6;  // camera, lights, clip planes
+  // All distinct meshes together: each shape is bounded, but a thousand of them need not be.
+  static constexpr std::size_t kMaxTotalTriangles = 16u << 20;
 };
 
 }  // namespace soltex
