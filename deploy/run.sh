@@ -3,6 +3,8 @@
 # default scene with soltex-view (headless) into a PNG, print what happened, stop the server.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# ccache hits across clones in different directories: hash paths relative to the clone.
+export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1
 build=${SOLTEX_BUILD_DIR:-$root/build}
 out=${SOLTEX_OUT_DIR:-$root/out}
 

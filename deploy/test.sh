@@ -4,6 +4,8 @@
 # targets for a bounded time.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
+# ccache hits across clones in different directories: hash paths relative to the clone.
+export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1
 build=${SOLTEX_BUILD_DIR:-$root/build}
 asan=${SOLTEX_ASAN_DIR:-$root/build-asan}
 fuzz=${SOLTEX_FUZZ_DIR:-$root/build-fuzz}
