@@ -4,7 +4,20 @@
 #include <string>
 #include <vector>
 
+#include "soltex/common/evaluation_counters.h"
+
 namespace soltex {
+namespace {
+
+// One count per call: the octave plan is a few dozen operations next to a brick's thousands
+// of samples.
+void count_octaves(const TextureEvaluator& texture, double filter_width, std::size_t samples) {
+  const int all = texture.evaluated_octaves(0.0);
+  const int evaluated = texture.evaluated_octaves(filter_width);
+  octave_counters().add(samples, evaluated, all - evaluated);
+}
+
+}  // namespace
 
 const char* mip_mode_name(MipMode mode) {
   switch (mode) {
@@ -29,9 +42,11 @@ void evaluate_brick(const TextureEvaluator& texture, const BrickLayout& layout, 
   switch (mip.mode) {
     case MipMode::point:
       texture.evaluate_grid(grid, 0.0, out);
+      count_octaves(texture, 0.0, grid.size());
       return;
     case MipMode::band_limited:
       texture.evaluate_grid(grid, layout.filter_width(level), out);
+      count_octaves(texture, layout.filter_width(level), grid.size());
       return;
     case MipMode::supersampled:
       break;
@@ -65,6 +80,7 @@ void evaluate_brick(const TextureEvaluator& texture, const BrickLayout& layout, 
       }
     }
   }
+  count_octaves(texture, sub_width, grid.size() * static_cast<std::size_t>(k * k * k));
 }
 
 }  // namespace soltex

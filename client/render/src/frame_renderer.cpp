@@ -49,11 +49,33 @@ void parallel_rows(int height, int threads, Body body) {
   body(0, 0, height / bands);
 }
 
-std::vector<RasterObject> raster_objects(const PreparedScene& scene) {
+// Frames are drawn relative to the eye: the float matrices the rasterizer gets then carry only
+// offsets from the camera, so objects far from the origin (1e6, 1e9) keep their precision.
+struct EyeRelative {
   std::vector<RasterObject> objects;
-  objects.reserve(scene.objects.size());
-  for (const PreparedObject& o : scene.objects) objects.push_back(o.raster);
-  return objects;
+  std::vector<glm::dvec4> clip_planes;
+  glm::dmat4 view_projection;
+};
+
+EyeRelative eye_relative(const PreparedScene& scene, const Camera& camera, int width, int height) {
+  const glm::dvec3& eye = camera.position;
+  const glm::dmat4 from_world = glm::translate(glm::dmat4(1.0), -eye);
+  EyeRelative r;
+  r.objects.reserve(scene.objects.size());
+  for (const PreparedObject& o : scene.objects) {
+    RasterObject object = o.raster;
+    object.model = glm::mat4(from_world * o.world_from_object);
+    r.objects.push_back(object);
+  }
+  for (const glm::dvec4& plane : scene.clip_planes) {
+    // a.(p + eye) + d >= 0  <=>  a.p + (d + a.eye) >= 0
+    r.clip_planes.emplace_back(glm::dvec3(plane), plane.w + glm::dot(glm::dvec3(plane), eye));
+  }
+  Camera at_origin = camera;
+  at_origin.target = camera.target - eye;
+  at_origin.position = glm::dvec3(0.0);
+  r.view_projection = view_projection(at_origin, width, height);
+  return r;
 }
 
 // The lighting inputs of pixel i: world position (unprojected from depth), normal facing the
@@ -64,16 +86,17 @@ struct Surface {
   glm::vec3 to_viewer;
 };
 
+// `inverse_vp` maps to eye-relative world space; the eye is added back in double.
 Surface surface_at(const GBuffer& g, std::size_t i, int x, int y, const glm::dmat4& inverse_vp,
                    const glm::dvec3& eye) {
   const double ndc_x = (x + 0.5) / g.width * 2.0 - 1.0;
   const double ndc_y = 1.0 - (y + 0.5) / g.height * 2.0;
   const double ndc_z = static_cast<double>(g.depth[i]) * 2.0 - 1.0;
   const glm::dvec4 h = inverse_vp * glm::dvec4(ndc_x, ndc_y, ndc_z, 1.0);
+  const glm::dvec3 relative = glm::dvec3(h) / h.w;
   Surface s;
-  s.position = glm::dvec3(h) / h.w;
-  // Directions only need float, once the large positions have been subtracted in double.
-  const glm::vec3 view(eye - s.position);
+  s.position = eye + relative;
+  const glm::vec3 view(-relative);
   const float length = glm::length(view);
   s.to_viewer = length > 0.0f ? view / length : glm::vec3(0.0f, 0.0f, 1.0f);
   glm::vec3 n = g.normal[i];
@@ -118,14 +141,14 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
   Frame frame;
   frame.image = Image(width, height);
   const auto raster_start = Clock::now();
-  const glm::dmat4 vp = view_projection(camera, width, height);
-  const std::vector<RasterObject> objects = raster_objects(scene);
+  const EyeRelative relative = eye_relative(scene, camera, width, height);
+  const glm::dmat4& vp = relative.view_projection;
   RasterView view;
   view.width = width;
   view.height = height;
   view.view_projection = glm::mat4(vp);
-  view.clip_planes = scene.clip_planes;
-  frame.stats.raster = rasterizer_.render(view, objects, gbuffer_);
+  view.clip_planes = relative.clip_planes;
+  frame.stats.raster = rasterizer_.render(view, relative.objects, gbuffer_);
   frame.stats.raster_ms = ms_since(raster_start);
 
   const auto shade_start = Clock::now();
@@ -204,15 +227,15 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
                                       int height, int supersample) {
   const int k = std::clamp(supersample, 1, 8);
   const int w = width * k, h = height * k;
-  const glm::dmat4 vp = view_projection(camera, w, h);
-  const std::vector<RasterObject> objects = raster_objects(scene);
+  const EyeRelative relative = eye_relative(scene, camera, w, h);
+  const glm::dmat4& vp = relative.view_projection;
   RasterView view;
   view.width = w;
   view.height = h;
   view.view_projection = glm::mat4(vp);
-  view.clip_planes = scene.clip_planes;
+  view.clip_planes = relative.clip_planes;
   GBuffer g;
-  rasterizer_.render(view, objects, g);
+  rasterizer_.render(view, relative.objects, g);
   std::vector<TextureEvaluator> evaluators;
   for (const PreparedObject& o : scene.objects) evaluators.emplace_back(o.texture);
   const glm::dmat4 inverse_vp = glm::inverse(vp);

@@ -29,13 +29,10 @@ PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolut
     const bool world = object.material.space == TextureSpace::world;
     const glm::dmat4 texture_from_object = world ? model : glm::dmat4(1.0);
     const Volume volume = texture_volume(object, resolution.finest_level_log2);
-    PreparedObject p{&object,
-                     RasterObject{},
-                     object.material.texture,
-                     volume,
-                     BrickLayout(volume, resolution.brick_size),
-                     0,
-                     object.material.texture.channels.sample_count()};
+    PreparedObject p{&object, RasterObject{},
+                     model,   object.material.texture,
+                     volume,  BrickLayout(volume, resolution.brick_size),
+                     0,       object.material.texture.channels.sample_count()};
     p.raster.mesh = {mesh.positions, mesh.normals, mesh.indices};
     p.raster.model = glm::mat4(model);
     p.raster.texture_from_object = texture_from_object;

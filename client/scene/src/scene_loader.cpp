@@ -324,25 +324,63 @@ std::string without_exception_tag(const std::string& message) {
 }
 
 nlohmann::json parse_json(std::string_view text, const std::string& file) {
-  // nlohmann keeps the last of two equal keys; a repeated key is a mistake worth naming.
-  std::vector<std::set<std::string>> keys_of_open_objects;
-  const nlohmann::json::parser_callback_t reject_duplicate_keys =
-      [&](int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
-        using Event = nlohmann::json::parse_event_t;
-        if (event == Event::object_start) keys_of_open_objects.emplace_back();
-        if (event == Event::object_end) keys_of_open_objects.pop_back();
-        if (event == Event::key) {
-          const std::string key = parsed.get<std::string>();
-          if (!keys_of_open_objects.back().insert(key).second) {
-            throw SceneError(file, "", "duplicate key \"" + key + "\" in one object");
-          }
+  // Where the parser is, as a JSON path ("objects[2].transform.translate[0]"), so that an error
+  // the parser itself raises (a number too large for a double) names its field too.
+  struct Level {
+    bool array;
+    std::string key;             // objects: the key being read
+    std::size_t index = 0;       // arrays: the element being read
+    std::set<std::string> keys;  // objects: keys seen, to refuse repeats
+  };
+  std::vector<Level> levels;
+  const auto path = [&] {
+    std::string out;
+    for (const Level& level : levels) {
+      if (level.array) {
+        out += "[" + std::to_string(level.index) + "]";
+      } else if (!level.key.empty()) {
+        out += (out.empty() ? "" : ".") + level.key;
+      }
+    }
+    return out;
+  };
+  const auto element_done = [&] {
+    if (!levels.empty() && levels.back().array) ++levels.back().index;
+  };
+  const nlohmann::json::parser_callback_t track = [&](int, nlohmann::json::parse_event_t event,
+                                                      nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    switch (event) {
+      case Event::object_start:
+        levels.push_back({false, {}, 0, {}});
+        break;
+      case Event::array_start:
+        levels.push_back({true, {}, 0, {}});
+        break;
+      case Event::object_end:
+      case Event::array_end:
+        levels.pop_back();
+        element_done();
+        break;
+      case Event::key: {
+        const std::string key = parsed.get<std::string>();
+        // nlohmann keeps the last of two equal keys; a repeated key is a mistake to name.
+        if (!levels.back().keys.insert(key).second) {
+          throw SceneError(file, path(), "duplicate key \"" + key + "\" in one object");
         }
-        return true;
-      };
+        levels.back().key = key;
+        break;
+      }
+      case Event::value:
+        element_done();
+        break;
+    }
+    return true;
+  };
   try {
-    return nlohmann::json::parse(text.begin(), text.end(), reject_duplicate_keys);
+    return nlohmann::json::parse(text.begin(), text.end(), track);
   } catch (const nlohmann::json::exception& error) {
-    throw SceneError(file, "", "not valid JSON: " + without_exception_tag(error.what()));
+    throw SceneError(file, path(), "not valid JSON: " + without_exception_tag(error.what()));
   }
 }
 

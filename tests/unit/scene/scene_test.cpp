@@ -398,10 +398,11 @@ TEST(SceneErrors, SpecErrorMessageComesThroughWithFileAndPath) {
 }
 
 TEST(SceneErrors, FileLevelProblemsNameTheFile) {
+  // A syntax error names where the parser was: the file, the JSON path and line and column.
   const SceneError syntax = scene_error_of("{\"objects\": [}", "broken.json");
-  EXPECT_EQ(syntax.field(), "");
-  EXPECT_THAT(syntax.what(),
-              AllOf(HasSubstr("broken.json: not valid JSON"), HasSubstr("line 1, column")));
+  EXPECT_EQ(syntax.field(), "objects[0]");
+  EXPECT_THAT(syntax.what(), AllOf(HasSubstr("broken.json: objects[0]: not valid JSON"),
+                                   HasSubstr("line 1, column")));
 
   // JSON has no NaN or Inf; a number too large for a double is where they would come from.
   const SceneError overflow = scene_error_of(

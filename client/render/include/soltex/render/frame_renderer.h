@@ -56,6 +56,8 @@ class FrameRenderer {
                          int supersample = 1);
 
   const RenderOptions& options() const { return options_; }
+  // The G-buffer of the last render() (eye-relative world space), for tests and tools.
+  const GBuffer& last_gbuffer() const { return gbuffer_; }
   void set_level_bias(double bias) { options_.level_bias = bias; }
 
  private:

@@ -21,7 +21,8 @@ struct TextureResolution {
 // One scene object ready to draw: its raster input and its registered texture.
 struct PreparedObject {
   const SceneObject* object = nullptr;
-  RasterObject raster;
+  RasterObject raster;           // its model matrix is set per frame, relative to the eye
+  glm::dmat4 world_from_object;  // the object's transform, in double
   TextureSpec texture;
   Volume volume;
   BrickLayout layout;

@@ -1,0 +1,44 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "soltex/common/brick_codec.h"
+#include "soltex/common/brick_evaluator.h"
+#include "soltex/common/texture_sampler.h"
+
+namespace soltex::bench {
+
+// A brick codec as soltexd can be configured: the codec and, for zstd, its level. The 3D
+// predictor is always on, as soltexd runs it.
+struct CodecChoice {
+  Codec codec = Codec::zstd;
+  int zstd_level = 3;
+
+  std::string name() const;  // "raw", "lz4", "zstd-1", "zstd-3"
+  CodecOptions options() const;
+  bool operator==(const CodecChoice&) const = default;
+};
+
+// One point of the accuracy sweep: every knob that changes what a frame costs or how close it
+// comes to the reference.
+struct AccuracySetting {
+  int finest_level = 8;  // log2 of the cells per axis at level 0
+  int brick_size = 16;
+  SampleFilter filter = SampleFilter::trilinear;
+  MipMode mip = MipMode::band_limited;
+  std::optional<int> octave_cap;  // fractal octave_max capped to this; empty: the scene's own
+  CodecChoice codec;
+
+  // The knobs that differ from the default, e.g. "level=7 filter=nearest"; "default" for it.
+  std::string label() const;
+  // The codec is the only knob that leaves the frame alone: the cache holds decoded bricks,
+  // so two settings that differ in it alone draw the same frame from the same cache.
+  bool same_frame_as(const AccuracySetting& other) const;
+  bool operator==(const AccuracySetting&) const = default;
+};
+
+// "scene" for the scene's own octaves, the cap otherwise.
+std::string octaves_name(const std::optional<int>& octave_cap);
+
+}  // namespace soltex::bench

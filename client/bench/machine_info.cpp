@@ -1,0 +1,27 @@
+#include "machine_info.h"
+
+#include <fstream>
+#include <thread>
+
+namespace soltex::bench {
+
+std::string machine_description() {
+  std::string model = "unknown CPU";
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);) {
+    if (line.rfind("model name", 0) != 0) continue;
+    const std::size_t colon = line.find(':');
+    if (colon != std::string::npos && colon + 2 <= line.size()) model = line.substr(colon + 2);
+    break;
+  }
+  return model + ", " + std::to_string(std::thread::hardware_concurrency()) + " cores";
+}
+
+double load_average() {
+  std::ifstream loadavg("/proc/loadavg");
+  double one_minute = -1.0;
+  if (!(loadavg >> one_minute)) return -1.0;
+  return one_minute;
+}
+
+}  // namespace soltex::bench
