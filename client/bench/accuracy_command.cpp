@@ -62,11 +62,11 @@ CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommandOptions& options) {
       ->check(CLI::Range(0, 256));
   command
       ->add_option("--rounds", options.rounds,
-                   "measuring rounds over all settings (default 15; 2 with --quick)")
+                   "measuring rounds over all settings (default 30; 2 with --quick)")
       ->check(CLI::Range(1, 1000));
   command
       ->add_option("--frames-per-round", options.frames_per_round,
-                   "timed frames per setting and round (default 3; 1 with --quick)")
+                   "timed frames per setting and round (default 2; 1 with --quick)")
       ->check(CLI::Range(1, 1000));
   command
       ->add_option("--max-converge-seconds", options.max_converge_seconds,
@@ -89,8 +89,8 @@ int run_accuracy_command(const AccuracyCommandOptions& options) {
   sweep.size.width = or_default(options.width, 640, 160, options.quick);
   sweep.size.height = or_default(options.height, 360, 90, options.quick);
   sweep.threads = options.threads;
-  sweep.rounds = or_default(options.rounds, 15, 2, options.quick);
-  sweep.frames_per_round = or_default(options.frames_per_round, 3, 1, options.quick);
+  sweep.rounds = or_default(options.rounds, 30, 2, options.quick);
+  sweep.frames_per_round = or_default(options.frames_per_round, 2, 1, options.quick);
   sweep.images = options.images;
   sweep.front_clock = options.front_clock == "wall" ? FrameClock::wall : FrameClock::cpu;
   sweep.max_converge =

@@ -18,8 +18,8 @@ struct AccuracyCommandOptions {
   std::filesystem::path csv;
   std::filesystem::path svg;
   int threads = 0;           // render threads, 0: one per core
-  int rounds = 0;            // 0: 15, or 2 with --quick
-  int frames_per_round = 0;  // 0: 3, or 1 with --quick
+  int rounds = 0;            // 0: 30, or 2 with --quick
+  int frames_per_round = 0;  // 0: 2, or 1 with --quick
   double max_converge_seconds = 300.0;
   std::filesystem::path images;     // where to write every frame as PNG; empty: nowhere
   std::string front_clock = "cpu";  // the frame time the front and plot go by: cpu or wall

@@ -380,25 +380,26 @@ std::optional<Inset> inset_for(const Panel& main, const std::vector<Mark>& marks
   Panel zoom{Axis::around(ms_min, ms_max, 4), Axis::around(psnr_min, psnr_max, 4), {}};
   const Box zoom_box{main.to_x(zoom.x.low), main.to_y(zoom.y.high), main.to_x(zoom.x.high),
                      main.to_y(zoom.y.low)};
-  const double w = 0.5 * main.area.width(), h = 0.5 * main.area.height();
-  // Magnifying less than twice would not untangle anything.
-  if (zoom_box.width() > w / 2 && zoom_box.height() > h / 2) return std::nullopt;
-  const double margin = 10, left_ticks = 40, bottom_ticks = 20;
-  const Box corners[] = {{main.area.x1 - margin - w, main.area.y1 - margin - h,
-                          main.area.x1 - margin, main.area.y1 - margin},
-                         {main.area.x0 + margin, main.area.y1 - margin - h,
-                          main.area.x0 + margin + w, main.area.y1 - margin},
-                         {main.area.x1 - margin - w, main.area.y0 + margin, main.area.x1 - margin,
-                          main.area.y0 + margin + h},
-                         {main.area.x0 + margin, main.area.y0 + margin, main.area.x0 + margin + w,
-                          main.area.y0 + margin + h}};
   const std::vector<Box> covered = covered_by_all(main, marks);
-  for (const Box& outer : corners) {
-    bool free = outer.overlap(zoom_box) == 0.0;
-    for (const Box& b : covered) free = free && outer.overlap(b) == 0.0;
-    if (!free) continue;
-    zoom.area = {outer.x0 + left_ticks, outer.y0 + 10, outer.x1 - 10, outer.y1 - bottom_ticks};
-    return Inset{zoom, outer};
+  const Box& a = main.area;
+  constexpr double kMargin = 10, kLeftTicks = 40, kBottomTicks = 20;
+  // The largest inset that fits a free corner, down to a third of the panel.
+  for (double share : {0.5, 0.42, 0.34}) {
+    const double w = share * a.width(), h = share * a.height();
+    // Magnifying less than twice would not untangle anything.
+    if (zoom_box.width() > w / 2 && zoom_box.height() > h / 2) return std::nullopt;
+    const Box corners[] = {
+        {a.x1 - kMargin - w, a.y1 - kMargin - h, a.x1 - kMargin, a.y1 - kMargin},
+        {a.x0 + kMargin, a.y1 - kMargin - h, a.x0 + kMargin + w, a.y1 - kMargin},
+        {a.x1 - kMargin - w, a.y0 + kMargin, a.x1 - kMargin, a.y0 + kMargin + h},
+        {a.x0 + kMargin, a.y0 + kMargin, a.x0 + kMargin + w, a.y0 + kMargin + h}};
+    for (const Box& outer : corners) {
+      bool free = outer.overlap(zoom_box) == 0.0;
+      for (const Box& b : covered) free = free && outer.overlap(b) == 0.0;
+      if (!free) continue;
+      zoom.area = {outer.x0 + kLeftTicks, outer.y0 + 10, outer.x1 - 10, outer.y1 - kBottomTicks};
+      return Inset{zoom, outer};
+    }
   }
   return std::nullopt;
 }
@@ -441,7 +442,7 @@ void write_plot(const AccuracyRun& run, const std::filesystem::path& path) {
   }
   const Panel main{Axis::around(ms_min, ms_max, 6),
                    Axis::around(psnr_min, psnr_max, 6),
-                   {80, 80, kWidth - 30, kHeight - 92}};
+                   {80, 86, kWidth - 30, kHeight - 92}};
   const std::optional<Inset> inset = inset_for(main, marks);
 
   std::ostringstream svg;
@@ -454,14 +455,16 @@ void write_plot(const AccuracyRun& run, const std::filesystem::path& path) {
                   std::to_string(run.options.size.width) + "x" +
                   std::to_string(run.options.size.height),
               std::string("font-size=\"17\" font-weight=\"bold\" fill=\"") + kInk + "\"")
-      << text(main.area.x0, 46,
+      << text(main.area.x0, 44,
               "PSNR against per-pixel evaluation, " + std::to_string(run.reference_supersample) +
-                  "x" + std::to_string(run.reference_supersample) +
-                  " supersampled. Frame time: median of warm frames, bars from first to third "
-                  "quartile" +
-                  (cpu ? "; CPU time, every render thread summed." : "."),
+                  "x" + std::to_string(run.reference_supersample) + " supersampled.",
               "fill=\"#566573\"")
-      << text(main.area.x0, 62,
+      << text(main.area.x0, 58,
+              std::string("Frame time: median of warm frames (") +
+                  (cpu ? "CPU time, every render thread summed" : "wall time") +
+                  "), bars from first to third quartile.",
+              "fill=\"#566573\"")
+      << text(main.area.x0, 72,
               "Shared machine: " + run.machine + "; 1-minute load average " +
                   fixed(run.load_before, 1) + " at the start, " + fixed(run.load_after, 1) +
                   " at the end.",

@@ -88,8 +88,9 @@ void write_markdown(const AccuracyRun& run, const std::string& command,
       << "- **ms/frame:** median wall time of `FrameRenderer::render` with every brick resident, "
       << "over " << o.rounds << " rounds x " << o.frames_per_round
       << " frames, and in parentheses the quartiles (the middle half of the frames); each round "
-      << "draws every setting in turn, so changes in the machine's load fall on all settings "
-      << "alike. Differences smaller than the quartile ranges are noise. **CPU ms/frame:** the "
+      << "draws every setting once, in a shuffled order, so changes in the machine's load fall "
+      << "on all settings alike. Differences smaller than the quartile ranges are noise. **CPU "
+         "ms/frame:** the "
       << "process's CPU time over the same frames, every render thread summed: it counts only "
       << "the time the frame ran, so the machine's other load moves it much less.\n"
       << "- **server µs/brick:** median CPU time, over the bricks the frame fetched and "

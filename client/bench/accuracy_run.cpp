@@ -1,6 +1,9 @@
 #include "accuracy_run.h"
 
+#include <algorithm>
 #include <memory>
+#include <numeric>
+#include <random>
 
 #include "machine_info.h"
 #include "pareto_front.h"
@@ -122,28 +125,33 @@ AccuracyRun run_accuracy_sweep(const Scene& scene, const std::string& scene_name
     ++done;
   }
 
-  // Rounds: every frame in turn, one untimed frame first (the previous setting's frame has
-  // just pushed this one's bricks out of the CPU caches), then the timed ones; then one
-  // pass over every setting's bricks.
-  std::vector<std::vector<double>> wall_ms(frames.size()), cpu_ms(frames.size());
-  std::vector<double> per_pixel_wall_ms, per_pixel_cpu_ms;
+  // Rounds: every frame once, in an order shuffled per round (so that no setting always
+  // follows the same one, or the brick passes), one untimed frame first (the previous
+  // setting's frame has just pushed this one's bricks out of the CPU caches), then the timed
+  // ones; then one pass over every setting's bricks. Index frames.size() is the per-pixel
+  // frame.
+  std::vector<std::vector<double>> wall_ms(frames.size() + 1), cpu_ms(frames.size() + 1);
+  std::vector<std::size_t> order(frames.size() + 1);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::mt19937 shuffle_order(1);  // a fixed seed: the same orders every run
   for (int round = 0; round < options.rounds; ++round) {
     progress.show(done, "measuring round " + std::to_string(round + 1) + "/" +
                             std::to_string(options.rounds));
-    for (std::size_t f = 0; f < frames.size(); ++f) {
-      frames[f]->time_frame();
+    std::shuffle(order.begin(), order.end(), shuffle_order);
+    for (const std::size_t f : order) {
+      if (f < frames.size()) frames[f]->time_frame();
       for (int i = 0; i < options.frames_per_round; ++i) {
-        const Elapsed elapsed = frames[f]->time_frame();
+        Elapsed elapsed;
+        if (f < frames.size()) {
+          elapsed = frames[f]->time_frame();
+        } else {
+          const Stopwatch stopwatch;
+          reference_renderer.render_reference(reference_scene, scene.camera, width, height, 1);
+          elapsed = stopwatch.elapsed();
+        }
         wall_ms[f].push_back(elapsed.wall_ms);
         cpu_ms[f].push_back(elapsed.cpu_ms);
       }
-    }
-    for (int i = 0; i < options.frames_per_round; ++i) {
-      const Stopwatch stopwatch;
-      reference_renderer.render_reference(reference_scene, scene.camera, width, height, 1);
-      const Elapsed elapsed = stopwatch.elapsed();
-      per_pixel_wall_ms.push_back(elapsed.wall_ms);
-      per_pixel_cpu_ms.push_back(elapsed.cpu_ms);
     }
     for (BrickCostMeter& meter : meters) meter.measure_pass();
     ++done;
@@ -154,8 +162,8 @@ AccuracyRun run_accuracy_sweep(const Scene& scene, const std::string& scene_name
     run.results[i].frame_cpu = frame_time(cpu_ms[frame_of[i]]);
     run.results[i].cost = meters[i].cost();
   }
-  run.per_pixel_frame = frame_time(per_pixel_wall_ms);
-  run.per_pixel_frame_cpu = frame_time(per_pixel_cpu_ms);
+  run.per_pixel_frame = frame_time(wall_ms.back());
+  run.per_pixel_frame_cpu = frame_time(cpu_ms.back());
   mark_front(run.results, options.front_clock);
   run.load_after = load_average();
   return run;

@@ -25,8 +25,8 @@ const char* frame_clock_name(FrameClock clock);  // "cpu", "wall"
 struct SweepOptions {
   FrameSize size;
   int threads = 0;           // render threads, 0: one per core
-  int rounds = 15;           // measuring rounds over all settings
-  int frames_per_round = 3;  // timed frames per setting and round, after one untimed frame
+  int rounds = 30;           // measuring rounds over all settings
+  int frames_per_round = 2;  // timed frames per setting and round, after one untimed frame
   std::chrono::milliseconds max_converge{300000};
   std::filesystem::path images;  // where to write every frame as PNG; empty: nowhere
   FrameClock front_clock = FrameClock::cpu;

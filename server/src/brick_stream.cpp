@@ -277,8 +277,7 @@ void BrickStream::pump() {
   // Backpressure: read on only while a whole request would still fit, counting every brick
   // the stream owes: queued, being produced, and made but not yet written (a client that
   // stops reading must not make the server hold its answers without bound).
-  const bool room =
-      owed() + limits.max_keys_per_request <= limits.max_queued_per_stream;
+  const bool room = owed() + limits.max_keys_per_request <= limits.max_queued_per_stream;
   if (!reading_ && !reads_done_ && !shutting_down_ && !cancelled_ && room) {
     reading_ = true;
     request_.Clear();

@@ -78,7 +78,7 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   std::size_t accept_request();  // returns how many keys were queued
   void add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message);
   void add_request_error(grpc::StatusCode code, std::string message);
-  void pump();  // start the next read, write or finish, whichever is due
+  void pump();               // start the next read, write or finish, whichever is due
   std::size_t owed() const;  // bricks queued, in production or waiting to be written
 
   Context context_;
