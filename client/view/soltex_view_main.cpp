@@ -173,7 +173,6 @@ int main(int argc, char** argv) {
     capability::CapabilityOverride override;
     if (!capability_text.empty()) override = capability::parse_override(capability_text);
 
-    const auto start = std::chrono::steady_clock::now();
     capability::Capability measured = capability::measure_machine();
     // The cache exists before the link probe so that the probe's bricks have a home; its
     // budget is set from the choice below.
@@ -309,7 +308,6 @@ int main(int argc, char** argv) {
           ref_ms, supersample, warm_ms, ref_ms / warm_ms, psnr(result.image, ref),
           ref_path.c_str());
     }
-    (void)start;
     if (exact && result.converged_ms < 0.0) return 1;
     return 0;
   } catch (const SceneError& e) {
