@@ -3,32 +3,9 @@
 #include <span>
 
 #include "soltex/common/brick_codec.h"
+#include "soltex/spec_proto/brick_proto.h"
 
 namespace soltex::load {
-namespace {
-
-BrickKey from_proto(const v1::BrickKey& k) {
-  return {k.texture_id(), static_cast<int32_t>(k.level()), {k.x(), k.y(), k.z()}};
-}
-
-void to_proto(const BrickKey& key, v1::BrickKey& k) {
-  k.set_texture_id(key.texture);
-  k.set_level(static_cast<uint32_t>(key.level));
-  k.set_x(key.brick.x);
-  k.set_y(key.brick.y);
-  k.set_z(key.brick.z);
-}
-
-uint64_t header_checksum(const std::string& payload) {
-  uint64_t v = 0;
-  for (int i = 7; i >= 0; --i) {
-    v = (v << 8) | static_cast<uint8_t>(payload[20 + static_cast<std::size_t>(i)]);
-  }
-  return v;
-}
-
-}  // namespace
-
 LoadStream::LoadStream(v1::BrickService::Stub& stub, const Settings& settings,
                        std::unique_ptr<RequestMix> mix, LoadRecorder& recorder,
                        RequestBudget& budget, std::function<void()> on_done)
@@ -135,7 +112,7 @@ LoadStream::Starts LoadStream::next_starts_locked() {
       continue;
     }
     v1::BrickWant& want = *write_.add_want();
-    to_proto(next.want.key, *want.mutable_key());
+    *want.mutable_key() = to_proto(next.want.key);
     want.set_priority(next.want.priority);
   }
   if (write_.want_size() > 0) {
@@ -181,7 +158,9 @@ void LoadStream::OnWriteDone(bool ok) {
 void LoadStream::check_bricks(const v1::BrickBatch& batch) {
   for (const v1::Brick& brick : batch.bricks()) {
     const std::string& payload = brick.payload();
-    bool good = payload.size() >= kBrickHeaderSize && header_checksum(payload) == brick.checksum();
+    bool good = payload.size() >= kBrickHeaderSize &&
+                encoded_brick_checksum(std::span(reinterpret_cast<const uint8_t*>(payload.data()),
+                                                 payload.size())) == brick.checksum();
     if (good) {
       try {
         (void)decode_brick(

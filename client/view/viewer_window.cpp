@@ -71,18 +71,6 @@ class SdlVideo {
   SdlVideo& operator=(const SdlVideo&) = delete;
 };
 
-const char* filter_name(SampleFilter filter) {
-  switch (filter) {
-    case SampleFilter::nearest:
-      return "nearest";
-    case SampleFilter::trilinear:
-      return "trilinear";
-    case SampleFilter::quadrilinear:
-      return "quadrilinear";
-  }
-  return "?";
-}
-
 SampleFilter next_filter(SampleFilter filter) {
   switch (filter) {
     case SampleFilter::nearest:
@@ -322,7 +310,7 @@ void ViewerWindow::Impl::handle_key(const SDL_KeyboardEvent& key) {
     case SDLK_f:
       options.filter = next_filter(options.filter);
       rebuild_renderer();
-      spdlog::info("filter: {}", filter_name(options.filter));
+      spdlog::info("filter: {}", sample_filter_name(options.filter));
       break;
     case SDLK_a:
       adaptive_bias = !adaptive_bias;
@@ -447,7 +435,7 @@ void ViewerWindow::Impl::show_status(bool idle) {
   status.bytes_received = fetched.bytes;
   status.level_bias = level_bias();
   status.adaptive_bias = adaptive_bias;
-  status.filter = filter_name(options.filter);
+  status.filter = sample_filter_name(options.filter);
   status.false_colour_levels = options.false_colour_levels;
   status.idle = idle && frames_since_title == 0;
   SDL_SetWindowTitle(window.get(), window_title(status).c_str());

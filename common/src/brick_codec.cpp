@@ -338,4 +338,13 @@ DecodedBrick decode_brick(std::span<const uint8_t> encoded) {
   return brick;
 }
 
+uint64_t encoded_brick_checksum(std::span<const uint8_t> encoded) {
+  if (encoded.size() < kBrickHeaderSize) {
+    throw CodecError("encoded brick of " + std::to_string(encoded.size()) +
+                     " bytes is shorter than its " + std::to_string(kBrickHeaderSize) +
+                     "-byte header");
+  }
+  return get_u64(encoded.data() + kChecksumOffset);
+}
+
 }  // namespace soltex

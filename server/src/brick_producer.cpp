@@ -8,16 +8,6 @@
 #include "soltex/common/texture_id.h"
 
 namespace soltex::server {
-namespace {
-
-uint64_t header_checksum(const std::vector<uint8_t>& encoded) {
-  uint64_t v = 0;
-  for (int i = 7; i >= 0; --i) v = (v << 8) | encoded[20 + static_cast<std::size_t>(i)];
-  return v;
-}
-
-}  // namespace
-
 void BrickProducer::produce(const WorkItem& item, Deliver deliver) {
   EncodedBrickPtr cached;
   switch (store_.claim(item.key, item.codec, cached, deliver)) {
@@ -56,8 +46,9 @@ EncodedBrickPtr BrickProducer::evaluate(const WorkItem& item) {
       encode_brick(quantized, texture.layout.brick_size(), channels,
                    CodecOptions{item.codec, zstd_level_, true});
   metrics_.bricks_evaluated.fetch_add(1, std::memory_order_relaxed);
-  return std::make_shared<const EncodedBrick>(EncodedBrick{
-      item.key, item.codec, std::string(encoded.begin(), encoded.end()), header_checksum(encoded)});
+  return std::make_shared<const EncodedBrick>(
+      EncodedBrick{item.key, item.codec, std::string(encoded.begin(), encoded.end()),
+                   encoded_brick_checksum(encoded)});
 }
 
 }  // namespace soltex::server

@@ -4,27 +4,20 @@
 
 #include "soltex/common/spec_error.h"
 #include "soltex/common/texture_id.h"
+#include "soltex/spec_proto/brick_proto.h"
 #include "soltex/spec_proto/spec_from_proto.h"
 
 namespace soltex::server {
 namespace {
 
 std::optional<MipSettings> mip_from(const v1::RegisterTextureRequest& request) {
+  const std::optional<MipMode> mode = mip_mode_from_proto(request.mip_mode());
+  if (!mode) return std::nullopt;
   MipSettings mip;
-  switch (request.mip_mode()) {
-    case v1::MIP_MODE_BAND_LIMITED:
-      mip.mode = MipMode::band_limited;
-      break;
-    case v1::MIP_MODE_POINT:
-      mip.mode = MipMode::point;
-      break;
-    case v1::MIP_MODE_SUPERSAMPLED:
-      mip.mode = MipMode::supersampled;
-      mip.supersample =
-          request.supersample() == 0 ? 2 : static_cast<int>(std::min(request.supersample(), 1000u));
-      break;
-    default:
-      return std::nullopt;
+  mip.mode = *mode;
+  if (mip.mode == MipMode::supersampled) {
+    mip.supersample =
+        request.supersample() == 0 ? 2 : static_cast<int>(std::min(request.supersample(), 1000u));
   }
   return mip;
 }

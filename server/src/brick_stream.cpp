@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "soltex/common/texture_id.h"
+#include "soltex/spec_proto/brick_proto.h"
 
 namespace soltex::server {
 
@@ -24,42 +25,6 @@ class BrickStream::Reactor final
 };
 
 namespace {
-
-v1::BrickKey to_proto(const BrickKey& key) {
-  v1::BrickKey m;
-  m.set_texture_id(key.texture);
-  m.set_level(static_cast<uint32_t>(key.level));
-  m.set_x(key.brick.x);
-  m.set_y(key.brick.y);
-  m.set_z(key.brick.z);
-  return m;
-}
-
-v1::Codec to_proto(Codec codec) {
-  switch (codec) {
-    case Codec::raw:
-      return v1::CODEC_RAW;
-    case Codec::lz4:
-      return v1::CODEC_LZ4;
-    case Codec::zstd:
-      return v1::CODEC_ZSTD;
-  }
-  return v1::CODEC_UNSPECIFIED;
-}
-
-std::optional<Codec> from_proto(v1::Codec codec) {
-  switch (codec) {
-    case v1::CODEC_RAW:
-      return Codec::raw;
-    case v1::CODEC_LZ4:
-      return Codec::lz4;
-    case v1::CODEC_ZSTD:
-    case v1::CODEC_UNSPECIFIED:
-      return Codec::zstd;
-    default:
-      return std::nullopt;
-  }
-}
 
 std::string describe(const v1::BrickKey& key) {
   return "brick (" + std::to_string(key.x()) + ", " + std::to_string(key.y()) + ", " +
@@ -113,16 +78,14 @@ std::size_t BrickStream::accept_request() {
   const StreamLimits& limits = context_.limits;
   if (request_.accept_codecs_size() > 0) {
     for (int c : request_.accept_codecs()) {
-      if (auto codec = from_proto(static_cast<v1::Codec>(c))) {
+      if (auto codec = codec_from_proto(static_cast<v1::Codec>(c))) {
         codec_ = *codec;
         break;
       }
     }
   }
   for (const v1::BrickKey& cancel : request_.cancel()) {
-    const BrickKey key{cancel.texture_id(),
-                       static_cast<int32_t>(cancel.level()),
-                       {cancel.x(), cancel.y(), cancel.z()}};
+    const BrickKey key = from_proto(cancel);
     if (queue_.cancel(key)) {
       context_.metrics.bricks_cancelled.fetch_add(1, std::memory_order_relaxed);
       context_.metrics.queue_depth.fetch_sub(1, std::memory_order_relaxed);

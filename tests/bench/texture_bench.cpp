@@ -72,10 +72,9 @@ void single_noise(benchmark::State& state) {
   report_points(state);
 }
 
-// One octave with weight 1 is the plain noise: FractalRows over the grid's shared x row.
-void batch_noise(benchmark::State& state, soltex::NoiseBasis basis) {
-  const soltex::OctavePlan plan =
-      soltex::plan_octaves(soltex::FractalParams{kFrequency, 0, 0, basis, true}, 0.0);
+// The batch path: FractalRows over the grid's shared x row, every row of 64 points.
+void batch_fractal(benchmark::State& state, const soltex::FractalParams& params) {
+  const soltex::OctavePlan plan = soltex::plan_octaves(params, 0.0);
   const std::array<double, kSide> xs = integer_row();
   std::array<float, kSide> out{};
   for (auto _ : state) {
@@ -89,6 +88,11 @@ void batch_noise(benchmark::State& state, soltex::NoiseBasis basis) {
     }
   }
   report_points(state);
+}
+
+// One octave with weight 1 is the plain noise.
+void batch_noise(benchmark::State& state, soltex::NoiseBasis basis) {
+  batch_fractal(state, soltex::FractalParams{kFrequency, 0, 0, basis, true});
 }
 
 float value_noise_fn(const soltex::NoiseTables& tables, const glm::dvec3& t) {
@@ -131,23 +135,6 @@ void single_fractal(benchmark::State& state, const soltex::FractalParams& params
       for (int j = 0; j < kSide; ++j) {
         for (int i = 0; i < kSide; ++i) sink += soltex::fractal_sum(plan, glm::dvec3(i, j, k));
         benchmark::DoNotOptimize(sink);
-      }
-    }
-  }
-  report_points(state);
-}
-
-void batch_fractal(benchmark::State& state, const soltex::FractalParams& params) {
-  const soltex::OctavePlan plan = soltex::plan_octaves(params, 0.0);
-  const std::array<double, kSide> xs = integer_row();
-  std::array<float, kSide> out{};
-  for (auto _ : state) {
-    const soltex::FractalRows rows(plan, xs);  // the x work, once per grid
-    for (int k = 0; k < kSide; ++k) {
-      for (int j = 0; j < kSide; ++j) {
-        rows.sum(static_cast<double>(j), static_cast<double>(k), out);
-        benchmark::DoNotOptimize(out.data());
-        benchmark::ClobberMemory();
       }
     }
   }

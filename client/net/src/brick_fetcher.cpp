@@ -8,6 +8,7 @@
 
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/texture_id.h"
+#include "soltex/spec_proto/brick_proto.h"
 #include "soltex/spec_proto/spec_from_proto.h"
 #include "soltex/v1/brick_service.grpc.pb.h"
 
@@ -23,41 +24,6 @@ struct BrickFetcher::Stream {
   std::mutex write_mutex;  // Write and Finish never overlap
   std::unique_ptr<grpc::ClientReaderWriter<v1::BrickRequest, v1::BrickBatch>> call;
 };
-
-namespace {
-
-v1::BrickKey to_proto(const BrickKey& key) {
-  v1::BrickKey m;
-  m.set_texture_id(key.texture);
-  m.set_level(static_cast<uint32_t>(key.level));
-  m.set_x(key.brick.x);
-  m.set_y(key.brick.y);
-  m.set_z(key.brick.z);
-  return m;
-}
-
-BrickKey from_proto(const v1::BrickKey& m) {
-  return {m.texture_id(), static_cast<int32_t>(m.level()), {m.x(), m.y(), m.z()}};
-}
-
-v1::MipMode to_proto(MipMode mode) {
-  switch (mode) {
-    case MipMode::point:
-      return v1::MIP_MODE_POINT;
-    case MipMode::supersampled:
-      return v1::MIP_MODE_SUPERSAMPLED;
-    case MipMode::band_limited:
-      break;
-  }
-  return v1::MIP_MODE_BAND_LIMITED;
-}
-
-bool better(const BrickWant& a, const BrickWant& b) {
-  if (a.key.level != b.key.level) return a.key.level > b.key.level;
-  return a.screen_pixels > b.screen_pixels;
-}
-
-}  // namespace
 
 BrickFetcher::BrickFetcher(std::string server_address, BrickCache& cache, FetcherOptions options)
     : address_(std::move(server_address)),
@@ -233,7 +199,7 @@ void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& 
 }
 
 void BrickFetcher::want(std::vector<BrickWant> wants) {
-  std::sort(wants.begin(), wants.end(), better);
+  std::sort(wants.begin(), wants.end(), fetched_before);
   std::unordered_set<BrickKey, BrickKeyHash> wanted;
   std::vector<BrickWant> fresh;
   for (const BrickWant& w : wants) {

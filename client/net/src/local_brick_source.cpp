@@ -31,10 +31,7 @@ uint64_t LocalBrickSource::register_texture(const TextureSpec& spec, const Volum
 }
 
 void LocalBrickSource::want(std::vector<BrickWant> wants) {
-  std::sort(wants.begin(), wants.end(), [](const BrickWant& a, const BrickWant& b) {
-    if (a.key.level != b.key.level) return a.key.level > b.key.level;
-    return a.screen_pixels > b.screen_pixels;
-  });
+  std::sort(wants.begin(), wants.end(), fetched_before);
   std::unordered_set<BrickKey, BrickKeyHash> seen;
   std::lock_guard lock(mutex_);
   // Waiting keys this frame still wants stay; the others are stale.

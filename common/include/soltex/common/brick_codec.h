@@ -96,4 +96,8 @@ struct DecodedBrick {
 // Throws CodecError for anything but a well-formed brick whose samples match its checksum.
 DecodedBrick decode_brick(std::span<const uint8_t> encoded);
 
+// The checksum an encoded brick's header declares, without decoding it. Throws CodecError
+// when `encoded` is shorter than a header.
+uint64_t encoded_brick_checksum(std::span<const uint8_t> encoded);
+
 }  // namespace soltex

@@ -17,6 +17,12 @@ struct BrickWant {
   uint32_t screen_pixels = 0;
 };
 
+// The order sources fetch in: coarser levels first, then more screen pixels first.
+inline bool fetched_before(const BrickWant& a, const BrickWant& b) {
+  if (a.key.level != b.key.level) return a.key.level > b.key.level;
+  return a.screen_pixels > b.screen_pixels;
+}
+
 struct SourceStats {
   uint64_t requested = 0;  // keys asked for
   uint64_t received = 0;   // bricks that arrived in the cache
