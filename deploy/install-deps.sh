@@ -7,10 +7,12 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config curl
   clang libclang-rt-14-dev        # libFuzzer and the sanitizer runtimes
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
-  libglm-dev libspdlog-dev libcli11-dev libstb-dev libxxhash-dev libzstd-dev liblz4-dev
+  libboost-dev libglm-dev libspdlog-dev libcli11-dev libstb-dev libxxhash-dev libzstd-dev liblz4-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev libtinyobjloader-dev
   libsdl2-dev xvfb x11-apps imagemagick   # soltex-view's window and its test on a virtual X server
+  libmemcached-dev memcached nginx-light  # the shared brick cache and the balancer of the scale test
+  openssl                                 # certificates for the TLS tests
 )
 
 missing=()

@@ -30,13 +30,19 @@ Clock::duration seconds(double s) {
   return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(s));
 }
 
-std::shared_ptr<grpc::Channel> open_channel(const std::string& target, int index) {
+std::shared_ptr<grpc::Channel> connect(const std::string& target,
+                                       const net::ChannelSecurity& security, int index) {
   grpc::ChannelArguments args;
   // A distinct argument gives every channel its own subchannel, hence its own TCP connection;
   // equal arguments would share one.
   args.SetInt("soltex.load.channel", index);
   args.SetMaxReceiveMessageSize(64 << 20);
-  auto channel = grpc::CreateCustomChannel(target, grpc::InsecureChannelCredentials(), args);
+  std::shared_ptr<grpc::Channel> channel;
+  try {
+    channel = net::open_channel(target, security, args);
+  } catch (const std::runtime_error& e) {
+    throw LoadSetupError(e.what());
+  }
   if (!channel->WaitForConnected(std::chrono::system_clock::now() + kSetupTimeout)) {
     throw LoadSetupError("cannot connect to " + target + " within 10 s (connection " +
                          std::to_string(index) + ")");
@@ -45,8 +51,9 @@ std::shared_ptr<grpc::Channel> open_channel(const std::string& target, int index
 }
 
 template <typename Call>
-void call_with_deadline(const char* what, Call call) {
+void call_with_deadline(const char* what, const net::ChannelSecurity& security, Call call) {
   grpc::ClientContext context;
+  net::authorize(security, context);
   context.set_deadline(std::chrono::system_clock::now() + kSetupTimeout);
   const grpc::Status status = call(context);
   if (!status.ok()) {
@@ -67,20 +74,22 @@ struct Signal {
 struct ServerSetup {
   std::vector<std::unique_ptr<v1::BrickService::Stub>> stubs;  // one per connection
   v1::ServerInfo info;
+  v1::RegisterTextureRequest registration;
   v1::TextureHandle handle;
   TextureShape shape;
 };
 
 ServerSetup set_up_server(const LoadOptions& options) {
   ServerSetup setup;
+  setup.registration = texture_registration(options);
   for (int c = 0; c < options.connections; ++c) {
-    setup.stubs.push_back(v1::BrickService::NewStub(open_channel(options.target, c)));
+    setup.stubs.push_back(v1::BrickService::NewStub(connect(options.target, options.security, c)));
   }
-  call_with_deadline("GetServerInfo", [&](grpc::ClientContext& context) {
+  call_with_deadline("GetServerInfo", options.security, [&](grpc::ClientContext& context) {
     return setup.stubs[0]->GetServerInfo(&context, {}, &setup.info);
   });
-  call_with_deadline("RegisterTexture", [&](grpc::ClientContext& context) {
-    return setup.stubs[0]->RegisterTexture(&context, texture_registration(options), &setup.handle);
+  call_with_deadline("RegisterTexture", options.security, [&](grpc::ClientContext& context) {
+    return setup.stubs[0]->RegisterTexture(&context, setup.registration, &setup.handle);
   });
   setup.shape = {setup.handle.id(), static_cast<int>(setup.handle.levels()),
                  static_cast<int>(setup.handle.brick_size())};
@@ -133,6 +142,9 @@ LoadResult run_load(LoadOptions options, const ProgressCallback& progress) {
   settings.max_backlog = options.max_backlog_per_stream;
   settings.codec = codec_to_proto(options.codec);
   settings.verify = options.verify;
+  settings.security = &options.security;
+  // Every stream carries its texture, so a balancer may send it to any replica.
+  settings.texture = server.registration;
 
   // ---- Run ---------------------------------------------------------------------------------
   Signal signal;

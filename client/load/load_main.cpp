@@ -9,13 +9,22 @@
 #include "load_generator.h"
 #include "load_options.h"
 #include "load_report.h"
+#include "soltex/net/channel_security_options.h"
 
 int main(int argc, char** argv) {
   using namespace soltex::load;
   LoadOptions options;
   CLI::App app{"soltex-load: load generator for soltexd (closed or open loop, per-brick latency)"};
   add_load_options(app, options);
+  soltex::net::ChannelSecurityOptions security;
+  soltex::net::add_channel_security_options(app, security);
   CLI11_PARSE(app, argc, argv);
+  try {
+    options.security = soltex::net::finish_channel_security(security);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "soltex-load: %s\n", e.what());
+    return 2;
+  }
 
   if (options.mix == MixKind::hot && !options.open_loop() && options.in_flight > options.hot_set) {
     // A stream never waits for one key twice at once, so it cannot keep more than the hot

@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "soltex/net/channel_security.h"
+
 namespace CLI {
 class App;
 }
@@ -38,6 +40,7 @@ struct LoadBounds {
 
 struct LoadOptions {
   std::string target;  // HOST:PORT
+  net::ChannelSecurity security;
   int connections = 1;
   int streams = 1;
 

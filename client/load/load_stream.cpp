@@ -17,6 +17,7 @@ LoadStream::LoadStream(v1::BrickService::Stub& stub, const Settings& settings,
       stub_(stub) {}
 
 void LoadStream::start() {
+  if (settings_.security) net::authorize(*settings_.security, context_);
   stub_.async()->StreamBricks(&context_, this);
   AddHold();  // writes are also started from outside reactions (issue, close)
   StartRead(&read_);
@@ -117,6 +118,10 @@ LoadStream::Starts LoadStream::next_starts_locked() {
   }
   if (write_.want_size() > 0) {
     write_.add_accept_codecs(settings_.codec);
+    if (!texture_sent_) {
+      *write_.add_textures() = settings_.texture;
+      texture_sent_ = true;
+    }
     writing_ = true;
     starts.write = true;
   } else if (closing_ && backlog_.empty() && parked_count_ == 0) {

@@ -11,6 +11,7 @@
 #include "load_recorder.h"
 #include "request_budget.h"
 #include "request_mix.h"
+#include "soltex/net/channel_security.h"
 #include "soltex/v1/brick_service.grpc.pb.h"
 
 namespace soltex::load {
@@ -32,6 +33,8 @@ class LoadStream final : public grpc::ClientBidiReactor<v1::BrickRequest, v1::Br
     std::size_t max_backlog = 1'000'000;
     v1::Codec codec = v1::CODEC_ZSTD;
     bool verify = false;
+    const net::ChannelSecurity* security = nullptr;  // the bearer token, if any
+    v1::RegisterTextureRequest texture;              // sent in the stream's first message
   };
 
   LoadStream(v1::BrickService::Stub& stub, const Settings& settings,
@@ -93,6 +96,7 @@ class LoadStream final : public grpc::ClientBidiReactor<v1::BrickRequest, v1::Br
   std::unordered_map<BrickKey, Clock::time_point, BrickKeyHash> outstanding_;  // -> intended
   v1::BrickRequest write_;  // owned by the write in flight
   v1::BrickBatch read_;     // owned by the read in flight
+  bool texture_sent_ = false;
   bool writing_ = false;
   bool closing_ = false;
   bool half_closed_ = false;

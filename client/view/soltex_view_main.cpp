@@ -18,6 +18,7 @@
 #endif
 #include "soltex/capability/capability.h"
 #include "soltex/net/brick_fetcher.h"
+#include "soltex/net/channel_security_options.h"
 #include "soltex/net/local_brick_source.h"
 #include "soltex/render/frame_renderer.h"
 #include "soltex/scene/default_scene.h"
@@ -153,6 +154,8 @@ int main(int argc, char** argv) {
                  "write every brick request to FILE (soltex-load --mix replay plays it back)");
   app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
       ->capture_default_str();
+  net::ChannelSecurityOptions security_options;
+  net::add_channel_security_options(app, security_options);
   CLI11_PARSE(app, argc, argv);
   spdlog::set_level(spdlog::level::from_str(log_level));
   spdlog::set_pattern("%^%l%$ soltex-view: %v");
@@ -169,6 +172,8 @@ int main(int argc, char** argv) {
 #endif
 
   try {
+    net::FetcherOptions fetcher_options;
+    fetcher_options.security = net::finish_channel_security(security_options);
     const Scene scene = scene_path.empty() ? default_scene() : load_scene(scene_path);
     capability::CapabilityOverride override;
     if (!capability_text.empty()) override = capability::parse_override(capability_text);
@@ -181,7 +186,7 @@ int main(int argc, char** argv) {
     if (local) {
       source = std::make_unique<net::LocalBrickSource>(*cache);
     } else {
-      auto fetcher = std::make_unique<net::BrickFetcher>(server, *cache);
+      auto fetcher = std::make_unique<net::BrickFetcher>(server, *cache, fetcher_options);
       measured.round_trip_ms = static_cast<double>(fetcher->measure_round_trip().count()) / 1e3;
       source = std::move(fetcher);
     }
@@ -211,7 +216,7 @@ int main(int argc, char** argv) {
     if (local) {
       source = std::make_unique<net::LocalBrickSource>(*cache);
     } else {
-      source = std::make_unique<net::BrickFetcher>(server, *cache);
+      source = std::make_unique<net::BrickFetcher>(server, *cache, fetcher_options);
     }
     const TextureResolution resolution{choice.finest_level_log2, 16,
                                        MipSettings{mip_from(mip_name), 2}};
@@ -270,9 +275,11 @@ int main(int argc, char** argv) {
         result.last_frame_ms, result.last_stats.raster_ms, result.last_stats.shade_ms,
         result.last_stats.covered_pixels, result.last_stats.fallback_pixels);
     std::printf(
-        "bricks:     %llu received, %.2f MB, %llu errors, %llu cancelled, %llu reconnects\n",
+        "bricks:     %llu received, %.2f MB, %llu errors, %llu corrupt (refetched), %llu "
+        "cancelled, %llu reconnects\n",
         static_cast<unsigned long long>(fetched.received), fetched.bytes / 1e6,
         static_cast<unsigned long long>(fetched.errors),
+        static_cast<unsigned long long>(fetched.corrupt),
         static_cast<unsigned long long>(fetched.cancelled),
         static_cast<unsigned long long>(fetched.reconnects));
     double dense_bytes = 0.0;  // every object's volume as a dense 8-bit cube at its finest level

@@ -2,13 +2,16 @@
 
 #include <spdlog/spdlog.h>
 
+#include <thread>
 #include <vector>
 
 #include "soltex/common/brick_evaluator.h"
 #include "soltex/common/texture_id.h"
 
 namespace soltex::server {
+
 void BrickProducer::produce(const WorkItem& item, Deliver deliver) {
+  if (faults_ && faults_->delay().count() > 0) std::this_thread::sleep_for(faults_->delay());
   EncodedBrickPtr cached;
   switch (store_.claim(item.key, item.codec, cached, deliver)) {
     case BrickStore::Claim::hit:
@@ -18,6 +21,11 @@ void BrickProducer::produce(const WorkItem& item, Deliver deliver) {
       return;  // the owner's publish() calls deliver
     case BrickStore::Claim::owner:
       break;
+  }
+  if (EncodedBrickPtr shared = from_shared_cache(item)) {
+    store_.publish(shared);
+    deliver(shared);
+    return;
   }
   EncodedBrickPtr brick;
   try {
@@ -31,6 +39,25 @@ void BrickProducer::produce(const WorkItem& item, Deliver deliver) {
   }
   store_.publish(brick);
   deliver(brick);
+  // After the client has it: the other replicas need not evaluate it again.
+  if (shared_) shared_->store(item.key, item.codec, brick->payload);
+}
+
+EncodedBrickPtr BrickProducer::from_shared_cache(const WorkItem& item) {
+  if (!shared_) return nullptr;
+  std::optional<std::string> payload = shared_->fetch(item.key, item.codec);
+  if (!payload) return nullptr;
+  try {
+    const uint64_t checksum = encoded_brick_checksum(
+        std::span(reinterpret_cast<const uint8_t*>(payload->data()), payload->size()));
+    metrics_.bricks_from_shared_cache.fetch_add(1, std::memory_order_relaxed);
+    return std::make_shared<const EncodedBrick>(
+        EncodedBrick{item.key, item.codec, std::move(*payload), checksum});
+  } catch (const CodecError& e) {
+    spdlog::warn("shared-cache value for brick {} level {} has no valid header: {}",
+                 texture_id_hex(item.key.texture), item.key.level, e.what());
+    return nullptr;
+  }
 }
 
 EncodedBrickPtr BrickProducer::evaluate(const WorkItem& item) {

@@ -2,37 +2,40 @@
 
 #include <spdlog/spdlog.h>
 
-#include "soltex/common/spec_error.h"
-#include "soltex/common/texture_id.h"
-#include "soltex/spec_proto/brick_proto.h"
-#include "soltex/spec_proto/spec_from_proto.h"
+#include "texture_registration.h"
 
 namespace soltex::server {
 namespace {
 
-std::optional<MipSettings> mip_from(const v1::RegisterTextureRequest& request) {
-  const std::optional<MipMode> mode = mip_mode_from_proto(request.mip_mode());
-  if (!mode) return std::nullopt;
-  MipSettings mip;
-  mip.mode = *mode;
-  if (mip.mode == MipMode::supersampled) {
-    mip.supersample =
-        request.supersample() == 0 ? 2 : static_cast<int>(std::min(request.supersample(), 1000u));
-  }
-  return mip;
-}
+// A stream refused before it starts (no token, too many streams): finishes at once.
+class RefusedStream final : public grpc::ServerBidiReactor<v1::BrickRequest, v1::BrickBatch> {
+ public:
+  explicit RefusedStream(const grpc::Status& status) { Finish(status); }
+  void OnDone() override { delete this; }
+};
 
 }  // namespace
 
-BrickServiceImpl::BrickServiceImpl(BrickStream::Context context, v1::ServerInfo info)
-    : context_(context), info_(std::move(info)) {}
+BrickServiceImpl::BrickServiceImpl(BrickStream::Context context, ClientAccess& access,
+                                   v1::ServerInfo info)
+    : context_(context), access_(access), info_(std::move(info)) {}
+
+grpc::Status BrickServiceImpl::admit(const grpc::CallbackServerContext& context) {
+  grpc::Status status = access_.authenticate(context);
+  if (!status.ok()) {
+    context_.metrics.count_error(static_cast<int>(status.error_code()));
+    spdlog::warn("call from {} refused: {}", context.peer(), status.error_message());
+  }
+  return status;
+}
 
 grpc::ServerUnaryReactor* BrickServiceImpl::GetServerInfo(grpc::CallbackServerContext* context,
                                                           const v1::GetServerInfoRequest*,
                                                           v1::ServerInfo* response) {
-  *response = info_;
   auto* reactor = context->DefaultReactor();
-  reactor->Finish(grpc::Status::OK);
+  const grpc::Status admitted = admit(*context);
+  if (admitted.ok()) *response = info_;
+  reactor->Finish(admitted);
   return reactor;
 }
 
@@ -40,37 +43,18 @@ grpc::ServerUnaryReactor* BrickServiceImpl::RegisterTexture(
     grpc::CallbackServerContext* context, const v1::RegisterTextureRequest* request,
     v1::TextureHandle* response) {
   auto* reactor = context->DefaultReactor();
-  context_.metrics.register_requests.fetch_add(1, std::memory_order_relaxed);
-  const auto fail = [&](grpc::StatusCode code, const std::string& message) {
-    context_.metrics.count_error(static_cast<int>(code));
-    spdlog::debug("RegisterTexture from {} refused: {}", context->peer(), message);
-    reactor->Finish(grpc::Status(code, message));
+  if (grpc::Status admitted = admit(*context); !admitted.ok()) {
+    reactor->Finish(admitted);
     return reactor;
-  };
+  }
+  context_.metrics.register_requests.fetch_add(1, std::memory_order_relaxed);
   try {
-    const TextureSpec spec = from_proto(request->spec());
-    const Volume volume = from_proto(request->volume());
-    const int brick_size =
-        request->brick_size() == 0 ? 16 : static_cast<int>(std::min(request->brick_size(), 1000u));
-    const std::optional<MipSettings> mip = mip_from(*request);
-    if (!mip) {
-      return fail(grpc::StatusCode::INVALID_ARGUMENT,
-                  "mip_mode = " + std::to_string(request->mip_mode()) +
-                      ": must be MIP_MODE_BAND_LIMITED, MIP_MODE_POINT or MIP_MODE_SUPERSAMPLED");
-    }
-    const TexturePtr texture = context_.registry.register_texture(spec, volume, brick_size, *mip);
-    response->set_id(texture->id);
-    response->set_levels(static_cast<uint32_t>(texture->layout.level_count()));
-    response->set_brick_size(static_cast<uint32_t>(texture->layout.brick_size()));
-    response->set_finest_level_log2(static_cast<uint32_t>(volume.finest_level_log2));
-    const ChannelSet& channels = texture->evaluator.spec().channels;
-    if (channels.colour) response->add_channels(v1::CHANNEL_COLOUR);
-    if (channels.opacity) response->add_channels(v1::CHANNEL_OPACITY);
-    if (channels.specular) response->add_channels(v1::CHANNEL_SPECULAR);
-  } catch (const SpecError& e) {
-    return fail(grpc::StatusCode::INVALID_ARGUMENT, e.what());
-  } catch (const RegistryFull& e) {
-    return fail(grpc::StatusCode::RESOURCE_EXHAUSTED, e.what());
+    *response = texture_handle(*register_texture(context_.registry, *request));
+  } catch (const RegistrationError& e) {
+    context_.metrics.count_error(static_cast<int>(e.code()));
+    spdlog::debug("RegisterTexture from {} refused: {}", context->peer(), e.what());
+    reactor->Finish(grpc::Status(e.code(), e.what()));
+    return reactor;
   }
   reactor->Finish(grpc::Status::OK);
   return reactor;
@@ -78,8 +62,19 @@ grpc::ServerUnaryReactor* BrickServiceImpl::RegisterTexture(
 
 grpc::ServerBidiReactor<v1::BrickRequest, v1::BrickBatch>* BrickServiceImpl::StreamBricks(
     grpc::CallbackServerContext* context) {
+  if (grpc::Status admitted = admit(*context); !admitted.ok()) {
+    return new RefusedStream(admitted);
+  }
+  grpc::Status refusal;
+  const std::string client = access_.client_of(*context);
+  std::unique_ptr<StreamLease> lease = access_.open_stream(client, refusal);
+  if (!lease) {
+    context_.metrics.count_error(static_cast<int>(refusal.error_code()));
+    spdlog::warn("stream from {} refused: {}", context->peer(), refusal.error_message());
+    return new RefusedStream(refusal);
+  }
   const uint64_t id = next_stream_id_.fetch_add(1, std::memory_order_relaxed);
-  auto stream = std::make_shared<BrickStream>(context_, id, context->peer());
+  auto stream = std::make_shared<BrickStream>(context_, id, context->peer(), std::move(lease));
   {
     std::lock_guard lock(streams_mutex_);
     // Forget streams that have ended, so the map stays the size of the open ones.

@@ -6,14 +6,16 @@
 #include <unordered_map>
 
 #include "brick_stream.h"
+#include "client_access.h"
 #include "soltex/v1/brick_service.grpc.pb.h"
 
 namespace soltex::server {
 
-// The gRPC service (callback API): server info, texture registration and brick streams.
+// The gRPC service (callback API): server info, texture registration and brick streams,
+// each call admitted by ClientAccess (token, per-client stream bound) first.
 class BrickServiceImpl final : public v1::BrickService::CallbackService {
  public:
-  BrickServiceImpl(BrickStream::Context context, v1::ServerInfo info);
+  BrickServiceImpl(BrickStream::Context context, ClientAccess& access, v1::ServerInfo info);
 
   grpc::ServerUnaryReactor* GetServerInfo(grpc::CallbackServerContext* context,
                                           const v1::GetServerInfoRequest* request,
@@ -28,7 +30,11 @@ class BrickServiceImpl final : public v1::BrickService::CallbackService {
   void shut_down_streams();
 
  private:
+  // OK, or the status the call is refused with (counted and logged).
+  grpc::Status admit(const grpc::CallbackServerContext& context);
+
   BrickStream::Context context_;
+  ClientAccess& access_;
   const v1::ServerInfo info_;
   std::atomic<uint64_t> next_stream_id_{1};
   std::mutex streams_mutex_;

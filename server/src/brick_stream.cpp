@@ -4,6 +4,7 @@
 
 #include "soltex/common/texture_id.h"
 #include "soltex/spec_proto/brick_proto.h"
+#include "texture_registration.h"
 
 namespace soltex::server {
 
@@ -34,19 +35,25 @@ std::string describe(const v1::BrickKey& key) {
 
 }  // namespace
 
-BrickStream::BrickStream(Context context, uint64_t id, std::string peer)
+BrickStream::BrickStream(Context context, uint64_t id, std::string peer,
+                         std::unique_ptr<StreamLease> lease)
     : context_(context),
       id_(id),
       peer_(std::move(peer)),
-      opened_(std::chrono::steady_clock::now()) {
+      opened_(std::chrono::steady_clock::now()),
+      lease_(std::move(lease)) {
   context_.metrics.streams_opened.fetch_add(1, std::memory_order_relaxed);
   context_.metrics.streams_open.fetch_add(1, std::memory_order_relaxed);
 }
 
 BrickStream::~BrickStream() {
   context_.metrics.streams_open.fetch_sub(1, std::memory_order_relaxed);
-  const std::size_t dropped = queue_.clear();
-  context_.metrics.queue_depth.fetch_sub(static_cast<int64_t>(dropped), std::memory_order_relaxed);
+  count_queued(-static_cast<int64_t>(queue_.clear()));
+}
+
+void BrickStream::count_queued(int64_t delta) {
+  context_.metrics.queue_depth.fetch_add(delta, std::memory_order_relaxed);
+  lease_->usage().queued.fetch_add(delta, std::memory_order_relaxed);
 }
 
 grpc::ServerBidiReactor<v1::BrickRequest, v1::BrickBatch>* BrickStream::start() {
@@ -74,8 +81,20 @@ void BrickStream::on_read_done(bool ok) {
   context_.scheduler.notify(shared_from_this(), added);
 }
 
+void BrickStream::register_textures() {
+  for (const v1::RegisterTextureRequest& texture : request_.textures()) {
+    try {
+      register_texture(context_.registry, texture);
+      context_.metrics.register_requests.fetch_add(1, std::memory_order_relaxed);
+    } catch (const RegistrationError& e) {
+      add_request_error(e.code(), std::string("texture on the stream refused: ") + e.what());
+    }
+  }
+}
+
 std::size_t BrickStream::accept_request() {
   const StreamLimits& limits = context_.limits;
+  register_textures();
   if (request_.accept_codecs_size() > 0) {
     for (int c : request_.accept_codecs()) {
       if (auto codec = codec_from_proto(static_cast<v1::Codec>(c))) {
@@ -88,7 +107,7 @@ std::size_t BrickStream::accept_request() {
     const BrickKey key = from_proto(cancel);
     if (queue_.cancel(key)) {
       context_.metrics.bricks_cancelled.fetch_add(1, std::memory_order_relaxed);
-      context_.metrics.queue_depth.fetch_sub(1, std::memory_order_relaxed);
+      count_queued(-1);
     }
   }
   if (static_cast<uint32_t>(request_.want_size()) > limits.max_keys_per_request) {
@@ -125,6 +144,14 @@ std::size_t BrickStream::accept_request() {
                     std::to_string(level));
       continue;
     }
+    if (lease_->usage().queued.load(std::memory_order_relaxed) >=
+        static_cast<int64_t>(limits.max_queued_per_client)) {
+      add_error(k, grpc::StatusCode::RESOURCE_EXHAUSTED,
+                describe(k) + ": client " + lease_->usage().client + " has " +
+                    std::to_string(limits.max_queued_per_client) +
+                    " bricks queued over its streams (max_queued_per_client)");
+      continue;
+    }
     if (owed() >= limits.max_queued_per_stream) {
       add_error(k, grpc::StatusCode::RESOURCE_EXHAUSTED,
                 describe(k) + ": stream queue is full (" +
@@ -141,7 +168,7 @@ std::size_t BrickStream::accept_request() {
     if (queue_.push(std::move(item)) == WorkQueue::Push::added) {
       ++added;
       context_.metrics.bricks_requested.fetch_add(1, std::memory_order_relaxed);
-      context_.metrics.queue_depth.fetch_add(1, std::memory_order_relaxed);
+      count_queued(1);
     }
   }
   return added;
@@ -150,7 +177,7 @@ std::size_t BrickStream::accept_request() {
 std::function<void()> BrickStream::take() {
   std::optional<WorkItem> item = queue_.pop();
   if (!item) return {};
-  context_.metrics.queue_depth.fetch_sub(1, std::memory_order_relaxed);
+  count_queued(-1);
   in_production_.fetch_add(1, std::memory_order_relaxed);
   return [self = shared_from_this(), item = std::move(*item)] {
     self->context_.producer.produce(
@@ -212,6 +239,7 @@ void BrickStream::pump() {
         *b->mutable_key() = to_proto(next.brick->key);
         b->set_codec(to_proto(next.brick->codec));
         b->set_payload(next.brick->payload);
+        context_.faults.corrupt_if_due(*b->mutable_payload());
         b->set_checksum(next.brick->checksum);
         bytes += next.brick->payload.size();
         batch_enqueued_.push_back(next.enqueued);
@@ -280,16 +308,14 @@ void BrickStream::on_write_done(bool ok) {
 void BrickStream::on_cancel() {
   std::lock_guard lock(mutex_);
   cancelled_ = true;
-  const std::size_t dropped = queue_.clear();
-  context_.metrics.queue_depth.fetch_sub(static_cast<int64_t>(dropped), std::memory_order_relaxed);
+  count_queued(-static_cast<int64_t>(queue_.clear()));
   pump();
 }
 
 void BrickStream::shut_down() {
   std::lock_guard lock(mutex_);
   shutting_down_ = true;
-  const std::size_t dropped = queue_.clear();
-  context_.metrics.queue_depth.fetch_sub(static_cast<int64_t>(dropped), std::memory_order_relaxed);
+  count_queued(-static_cast<int64_t>(queue_.clear()));
   pump();
 }
 

@@ -12,6 +12,8 @@
 
 #include "brick_producer.h"
 #include "brick_scheduler.h"
+#include "client_access.h"
+#include "fault_injection.h"
 #include "server_metrics.h"
 #include "soltex/v1/brick_service.grpc.pb.h"
 #include "texture_registry.h"
@@ -24,6 +26,7 @@ struct StreamLimits {
   uint32_t max_queued_per_stream = 4096;
   uint32_t max_batch_bricks = 32;
   uint32_t max_batch_bytes = 1 << 20;
+  uint32_t max_queued_per_client = 65536;  // over all of one client's streams
 };
 
 // Everything one StreamBricks call needs, shared between the gRPC reactor (gRPC threads) and
@@ -41,10 +44,11 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
     BrickScheduler& scheduler;
     BrickProducer& producer;
     ServerMetrics& metrics;
+    FaultInjection& faults;
     StreamLimits limits;
   };
 
-  BrickStream(Context context, uint64_t id, std::string peer);
+  BrickStream(Context context, uint64_t id, std::string peer, std::unique_ptr<StreamLease> lease);
   ~BrickStream() override;
 
   // Creates the gRPC reactor bound to this stream and starts reading.
@@ -76,6 +80,8 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
 
   // All below: mutex_ held.
   std::size_t accept_request();  // returns how many keys were queued
+  void register_textures();
+  void count_queued(int64_t delta);  // this stream's queue grew or shrank by delta
   void add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message);
   void add_request_error(grpc::StatusCode code, std::string message);
   void pump();               // start the next read, write or finish, whichever is due
@@ -85,6 +91,7 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   const uint64_t id_;
   const std::string peer_;
   const std::chrono::steady_clock::time_point opened_;
+  const std::unique_ptr<StreamLease> lease_;
 
   // Recursive: gRPC may run a reaction inline from an operation we start under the lock.
   std::recursive_mutex mutex_;

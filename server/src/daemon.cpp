@@ -2,10 +2,14 @@
 
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
+#include <spdlog/fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <thread>
 
@@ -38,23 +42,96 @@ v1::ServerInfo make_info(const ServerConfig& config, int threads) {
   return info;
 }
 
+std::string read_file(const std::string& path, const char* what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw std::runtime_error(std::string("cannot read the ") + what + " file '" + path + "'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+AccessConfig access_config(const ServerConfig& config) {
+  AccessConfig access;
+  access.token = config.token;
+  if (!config.token_file.empty()) {
+    access.token = read_file(config.token_file, "token");
+    // A token file usually ends in a newline that is not part of the token.
+    while (!access.token.empty() && std::isspace(static_cast<unsigned char>(access.token.back()))) {
+      access.token.pop_back();
+    }
+    if (access.token.empty()) {
+      throw std::runtime_error("the token file '" + config.token_file + "' is empty");
+    }
+  }
+  access.max_streams_per_client = config.max_streams_per_client;
+  access.max_queued_per_client = config.max_queued_per_client;
+  access.trust_forwarded_for = config.trust_forwarded_for;
+  return access;
+}
+
+std::unique_ptr<SharedBrickCache> shared_cache(const ServerConfig& config, int threads) {
+  if (config.memcached.empty()) return nullptr;
+  SharedCacheConfig shared;
+  shared.servers = config.memcached;
+  shared.timeout_ms = config.memcached_timeout_ms;
+  shared.ttl_seconds = config.memcached_ttl_seconds;
+  shared.connections = threads;
+  spdlog::info("shared brick cache: memcached {} (consistent hashing, {} ms timeout)",
+               fmt::join(config.memcached, ","), config.memcached_timeout_ms);
+  return std::make_unique<SharedBrickCache>(shared);
+}
+
+std::shared_ptr<grpc::ServerCredentials> server_credentials(const ServerConfig& config) {
+  if (config.tls_cert_file.empty() != config.tls_key_file.empty()) {
+    throw std::runtime_error("TLS needs both --tls-cert and --tls-key");
+  }
+  if (config.tls_cert_file.empty()) {
+    if (!config.tls_client_ca_file.empty()) {
+      throw std::runtime_error("--tls-client-ca needs --tls-cert and --tls-key");
+    }
+    return grpc::InsecureServerCredentials();
+  }
+  grpc::SslServerCredentialsOptions options(GRPC_SSL_DONT_REQUEST_CLIENT_CERTIFICATE);
+  options.pem_key_cert_pairs.push_back({read_file(config.tls_key_file, "TLS key"),
+                                        read_file(config.tls_cert_file, "TLS certificate")});
+  if (!config.tls_client_ca_file.empty()) {
+    options.pem_root_certs = read_file(config.tls_client_ca_file, "client CA");
+    options.client_certificate_request = GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY;
+  }
+  return grpc::SslServerCredentials(options);
+}
+
 }  // namespace
 
 Daemon::Daemon(const ServerConfig& config)
     : config_(config),
+      access_(access_config(config)),
+      faults_(config.faults),
+      shared_cache_(shared_cache(config, worker_count(config.threads))),
       registry_(config.max_textures),
       store_(config.cache_mb << 20),
       scheduler_(worker_count(config.threads)),
-      producer_(store_, metrics_state_, config.zstd_level) {
+      producer_(store_, metrics_state_, config.zstd_level, shared_cache_.get(), &faults_) {
+  if (config.faults.any()) {
+    spdlog::warn("fault injection on: bricks delayed {} ms, every {} brick corrupted (0: none)",
+                 config.faults.delay_ms, config.faults.corrupt_every);
+  }
   const BrickStream::Context context{
-      registry_, scheduler_, producer_, metrics_state_,
-      StreamLimits{config.max_keys_per_request, config.max_queued_per_stream, 32, 1u << 20}};
-  service_ = std::make_unique<BrickServiceImpl>(context, make_info(config, scheduler_.threads()));
+      registry_,
+      scheduler_,
+      producer_,
+      metrics_state_,
+      faults_,
+      StreamLimits{config.max_keys_per_request, config.max_queued_per_stream, 32, 1u << 20,
+                   config.max_queued_per_client}};
+  service_ =
+      std::make_unique<BrickServiceImpl>(context, access_, make_info(config, scheduler_.threads()));
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
-  builder.AddListeningPort(config.listen, grpc::InsecureServerCredentials(), &grpc_port_);
+  builder.AddListeningPort(config.listen, server_credentials(config), &grpc_port_);
   builder.RegisterService(service_.get());
   builder.SetMaxReceiveMessageSize(static_cast<int>(config.max_message_bytes));
   server_ = builder.BuildAndStart();
@@ -73,7 +150,10 @@ Daemon::~Daemon() {
 }
 
 std::string Daemon::render_metrics() const {
-  return metrics_state_.render(store_.stats(), store_.byte_budget(), registry_.size());
+  const std::optional<SharedCacheStats> shared =
+      shared_cache_ ? std::optional(shared_cache_->stats()) : std::nullopt;
+  return metrics_state_.render(store_.stats(), store_.byte_budget(), registry_.size(),
+                               shared ? &*shared : nullptr, faults_.corrupted());
 }
 
 void Daemon::shut_down() {

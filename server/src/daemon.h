@@ -8,9 +8,12 @@
 #include "brick_scheduler.h"
 #include "brick_service.h"
 #include "brick_store.h"
+#include "client_access.h"
+#include "fault_injection.h"
 #include "metrics_http_server.h"
 #include "server_config.h"
 #include "server_metrics.h"
+#include "shared_brick_cache.h"
 #include "texture_registry.h"
 
 namespace soltex::server {
@@ -34,6 +37,9 @@ class Daemon {
  private:
   ServerConfig config_;
   ServerMetrics metrics_state_;
+  ClientAccess access_;
+  FaultInjection faults_;
+  std::unique_ptr<SharedBrickCache> shared_cache_;  // null: no memcached configured
   TextureRegistry registry_;
   BrickStore store_;
   BrickScheduler scheduler_;

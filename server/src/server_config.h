@@ -2,6 +2,9 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
+
+#include "fault_injection.h"
 
 namespace soltex::server {
 
@@ -21,6 +24,23 @@ struct ServerConfig {
   uint32_t max_message_bytes = 4u << 20;
   double shutdown_grace_seconds = 5.0;
   std::string ready_file;  // written once listening: "grpc=PORT\nmetrics=PORT\n"
+
+  // Shared second-level cache (memcached); off while the list is empty.
+  std::vector<std::string> memcached;  // HOST:PORT each
+  int memcached_timeout_ms = 50;
+  int memcached_ttl_seconds = 0;
+
+  // Security: TLS when cert and key are set; client certificates required when client_ca is.
+  std::string tls_cert_file;
+  std::string tls_key_file;
+  std::string tls_client_ca_file;
+  std::string token_file;  // bearer token required on every BrickService call when set
+  std::string token;       // or the token itself (SOLTEXD_TOKEN)
+  uint32_t max_streams_per_client = 64;
+  uint32_t max_queued_per_client = 65536;
+  bool trust_forwarded_for = false;
+
+  FaultConfig faults;
 };
 
 // "HOST:PORT" or "[V6]:PORT" -> host and port; throws std::invalid_argument naming the text.

@@ -41,7 +41,8 @@ class Exposition {
 }  // namespace
 
 std::string ServerMetrics::render(const BrickStoreStats& store, std::size_t store_budget,
-                                  std::size_t textures) const {
+                                  std::size_t textures, const SharedCacheStats* shared,
+                                  uint64_t faults_corrupted) const {
   Exposition e;
   const auto counter = [&](const char* name, const char* help, uint64_t value) {
     e.metric(name, "counter", help);
@@ -67,6 +68,9 @@ std::string ServerMetrics::render(const BrickStoreStats& store, std::size_t stor
           load(bricks_evaluated));
   counter("soltex_bricks_cancelled_total", "Queued bricks dropped by client cancellations.",
           load(bricks_cancelled));
+  counter("soltex_bricks_from_shared_cache_total",
+          "Bricks another replica evaluated, read from the shared memcached cache.",
+          load(bricks_from_shared_cache));
   const OctaveCounts octaves = octave_counters().snapshot();
   counter("soltex_octave_samples_evaluated_total",
           "Noise octaves evaluated, times the samples they were evaluated at.",
@@ -88,6 +92,24 @@ std::string ServerMetrics::render(const BrickStoreStats& store, std::size_t stor
         static_cast<double>(store_budget));
   gauge("soltex_cache_bricks", "Bricks held by the brick cache.",
         static_cast<double>(store.entries));
+
+  if (shared) {
+    counter("soltex_shared_cache_hits_total", "Shared (memcached) cache hits.", shared->hits);
+    counter("soltex_shared_cache_misses_total", "Shared (memcached) cache misses.", shared->misses);
+    counter("soltex_shared_cache_errors_total",
+            "Shared cache lookups that failed (node down or slow) and fell back to evaluation.",
+            shared->errors);
+    counter("soltex_shared_cache_corrupt_total",
+            "Shared cache values that failed their checksum and were evaluated instead.",
+            shared->corrupt);
+    counter("soltex_shared_cache_stores_total", "Bricks written back to the shared cache.",
+            shared->stores);
+    counter("soltex_shared_cache_store_errors_total",
+            "Write-backs to the shared cache that failed (ignored).", shared->store_errors);
+  }
+  counter("soltex_faults_corrupted_total",
+          "Bricks deliberately corrupted on the way out (--fault-corrupt-every).",
+          faults_corrupted);
 
   e.metric("soltex_errors_total", "Per-brick and per-request errors by gRPC status code.",
            "counter");

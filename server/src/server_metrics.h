@@ -6,6 +6,7 @@
 #include <string>
 
 #include "brick_store.h"
+#include "shared_brick_cache.h"
 #include "soltex/common/latency_histogram.h"
 
 namespace soltex::server {
@@ -21,6 +22,7 @@ struct ServerMetrics {
   std::atomic<uint64_t> bricks_served{0};
   std::atomic<uint64_t> bytes_served{0};  // brick payload bytes
   std::atomic<uint64_t> bricks_evaluated{0};
+  std::atomic<uint64_t> bricks_from_shared_cache{0};  // made by another replica
   std::atomic<uint64_t> bricks_cancelled{0};
   std::atomic<int64_t> queue_depth{0};                     // bricks queued over all streams
   std::array<std::atomic<uint64_t>, 17> errors_by_code{};  // grpc::StatusCode 0..16
@@ -33,8 +35,9 @@ struct ServerMetrics {
     }
   }
 
-  std::string render(const BrickStoreStats& store, std::size_t store_budget,
-                     std::size_t textures) const;
+  // `shared` is null when no shared cache is configured.
+  std::string render(const BrickStoreStats& store, std::size_t store_budget, std::size_t textures,
+                     const SharedCacheStats* shared, uint64_t faults_corrupted) const;
 };
 
 }  // namespace soltex::server

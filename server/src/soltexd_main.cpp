@@ -71,6 +71,62 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--ready-file", config.ready_file,
                  "once listening, write 'grpc=PORT' and 'metrics=PORT' lines here");
+
+  auto* shared = app.add_option_group("shared cache", "second-level brick cache on memcached");
+  shared
+      ->add_option("--memcached", config.memcached,
+                   "memcached nodes HOST:PORT[,HOST:PORT...] (consistent hashing); empty: off")
+      ->delimiter(',');
+  shared
+      ->add_option("--memcached-timeout-ms", config.memcached_timeout_ms,
+                   "connect and I/O timeout; a slower node counts as a miss")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  shared
+      ->add_option("--memcached-ttl-s", config.memcached_ttl_seconds,
+                   "expiry of shared bricks in seconds (0: until evicted)")
+      ->check(CLI::Range(0, 30 * 24 * 3600))
+      ->capture_default_str();
+
+  auto* security = app.add_option_group("security", "TLS, tokens and per-client limits");
+  security->add_option("--tls-cert", config.tls_cert_file, "server certificate chain (PEM)")
+      ->check(CLI::ExistingFile);
+  security->add_option("--tls-key", config.tls_key_file, "server private key (PEM)")
+      ->check(CLI::ExistingFile);
+  security
+      ->add_option(
+          "--tls-client-ca", config.tls_client_ca_file,
+          "CA (PEM) that client certificates must be signed by; set: certificates required")
+      ->check(CLI::ExistingFile);
+  security
+      ->add_option("--token-file", config.token_file,
+                   "file holding the bearer token every BrickService call must carry")
+      ->check(CLI::ExistingFile);
+  security->add_option("--token", config.token, "the bearer token itself (prefer --token-file)")
+      ->envname("SOLTEXD_TOKEN");
+  security
+      ->add_option("--max-streams-per-client", config.max_streams_per_client,
+                   "open brick streams one client address may hold")
+      ->check(CLI::Range(1u, 1u << 20))
+      ->capture_default_str();
+  security
+      ->add_option("--max-queued-per-client", config.max_queued_per_client,
+                   "bricks one client address may have queued over all its streams")
+      ->check(CLI::Range(1u, 1u << 30))
+      ->capture_default_str();
+  security->add_flag("--trust-forwarded-for", config.trust_forwarded_for,
+                     "name clients by x-forwarded-for (only behind a balancer that sets it)");
+
+  auto* faults = app.add_option_group("faults", "for testing clients against a misbehaving server");
+  faults
+      ->add_option("--fault-delay-ms", config.faults.delay_ms,
+                   "deliver every brick this many milliseconds late")
+      ->check(CLI::Range(0, 60000));
+  faults
+      ->add_option("--fault-corrupt-every", config.faults.corrupt_every,
+                   "flip a payload byte in every Nth brick sent (0: never)")
+      ->check(CLI::Range(0u, 1u << 30));
+
   CLI11_PARSE(app, argc, argv);
   if (config.max_keys_per_request > config.max_queued_per_stream) {
     std::fprintf(stderr,

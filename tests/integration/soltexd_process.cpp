@@ -99,6 +99,13 @@ int SoltexdProcess::terminate() {
   return -1000;  // still running
 }
 
+void SoltexdProcess::kill_now() {
+  if (pid_ <= 0) return;
+  kill(pid_, SIGKILL);
+  waitpid(pid_, nullptr, 0);
+  pid_ = -1;
+}
+
 std::string SoltexdProcess::log() const {
   std::ifstream in(directory_ + "/log");
   std::stringstream text;

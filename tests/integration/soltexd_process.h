@@ -25,6 +25,8 @@ class SoltexdProcess {
 
   // Sends SIGTERM and returns the exit status (or -signal if killed), waiting up to 30 s.
   int terminate();
+  // SIGKILL: the server dies mid-stream, as in a crash.
+  void kill_now();
 
   // The daemon's log (stdout and stderr) so far.
   std::string log() const;

@@ -35,7 +35,7 @@ BrickFetcher::BrickFetcher(std::string server_address, BrickCache& cache, Fetche
   // Reconnect promptly after a server restart; our own backoff paces the streams.
   args.SetInt(GRPC_ARG_INITIAL_RECONNECT_BACKOFF_MS, 100);
   args.SetInt(GRPC_ARG_MAX_RECONNECT_BACKOFF_MS, static_cast<int>(options_.max_backoff.count()));
-  channel_->channel = grpc::CreateCustomChannel(address_, grpc::InsecureChannelCredentials(), args);
+  channel_->channel = open_channel(address_, options_.security, args);
   channel_->stub = v1::BrickService::NewStub(channel_->channel);
   supervisor_ = std::thread([this] { supervise(); });
   writer_ = std::thread([this] { write_loop(); });
@@ -63,6 +63,7 @@ uint64_t BrickFetcher::register_texture(const TextureSpec& spec, const Volume& v
   request.set_mip_mode(to_proto(mip.mode));
   request.set_supersample(static_cast<uint32_t>(mip.supersample));
   grpc::ClientContext context;
+  authorize(options_.security, context);
   context.set_deadline(std::chrono::system_clock::now() + options_.register_timeout);
   context.set_wait_for_ready(true);
   v1::TextureHandle handle;
@@ -72,27 +73,12 @@ uint64_t BrickFetcher::register_texture(const TextureSpec& spec, const Volume& v
                              " failed: " + status.error_message());
   }
   std::lock_guard lock(mutex_);
-  registrations_[handle.id()] = request.SerializeAsString();
+  if (registrations_.emplace(handle.id(), request.SerializeAsString()).second && stream_) {
+    unsent_registrations_.push_back(handle.id());
+  }
   // The coarsest level is every lookup's last resort: keep it resident.
   cache_.pin_levels(handle.id(), static_cast<int>(handle.levels()) - 1);
   return handle.id();
-}
-
-bool BrickFetcher::reregister(const std::chrono::milliseconds timeout) {
-  std::vector<std::string> requests;
-  {
-    std::lock_guard lock(mutex_);
-    for (const auto& [id, request] : registrations_) requests.push_back(request);
-  }
-  for (const std::string& bytes : requests) {
-    v1::RegisterTextureRequest request;
-    request.ParseFromString(bytes);
-    grpc::ClientContext context;
-    context.set_deadline(std::chrono::system_clock::now() + timeout);
-    v1::TextureHandle handle;
-    if (!channel_->stub->RegisterTexture(&context, request, &handle).ok()) return false;
-  }
-  return true;
 }
 
 void BrickFetcher::supervise() {
@@ -103,16 +89,17 @@ void BrickFetcher::supervise() {
       std::unique_lock lock(mutex_);
       if (stopping_) return;
     }
-    // A restarted server has forgotten our textures: register them again first.
-    if (first || reregister(std::chrono::milliseconds(2000))) {
+    {
       auto stream = std::make_shared<Stream>();
+      authorize(options_.security, stream->context);
       stream->call = channel_->stub->StreamBricks(&stream->context);
       {
         std::lock_guard lock(mutex_);
         if (stopping_) return;
         stream_ = stream;
         stats_.connected = true;
-        resend_ = true;
+        resend_ = true;  // with every texture: this server may never have seen them
+        unsent_registrations_.clear();
         if (!first) ++stats_.reconnects;
       }
       changed_.notify_all();
@@ -184,13 +171,18 @@ void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& 
       cache_.insert(key, decoded.brick_size, decoded.channels, decoded.samples);
       ok = true;
     } catch (const CodecError& e) {
-      spdlog::warn("undecodable brick from {}: {}", address_, e.what());
+      spdlog::warn("corrupt brick from {}: {}", address_, e.what());
     }
     std::lock_guard lock(mutex_);
     in_flight_.erase(key);
+    stats_.bytes += payload.size();
     if (ok) {
       ++stats_.received;
-      stats_.bytes += payload.size();
+      refetches_.erase(key);
+    } else if (++refetches_[key] <= options_.max_refetches) {
+      // Damaged on the way: ask again, first in line.
+      ++stats_.corrupt;
+      waiting_.insert(waiting_.begin(), BrickWant{key, ~0u});
     } else {
       failed_.insert(key);
       ++stats_.errors;
@@ -232,18 +224,26 @@ void BrickFetcher::write_loop() {
   for (;;) {
     changed_.wait(lock, [this] {
       return stopping_ ||
-             (stream_ && (resend_ || !to_cancel_.empty() ||
+             (stream_ && (resend_ || !to_cancel_.empty() || !unsent_registrations_.empty() ||
                           (!waiting_.empty() && in_flight_.size() < options_.max_in_flight)));
     });
     if (stopping_) return;
     std::shared_ptr<Stream> stream = stream_;
     v1::BrickRequest request;
+    const auto add_texture = [&](const std::string& serialized) {
+      request.add_textures()->ParseFromString(serialized);
+    };
     if (resend_) {
-      // A new stream knows nothing of the old one's requests.
+      // A new stream, perhaps to another replica, knows nothing of the old one: send every
+      // texture, then everything still in flight.
+      for (const auto& [id, serialized] : registrations_) add_texture(serialized);
       for (const BrickKey& key : in_flight_) *request.add_want()->mutable_key() = to_proto(key);
       request.add_accept_codecs(v1::CODEC_ZSTD);
       resend_ = false;
+    } else {
+      for (const uint64_t id : unsent_registrations_) add_texture(registrations_.at(id));
     }
+    unsent_registrations_.clear();
     for (const BrickKey& key : to_cancel_) *request.add_cancel() = to_proto(key);
     to_cancel_.clear();
     std::size_t taken = 0;
@@ -294,6 +294,7 @@ SourceStats BrickFetcher::stats() const {
 std::chrono::microseconds BrickFetcher::measure_round_trip() {
   const auto start = std::chrono::steady_clock::now();
   grpc::ClientContext context;
+  authorize(options_.security, context);
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
   v1::ServerInfo info;
   const grpc::Status status = channel_->stub->GetServerInfo(&context, {}, &info);

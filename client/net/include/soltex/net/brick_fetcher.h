@@ -17,6 +17,7 @@
 #include "soltex/common/brick_key.h"
 #include "soltex/common/texture_spec.h"
 #include "soltex/net/brick_source.h"
+#include "soltex/net/channel_security.h"
 
 namespace soltex::net {
 
@@ -25,13 +26,16 @@ struct FetcherOptions {
   std::chrono::milliseconds initial_backoff{100};
   std::chrono::milliseconds max_backoff{4000};
   std::chrono::milliseconds register_timeout{10000};
+  int max_refetches = 3;  // a brick that arrives corrupt is asked for again this many times
+  ChannelSecurity security;
 };
 
 // The client's one gRPC stream to soltexd. Render threads hand it each frame's misses; a
-// reader thread decodes arriving bricks (checksum verified) and inserts them into the local
-// cache, so the render threads never decode. When the server goes away the fetcher
-// reconnects with exponential backoff, re-registers its textures and asks again, while the
-// renderer draws on from what the cache holds.
+// reader thread decodes arriving bricks (checksum verified; a corrupt brick is asked for
+// again) and inserts them into the local cache, so the render threads never decode. Every
+// stream carries the client's textures in its first message, so it is self-contained and a
+// balancer may route it to any replica. When the server goes away the fetcher reconnects with
+// exponential backoff and asks again, while the renderer draws on from what the cache holds.
 class BrickFetcher final : public BrickSource {
  public:
   BrickFetcher(std::string server_address, BrickCache& cache, FetcherOptions options = {});
@@ -66,7 +70,6 @@ class BrickFetcher final : public BrickSource {
 
   void supervise();   // connect, re-register, read until the stream breaks, back off, repeat
   void write_loop();  // sends wants and cancellations as they come
-  bool reregister(const std::chrono::milliseconds timeout);
   void receive(const std::vector<std::pair<BrickKey, std::string>>& payloads);
 
   const std::string address_;
@@ -78,9 +81,11 @@ class BrickFetcher final : public BrickSource {
   std::condition_variable changed_;
   std::shared_ptr<Stream> stream_;                           // null while disconnected
   std::unordered_map<uint64_t, std::string> registrations_;  // id -> serialized request
+  std::vector<uint64_t> unsent_registrations_;               // registered since the stream opened
   std::vector<BrickWant> waiting_;                           // best first, not yet sent
   std::unordered_set<BrickKey, BrickKeyHash> in_flight_;
   std::unordered_set<BrickKey, BrickKeyHash> failed_;  // refused by the server: not asked again
+  std::unordered_map<BrickKey, int, BrickKeyHash> refetches_;  // corrupt arrivals per key
   std::vector<BrickKey> to_cancel_;
   bool resend_ = false;  // a new stream: everything in flight must be asked for again
   SourceStats stats_;

@@ -28,7 +28,8 @@ struct SourceStats {
   uint64_t received = 0;   // bricks that arrived in the cache
   uint64_t bytes = 0;      // encoded bytes that travelled (0 for an in-process source)
   uint64_t cancelled = 0;  // keys dropped because no frame wanted them any more
-  uint64_t errors = 0;     // refused or undecodable bricks
+  uint64_t errors = 0;     // refused bricks, and bricks still corrupt after every refetch
+  uint64_t corrupt = 0;    // bricks that failed their checksum and were asked for again
   uint64_t reconnects = 0;
   std::size_t in_flight = 0;
   std::size_t waiting = 0;

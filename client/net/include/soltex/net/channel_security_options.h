@@ -1,0 +1,42 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "soltex/net/channel_security.h"
+
+namespace soltex::net {
+
+// The command-line options every client shares for reaching a secured soltexd. Call
+// finish_channel_security() after parsing to read the token file.
+struct ChannelSecurityOptions {
+  ChannelSecurity security;
+  std::string token_file;
+};
+
+inline void add_channel_security_options(CLI::App& app, ChannelSecurityOptions& options) {
+  auto* group = app.add_option_group("security", "TLS and the bearer token");
+  group
+      ->add_option("--tls-ca", options.security.tls_ca_file,
+                   "CA (PEM) to check the server's certificate; set: TLS")
+      ->check(CLI::ExistingFile);
+  group->add_option("--tls-cert", options.security.tls_cert_file, "client certificate (PEM)")
+      ->check(CLI::ExistingFile);
+  group->add_option("--tls-key", options.security.tls_key_file, "client private key (PEM)")
+      ->check(CLI::ExistingFile);
+  group->add_option("--tls-server-name", options.security.tls_server_name,
+                    "name the server's certificate must carry, if not the host's");
+  group->add_option("--token-file", options.token_file, "file holding the bearer token")
+      ->check(CLI::ExistingFile);
+  group->add_option("--token", options.security.token, "the bearer token itself")
+      ->envname("SOLTEX_TOKEN");
+}
+
+// Throws std::runtime_error when the token file cannot be read.
+inline ChannelSecurity finish_channel_security(const ChannelSecurityOptions& options) {
+  ChannelSecurity security = options.security;
+  if (!options.token_file.empty()) security.token = read_token_file(options.token_file);
+  return security;
+}
+
+}  // namespace soltex::net

@@ -1,0 +1,45 @@
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+namespace soltex::server {
+
+// Faults an operator can switch on to test clients against a misbehaving server. Off by
+// default; soltexd logs a warning when any is on.
+struct FaultConfig {
+  int delay_ms = 0;            // every brick is delivered this much later (a slow server)
+  uint32_t corrupt_every = 0;  // every Nth brick sent has one payload byte flipped (0: never)
+  bool any() const { return delay_ms > 0 || corrupt_every > 0; }
+};
+
+class FaultInjection {
+ public:
+  explicit FaultInjection(FaultConfig config) : config_(config) {}
+
+  std::chrono::milliseconds delay() const { return std::chrono::milliseconds(config_.delay_ms); }
+
+  // Flips a byte of `payload` (a copy about to be sent) when this send is due for corruption.
+  // The byte is past the header, so the client's checksum, not its header check, catches it.
+  bool corrupt_if_due(std::string& payload) {
+    if (config_.corrupt_every == 0 || payload.empty()) return false;
+    if (sent_.fetch_add(1, std::memory_order_relaxed) % config_.corrupt_every !=
+        config_.corrupt_every - 1) {
+      return false;
+    }
+    payload[payload.size() - 1] = static_cast<char>(payload[payload.size() - 1] ^ 0x5A);
+    corrupted_.fetch_add(1, std::memory_order_relaxed);
+    return true;
+  }
+
+  uint64_t corrupted() const { return corrupted_.load(std::memory_order_relaxed); }
+
+ private:
+  const FaultConfig config_;
+  std::atomic<uint64_t> sent_{0};
+  std::atomic<uint64_t> corrupted_{0};
+};
+
+}  // namespace soltex::server
