@@ -322,6 +322,7 @@ void BrickStream::shut_down() {
 void BrickStream::on_done() {
   std::lock_guard lock(mutex_);
   reactor_ = nullptr;
+  lease_->release();
 }
 
 }  // namespace soltex::server

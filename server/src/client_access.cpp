@@ -46,8 +46,8 @@ std::string host_of_peer(const std::string& peer) {
 
 }  // namespace
 
-StreamLease::~StreamLease() {
-  access_.close_stream(*usage_);
+void StreamLease::release() {
+  if (!released_.exchange(true)) access_.close_stream(*usage_);
 }
 
 ClientAccess::ClientAccess(AccessConfig config) : config_(std::move(config)) {}

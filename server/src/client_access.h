@@ -31,15 +31,20 @@ class StreamLease {
  public:
   StreamLease(class ClientAccess& access, std::shared_ptr<ClientUsage> usage)
       : access_(access), usage_(std::move(usage)) {}
-  ~StreamLease();
+  ~StreamLease() { release(); }
   StreamLease(const StreamLease&) = delete;
   StreamLease& operator=(const StreamLease&) = delete;
+
+  // The stream is over (gRPC is done with it): the slot is free again, even while workers
+  // still hold the stream's state. Idempotent.
+  void release();
 
   ClientUsage& usage() const { return *usage_; }
 
  private:
   ClientAccess& access_;
   std::shared_ptr<ClientUsage> usage_;
+  std::atomic<bool> released_{false};
 };
 
 // Who may call and how much one client may hold: the bearer token checked on every

@@ -3,11 +3,15 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <optional>
+#include <thread>
 
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/brick_evaluator.h"
+#include "soltex/net/channel_security.h"
 #include "soltexd_process.h"
+#include "test_certificates.h"
 
 namespace soltex {
 namespace {
@@ -36,6 +40,26 @@ std::vector<net::BrickWant> level(uint64_t texture, int level, int bricks) {
   return wants;
 }
 
+// Compares every sample of a cached brick with this process's evaluation.
+void expect_cached_brick_is_local(BrickCache& cache, uint64_t id, int level_index,
+                                  glm::ivec3 brick) {
+  const TextureEvaluator evaluator(marble());
+  const BrickLayout layout(unit_volume(6), 8);
+  std::vector<float> samples(static_cast<std::size_t>(layout.samples_per_brick()) * 3);
+  evaluate_brick(evaluator, layout, level_index, brick, {}, samples);
+  const std::vector<uint8_t> expected = quantize(samples);
+  const auto cached = cache.find({id, level_index, brick});
+  ASSERT_TRUE(cached);
+  const std::size_t n = static_cast<std::size_t>(layout.samples_per_brick());
+  for (int z = 0; z < 9; ++z)
+    for (int y = 0; y < 9; ++y)
+      for (int x = 0; x < 9; ++x)
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_EQ(cached->at(x, y, z, c),
+                    expected[c * n + static_cast<std::size_t>((z * 9 + y) * 9 + x)]);
+        }
+}
+
 TEST(BrickFetcher, FetchedBricksEqualLocalEvaluation) {
   SoltexdProcess server;
   BrickCache cache(64 << 20);
@@ -48,21 +72,7 @@ TEST(BrickFetcher, FetchedBricksEqualLocalEvaluation) {
   EXPECT_EQ(stats.errors, 0u);
   EXPECT_GT(stats.bytes, 0u);
 
-  const TextureEvaluator evaluator(marble());
-  const BrickLayout layout(unit_volume(6), 8);
-  std::vector<float> samples(static_cast<std::size_t>(layout.samples_per_brick()) * 3);
-  evaluate_brick(evaluator, layout, 1, {2, 1, 3}, {}, samples);
-  const std::vector<uint8_t> expected = quantize(samples);
-  const auto brick = cache.find({id, 1, {2, 1, 3}});
-  ASSERT_TRUE(brick);
-  const std::size_t n = static_cast<std::size_t>(layout.samples_per_brick());
-  for (int z = 0; z < 9; ++z)
-    for (int y = 0; y < 9; ++y)
-      for (int x = 0; x < 9; ++x)
-        for (int c = 0; c < 3; ++c) {
-          ASSERT_EQ(brick->at(x, y, z, c),
-                    expected[c * n + static_cast<std::size_t>((z * 9 + y) * 9 + x)]);
-        }
+  expect_cached_brick_is_local(cache, id, 1, {2, 1, 3});
 }
 
 TEST(BrickFetcher, DuplicatesResidentAndStaleWantsAreNotFetchedTwice) {
@@ -119,6 +129,81 @@ TEST(BrickFetcher, SurvivesAServerRestart) {
   EXPECT_GE(stats.reconnects, 1u);
   EXPECT_EQ(stats.received, 8u + 64u);
   EXPECT_TRUE(cache.contains({id, 1, {3, 3, 3}}));
+}
+
+TEST(BrickFetcher, CorruptBricksAreFetchedAgain) {
+  SoltexdProcess server({"--fault-corrupt-every", "5"});
+  BrickCache cache(64 << 20);
+  net::BrickFetcher fetcher(server.grpc_address(), cache);
+  const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  fetcher.want(level(id, 1, 4));
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
+  const net::SourceStats stats = fetcher.stats();
+  EXPECT_EQ(stats.received, 64u);
+  EXPECT_EQ(stats.errors, 0u);
+  EXPECT_GE(stats.corrupt, 64u / 5);
+  const double corrupted = testing::metric_value(
+      testing::http_get(server.metrics_port(), "/metrics"), "soltex_faults_corrupted_total");
+  EXPECT_EQ(static_cast<double>(stats.corrupt), corrupted);
+  for (int i = 0; i < 4; ++i) expect_cached_brick_is_local(cache, id, 1, {i, 3 - i, i});
+}
+
+TEST(BrickFetcher, SurvivesAServerKilledMidStream) {
+  const int port = testing::free_port();
+  // Slow bricks, so the kill lands while most are still owed.
+  std::optional<SoltexdProcess> server(
+      std::in_place, std::vector<std::string>{"--fault-delay-ms", "20", "--threads", "1"}, port);
+  BrickCache cache(64 << 20);
+  net::FetcherOptions options;
+  options.initial_backoff = std::chrono::milliseconds(50);
+  options.max_backoff = std::chrono::milliseconds(400);
+  net::BrickFetcher fetcher("127.0.0.1:" + std::to_string(port), cache, options);
+  const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  fetcher.want(level(id, 1, 4));
+  while (fetcher.stats().received < 4) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  server->kill_now();
+  server.reset();
+  EXPECT_FALSE(fetcher.idle());
+
+  server.emplace(std::vector<std::string>{}, port);  // a fresh server that never saw the texture
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
+  const net::SourceStats stats = fetcher.stats();
+  EXPECT_GE(stats.reconnects, 1u);
+  EXPECT_EQ(stats.received, 64u);
+  EXPECT_EQ(stats.errors, 0u);
+  expect_cached_brick_is_local(cache, id, 1, {3, 0, 2});
+}
+
+TEST(BrickFetcher, SpeaksTlsWithAClientCertificateAndAToken) {
+  const testing::TestCertificates certs;
+  const std::string token_file = testing::write_temporary_file("token", "fetcher-token\n");
+  SoltexdProcess server({"--tls-cert", certs.server_cert(), "--tls-key", certs.server_key(),
+                         "--tls-client-ca", certs.ca(), "--token-file", token_file});
+  BrickCache cache(64 << 20);
+  net::FetcherOptions options;
+  options.security.tls_ca_file = certs.ca();
+  options.security.tls_cert_file = certs.client_cert();
+  options.security.tls_key_file = certs.client_key();
+  options.security.token = net::read_token_file(token_file);
+  std::filesystem::remove(token_file);
+  net::BrickFetcher fetcher(server.grpc_address(), cache, options);
+  const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  fetcher.want(level(id, 2, 2));
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
+  EXPECT_EQ(fetcher.stats().received, 8u);
+  EXPECT_EQ(fetcher.stats().errors, 0u);
+
+  // Without the token the same TLS client is refused, with a message that says why.
+  options.security.token.clear();
+  options.register_timeout = std::chrono::milliseconds(3000);
+  BrickCache other_cache(64 << 20);
+  net::BrickFetcher anonymous(server.grpc_address(), other_cache, options);
+  try {
+    anonymous.register_texture(marble(), unit_volume(6), 8, {});
+    ADD_FAILURE() << "registered without a token";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("bearer token"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <set>
 #include <thread>
 
+#include "brick_test_client.h"
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/brick_evaluator.h"
 #include "soltex/common/texture_id.h"
@@ -18,105 +19,33 @@
 namespace soltex {
 namespace {
 
-using testing::http_get;
-using testing::metric_value;
-using testing::SoltexdProcess;
+using namespace testing;
 
-std::unique_ptr<v1::BrickService::Stub> connect(const SoltexdProcess& server) {
-  return v1::BrickService::NewStub(
-      grpc::CreateChannel(server.grpc_address(), grpc::InsecureChannelCredentials()));
-}
-
-v1::RegisterTextureRequest marble_request(int finest_level_log2 = 6, int brick_size = 8) {
-  v1::RegisterTextureRequest request;
-  request.mutable_spec()->mutable_marble();
-  auto* volume = request.mutable_volume();
-  volume->mutable_min()->set_x(-1);
-  volume->mutable_min()->set_y(-1);
-  volume->mutable_min()->set_z(-1);
-  volume->mutable_max()->set_x(1);
-  volume->mutable_max()->set_y(1);
-  volume->mutable_max()->set_z(1);
-  volume->set_finest_level_log2(static_cast<uint32_t>(finest_level_log2));
-  request.set_brick_size(static_cast<uint32_t>(brick_size));
-  return request;
-}
-
-v1::TextureHandle register_texture(v1::BrickService::Stub& stub,
-                                   const v1::RegisterTextureRequest& request) {
-  grpc::ClientContext context;
-  v1::TextureHandle handle;
-  const grpc::Status status = stub.RegisterTexture(&context, request, &handle);
-  EXPECT_TRUE(status.ok()) << status.error_message();
-  return handle;
-}
-
-v1::BrickKey key_of(uint64_t texture, int level, int x, int y, int z) {
-  v1::BrickKey key;
-  key.set_texture_id(texture);
-  key.set_level(static_cast<uint32_t>(level));
-  key.set_x(x);
-  key.set_y(y);
-  key.set_z(z);
-  return key;
-}
-
-// All bricks of `level`.
-std::vector<v1::BrickKey> level_keys(uint64_t texture, int level, int bricks_per_axis) {
-  std::vector<v1::BrickKey> keys;
-  for (int z = 0; z < bricks_per_axis; ++z)
-    for (int y = 0; y < bricks_per_axis; ++y)
-      for (int x = 0; x < bricks_per_axis; ++x) keys.push_back(key_of(texture, level, x, y, z));
-  return keys;
-}
-
-struct StreamResult {
-  std::vector<v1::Brick> bricks;
-  std::vector<v1::BrickError> errors;
-  std::vector<v1::RequestError> request_errors;
-  grpc::Status status;
-};
-
-// Sends one request (then half-closes) and reads every batch until the server finishes.
-StreamResult stream_once(v1::BrickService::Stub& stub, const v1::BrickRequest& request) {
-  grpc::ClientContext context;
-  auto stream = stub.StreamBricks(&context);
-  StreamResult result;
-  stream->Write(request);
-  stream->WritesDone();
-  v1::BrickBatch batch;
-  while (stream->Read(&batch)) {
-    for (auto& b : *batch.mutable_bricks()) result.bricks.push_back(std::move(b));
-    for (auto& e : *batch.mutable_errors()) result.errors.push_back(std::move(e));
-    for (auto& e : *batch.mutable_request_errors()) result.request_errors.push_back(std::move(e));
+TEST(Soltexd, AStreamThatCarriesItsTexturesNeedsNoRegistration) {
+  SoltexdProcess server;
+  auto stub = connect(server);
+  const v1::RegisterTextureRequest registration = marble_request(6, 8);
+  // Ids are content hashes: the client knows it without asking.
+  const uint64_t id =
+      texture_id(from_proto(registration.spec()), from_proto(registration.volume()), 8);
+  v1::RegisterTextureRequest broken = marble_request(6, 8);
+  broken.mutable_volume()->set_finest_level_log2(99);
+  v1::BrickRequest request = want({key_of(id, 1, 0, 1, 2), key_of(id, 3, 0, 0, 0)});
+  *request.add_textures() = registration;
+  *request.add_textures() = broken;
+  const StreamResult result = stream_once(*stub, request);
+  ASSERT_TRUE(result.status.ok()) << result.status.error_message();
+  ASSERT_EQ(result.bricks.size(), 2u);
+  for (const v1::Brick& brick : result.bricks) {
+    const DecodedBrick decoded = decode_brick(std::span(
+        reinterpret_cast<const uint8_t*>(brick.payload().data()), brick.payload().size()));
+    EXPECT_EQ(decoded.samples, local_brick(registration, brick.key()));
   }
-  result.status = stream->Finish();
-  return result;
-}
-
-v1::BrickRequest want(const std::vector<v1::BrickKey>& keys, v1::Codec codec = v1::CODEC_ZSTD) {
-  v1::BrickRequest request;
-  for (const auto& key : keys) *request.add_want()->mutable_key() = key;
-  request.add_accept_codecs(codec);
-  return request;
-}
-
-// The same brick made here: evaluate, quantize.
-std::vector<uint8_t> local_brick(const v1::RegisterTextureRequest& registration,
-                                 const v1::BrickKey& key) {
-  const TextureSpec spec = from_proto(registration.spec());
-  const Volume volume = from_proto(registration.volume());
-  const TextureEvaluator evaluator(spec);
-  const BrickLayout layout(volume, static_cast<int>(registration.brick_size()));
-  std::vector<float> samples(static_cast<std::size_t>(layout.samples_per_brick()) *
-                             spec.channels.sample_count());
-  evaluate_brick(evaluator, layout, static_cast<int>(key.level()), {key.x(), key.y(), key.z()}, {},
-                 samples);
-  return quantize(samples);
-}
-
-std::string metrics(const SoltexdProcess& server) {
-  return http_get(server.metrics_port(), "/metrics");
+  // The broken texture is refused by name and bound; the stream went on.
+  ASSERT_EQ(result.request_errors.size(), 1u);
+  EXPECT_EQ(result.request_errors[0].code(), static_cast<int>(grpc::StatusCode::INVALID_ARGUMENT));
+  EXPECT_NE(result.request_errors[0].message().find("finest_level_log2"), std::string::npos)
+      << result.request_errors[0].message();
 }
 
 TEST(Soltexd, ServerInfoReportsLimits) {
@@ -326,27 +255,6 @@ TEST(Soltexd, OversizeMessagesAreRefused) {
   EXPECT_EQ(stub->RegisterTexture(&context, huge, &handle).error_code(),
             grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_EQ(register_texture(*stub, marble_request()).levels(), 4u);
-}
-
-int health_status(const SoltexdProcess& server) {
-  auto channel = grpc::CreateChannel(server.grpc_address(), grpc::InsecureChannelCredentials());
-  grpc::GenericStub stub(channel);
-  grpc::ClientContext context;
-  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
-  // HealthCheckRequest{service: ""} encodes to no bytes (but the buffer must exist).
-  grpc::Slice empty("");
-  grpc::ByteBuffer request(&empty, 1), response;
-  std::promise<grpc::Status> done;
-  stub.UnaryCall(&context, "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request, &response,
-                 [&](grpc::Status s) { done.set_value(s); });
-  const grpc::Status status = done.get_future().get();
-  if (!status.ok()) return -status.error_code();
-  std::vector<grpc::Slice> slices;
-  (void)response.Dump(&slices);
-  std::string bytes;
-  for (const auto& s : slices) bytes.append(reinterpret_cast<const char*>(s.begin()), s.size());
-  // HealthCheckResponse{status = 1}: field 1, varint.
-  return bytes.size() == 2 && bytes[0] == 0x08 ? bytes[1] : -100;
 }
 
 TEST(Soltexd, HealthAndGracefulShutdownWithOpenStreams) {
