@@ -12,6 +12,7 @@ packages=(
   nlohmann-json3-dev libtinyobjloader-dev
   libsdl2-dev xvfb x11-apps imagemagick   # soltex-view's window and its test on a virtual X server
   libmemcached-dev memcached nginx-light  # the shared brick cache and the balancer of the scale test
+  python3                                 # the scale test reads soltex-load's JSON reports
   openssl                                 # certificates for the TLS tests
 )
 

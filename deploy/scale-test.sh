@@ -1,0 +1,217 @@
+#!/usr/bin/env bash
+# Scale-out on loopback: 2 memcached + 3 soltexd replicas sharing them + nginx balancing gRPC
+# streams across the replicas; clients (soltex-view, soltex-load) go through nginx. Shows:
+#   1. a brick evaluated once in the cluster is served from memcached by the other replicas;
+#   2. killing one soltexd mid-run: its clients reconnect (through nginx, to another replica)
+#      and still converge to the same picture;
+#   3. killing one memcached mid-load: no client-visible errors;
+#   4. bricks/s through nginx with 1 vs 3 replicas (on this 2-core machine every replica shares
+#      the same two cores, so this measures the balancer's and the replicas' overhead, not
+#      scaling).
+# Every process listens on 127.0.0.1 on ports the kernel picks; everything is stopped on exit.
+# Usage: deploy/scale-test.sh            (builds nothing: run after the release build)
+# Environment: SOLTEX_BUILD_DIR (default build), SCALE_LOAD_SECONDS (default 5),
+#              SCALE_REPORT (a file to append the figures to).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${SOLTEX_BUILD_DIR:-$root/build}
+load_seconds=${SCALE_LOAD_SECONDS:-5}
+soltexd=$build/server/soltexd
+view=$build/client/view/soltex-view
+load=$build/client/load/soltex-load
+for tool in "$soltexd" "$view" "$load"; do
+  [ -x "$tool" ] || { echo "scale-test: $tool is missing: build first (deploy/test.sh)" >&2; exit 2; }
+done
+for tool in memcached nginx python3; do
+  command -v "$tool" >/dev/null || { echo "scale-test: $tool is not installed (deploy/install-deps.sh)" >&2; exit 2; }
+done
+
+work=$(mktemp -d /tmp/soltex-scale-XXXXXX)
+chmod 755 "$work"  # nginx workers run as nobody
+pids=()
+cleanup() {
+  [ -f "$work/nginx/logs/nginx.pid" ] && nginx -p "$work/nginx" -c "$work/nginx/nginx.conf" -s stop 2>/dev/null || true
+  [ -f "$work/nginx1/logs/nginx.pid" ] && nginx -p "$work/nginx1" -c "$work/nginx1/nginx.conf" -s stop 2>/dev/null || true
+  for pid in "${pids[@]}"; do kill -9 "$pid" 2>/dev/null || true; done
+  wait 2>/dev/null || true
+  [ -n "${SCALE_KEEP:-}" ] || rm -rf "$work"
+}
+trap cleanup EXIT
+
+failures=0
+check() {  # check DESCRIPTION COMMAND...: prints ok/FAIL
+  local what=$1; shift
+  if "$@"; then echo "  ok    $what"; else echo "  FAIL  $what"; failures=$((failures + 1)); fi
+}
+free_port() {
+  python3 -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'
+}
+wait_port() {  # wait until 127.0.0.1:$1 accepts connections
+  for _ in $(seq 1 200); do
+    (exec 3<>"/dev/tcp/127.0.0.1/$1") 2>/dev/null && return 0
+    sleep 0.05
+  done
+  echo "scale-test: nothing listens on port $1" >&2
+  return 1
+}
+metric() {  # metric REPLICA NAME: a sample from that replica's /metrics (0 when absent)
+  curl -fsS "http://127.0.0.1:${metrics_port[$1]}/metrics" 2>/dev/null |
+    awk -v name="$2" '$1 == name { print $2; found = 1 } END { if (!found) print 0 }'
+}
+sum_metric() {  # sum_metric NAME: over the replicas still running
+  local total=0 r
+  for r in 0 1 2; do
+    if [ -n "${alive[$r]}" ]; then total=$(python3 -c "print(int($total + $(metric "$r" "$1")))"); fi
+  done
+  echo "$total"
+}
+converged() {  # converged FILE...: every render's report says it converged
+  local f
+  for f in "$@"; do grep -q "converged after" "$f" || return 1; done
+}
+
+echo "== scale-test: 2 memcached, 3 soltexd, nginx on loopback (work dir $work)"
+memcached_port=()
+for m in 0 1; do
+  memcached_port[$m]=$(free_port)
+  memcached -l 127.0.0.1 -p "${memcached_port[$m]}" -U 0 -m 64 -t 1 -u nobody &
+  memcached_pid[$m]=$!
+  pids+=("$!")
+  wait_port "${memcached_port[$m]}"
+done
+nodes="127.0.0.1:${memcached_port[0]},127.0.0.1:${memcached_port[1]}"
+
+grpc_port=() metrics_port=() alive=()
+for r in 0 1 2; do
+  "$soltexd" --listen 127.0.0.1:0 --metrics-listen 127.0.0.1:0 --ready-file "$work/ready$r" \
+    --memcached "$nodes" --memcached-timeout-ms 100 --trust-forwarded-for --threads 2 \
+    --shutdown-grace 2 --log-level warn >"$work/soltexd$r.log" 2>&1 &
+  replica_pid[$r]=$!
+  pids+=("$!")
+done
+for r in 0 1 2; do
+  for _ in $(seq 1 400); do [ -s "$work/ready$r" ] && break; sleep 0.05; done
+  grpc_port[$r]=$(sed -n 's/^grpc=//p' "$work/ready$r")
+  metrics_port[$r]=$(sed -n 's/^metrics=//p' "$work/ready$r")
+  alive[$r]=1
+done
+
+start_nginx() {  # start_nginx DIR PORT UPSTREAM...
+  local dir=$1 port=$2; shift 2
+  mkdir -p "$dir"
+  "$root/deploy/nginx/render-conf.sh" "127.0.0.1:$port" "$dir" "$@" >"$dir/nginx.conf"
+  nginx -p "$dir" -c "$dir/nginx.conf" -e "$dir/logs/error.log"
+  wait_port "$port"
+}
+lb_port=$(free_port)
+start_nginx "$work/nginx" "$lb_port" "127.0.0.1:${grpc_port[0]}" "127.0.0.1:${grpc_port[1]}" \
+  "127.0.0.1:${grpc_port[2]}"
+echo "   memcached :${memcached_port[0]} :${memcached_port[1]}; soltexd :${grpc_port[0]} :${grpc_port[1]} :${grpc_port[2]}; nginx :$lb_port"
+
+render() {  # render NAME TARGET FINEST_LEVEL WIDTH HEIGHT [args...]: headless soltex-view -> $work/NAME.txt
+  local name=$1 target=$2 level=$3 width=$4 height=$5; shift 5
+  "$view" --headless --server "$target" --finest-level "$level" --width "$width" --height "$height" \
+    --threads 1 --max-seconds 60 --log-level warn --out "$work/$name.png" "$@" >"$work/$name.txt" 2>&1
+}
+field() {  # field FILE WORD: the number before WORD on the bricks: line (0 when absent)
+  local value
+  value=$(sed -n "s/^bricks: .* \([0-9][0-9]*\) $2.*/\1/p" "$1" | head -1)
+  echo "${value:-0}"
+}
+
+echo "-- 1. a brick evaluated once is served from memcached by the other replicas"
+render first "127.0.0.1:${grpc_port[0]}" 7 480 270
+render second "127.0.0.1:${grpc_port[1]}" 7 480 270
+evaluated_0=$(metric 0 soltex_bricks_evaluated_total)
+evaluated_1=$(metric 1 soltex_bricks_evaluated_total)
+shared_1=$(metric 1 soltex_bricks_from_shared_cache_total)
+served_1=$(metric 1 soltex_bricks_served_total)
+echo "   replica 0 evaluated $evaluated_0 bricks; replica 1 evaluated $evaluated_1 and read $shared_1 from memcached (it served $served_1)"
+check "both renders converged" converged "$work/first.txt" "$work/second.txt"
+check "replica 0 evaluated the bricks" test "${evaluated_0%.*}" -gt 0
+check "replica 1 evaluated none of them" test "${evaluated_1%.*}" -eq 0
+check "replica 1 read bricks from memcached" test "${shared_1%.*}" -gt 0
+check "the two pictures are identical" cmp -s "$work/first.png" "$work/second.png"
+
+echo "-- 2. one soltexd killed mid-run: clients reconnect through nginx and converge"
+# Supersampled bricks at 2^10 over a 1280x720 frame: a few seconds of work for the cluster.
+phase2=(10 1280 720 --mip supersampled)
+for c in 0 1 2; do
+  render "client$c" "127.0.0.1:$lb_port" "${phase2[@]}" &
+  client_pid[$c]=$!
+done
+# Kill a replica while it still owes bricks to its streams (its queue is not empty).
+victim="" queued=0
+for _ in $(seq 1 1000); do
+  for r in 0 1 2; do
+    depth=$(metric "$r" soltex_queue_depth); depth=${depth%.*}
+    if [ "$depth" -gt 20 ]; then victim=$r queued=$depth; break; fi
+  done
+  [ -n "$victim" ] && break
+  sleep 0.01
+done
+victim=${victim:-2}
+kill -9 "${replica_pid[$victim]}"
+wait "${replica_pid[$victim]}" 2>/dev/null || true
+alive[$victim]=""
+echo "   killed replica $victim with $queued bricks still queued for its clients"
+client_failures=0
+for c in 0 1 2; do wait "${client_pid[$c]}" || client_failures=$((client_failures + 1)); done
+reconnects=0
+for c in 0 1 2; do reconnects=$((reconnects + $(field "$work/client$c.txt" reconnects))); done
+check "every client exited cleanly" test "$client_failures" -eq 0
+check "every client converged" converged "$work/client0.txt" "$work/client1.txt" "$work/client2.txt"
+check "the killed replica's clients reconnected ($reconnects reconnects)" test "$reconnects" -ge 1
+check "all three pictures are identical" sh -c "cmp -s '$work/client0.png' '$work/client1.png' && cmp -s '$work/client0.png' '$work/client2.png'"
+render alone "127.0.0.1:${grpc_port[$(( (victim + 1) % 3 ))]}" "${phase2[@]}"
+check "and equal to a render from one surviving replica" cmp -s "$work/client0.png" "$work/alone.png"
+
+# Bring the killed replica back for the rest.
+"$soltexd" --listen "127.0.0.1:${grpc_port[$victim]}" --metrics-listen 127.0.0.1:0 \
+  --ready-file "$work/ready${victim}b" --memcached "$nodes" --memcached-timeout-ms 100 \
+  --trust-forwarded-for --threads 2 --shutdown-grace 2 --log-level warn >>"$work/soltexd$victim.log" 2>&1 &
+replica_pid[$victim]=$!
+pids+=("$!")
+for _ in $(seq 1 400); do [ -s "$work/ready${victim}b" ] && break; sleep 0.05; done
+metrics_port[$victim]=$(sed -n 's/^metrics=//p' "$work/ready${victim}b")
+alive[$victim]=1
+
+echo "-- 3. one memcached killed mid-load: no client-visible errors"
+errors_of() {  # errors_of JSON_FILE: every error soltex-load counted
+  python3 -c 'import json,sys; r=json.load(open(sys.argv[1])); e=r["errors"]; print(sum(sum(v.values()) for v in e.values()) + r["unanswered"] + r["checksum_failures"])' "$1"
+}
+"$load" --target "127.0.0.1:$lb_port" --connections 4 --streams 8 --mix uniform --finest-level 10 \
+  --duration "$load_seconds" --verify --no-progress --format json --seed 7 >"$work/memcached-kill.json" &
+load_pid=$!
+sleep "$(python3 -c "print($load_seconds / 2)")"
+kill -9 "${memcached_pid[1]}"
+wait "${memcached_pid[1]}" 2>/dev/null || true
+wait "$load_pid"
+errors=$(errors_of "$work/memcached-kill.json")
+shared_errors=$(sum_metric soltex_shared_cache_errors_total)
+bricks=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["bricks"])' "$work/memcached-kill.json")
+echo "   $bricks bricks, $errors client-visible errors; the replicas counted $shared_errors memcached failures and evaluated instead"
+check "no client-visible errors" test "$errors" -eq 0
+check "bricks kept flowing" test "$bricks" -gt 0
+
+echo "-- 4. bricks/s through nginx: 1 replica vs 3 (hot set, warm caches; 2 shared cores)"
+lb1_port=$(free_port)
+start_nginx "$work/nginx1" "$lb1_port" "127.0.0.1:${grpc_port[0]}"
+hot=(--connections 4 --streams 16 --mix hot --hot-set 256 --in-flight 16 --warmup 1
+     --duration "$load_seconds" --no-progress --format json)
+"$load" --target "127.0.0.1:$lb1_port" "${hot[@]}" >"$work/one.json"
+"$load" --target "127.0.0.1:$lb_port" "${hot[@]}" >"$work/three.json"
+"$load" --target "127.0.0.1:$lb1_port" "${hot[@]}" >"$work/one-again.json"
+rate() { python3 -c 'import json,sys; print(round(json.load(open(sys.argv[1]))["bricks_per_second"]))' "$1"; }
+one=$(rate "$work/one.json") three=$(rate "$work/three.json") again=$(rate "$work/one-again.json")
+summary="bricks/s through nginx, hot set: 1 replica $one and $again (before and after), 3 replicas $three (ratio $(python3 -c "print(round($three / (($one + $again) / 2), 2))"))"
+echo "   $summary"
+check "no errors under either" test "$(errors_of "$work/one.json")$(errors_of "$work/three.json")" = "00"
+if [ -n "${SCALE_REPORT:-}" ]; then echo "$summary" >>"$SCALE_REPORT"; fi
+
+if [ "$failures" -gt 0 ]; then
+  echo "scale-test: $failures checks failed; logs:"
+  tail -n 20 "$work"/*.log "$work"/*.txt >&2 || true
+  exit 1
+fi
+echo "scale-test: all checks passed"
