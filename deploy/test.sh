@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Builds soltex and runs every test through ctest (unit, integration over loopback), then the
-# unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer, then the libFuzzer
-# targets for a bounded time.
+# Builds soltex and runs every test through ctest (unit, integration over loopback), the
+# scale-out test (memcached + three soltexd + nginx) and the soak, then the unit tests again
+# under AddressSanitizer + UndefinedBehaviorSanitizer, then the libFuzzer targets for a
+# bounded time.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 # ccache hits across clones in different directories: hash paths relative to the clone.
@@ -17,6 +18,11 @@ echo "== release build and all tests"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j "$jobs"
 ctest --test-dir "$build" --output-on-failure -j "$jobs"
+
+echo "== scale-out on loopback: memcached, three soltexd, nginx"
+SOLTEX_BUILD_DIR="$build" "$root/deploy/scale-test.sh"
+echo "== soak: 64 streams for 60 s, errors and memory"
+SOLTEX_BUILD_DIR="$build" "$root/deploy/soak.sh"
 
 echo "== ASan+UBSan build and unit tests"
 cmake -S "$root" -B "$asan" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSOLTEX_SANITIZE=ON \
