@@ -6,14 +6,12 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <cctype>
 #include <chrono>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <thread>
 
 #include "soltex/common/brick_layout.h"
+#include "soltex/common/text_file.h"
 
 namespace soltex::server {
 namespace {
@@ -42,28 +40,10 @@ v1::ServerInfo make_info(const ServerConfig& config, int threads) {
   return info;
 }
 
-std::string read_file(const std::string& path, const char* what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw std::runtime_error(std::string("cannot read the ") + what + " file '" + path + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 AccessConfig access_config(const ServerConfig& config) {
   AccessConfig access;
   access.token = config.token;
-  if (!config.token_file.empty()) {
-    access.token = read_file(config.token_file, "token");
-    // A token file usually ends in a newline that is not part of the token.
-    while (!access.token.empty() && std::isspace(static_cast<unsigned char>(access.token.back()))) {
-      access.token.pop_back();
-    }
-    if (access.token.empty()) {
-      throw std::runtime_error("the token file '" + config.token_file + "' is empty");
-    }
-  }
+  if (!config.token_file.empty()) access.token = read_trimmed_text_file(config.token_file, "token");
   access.max_streams_per_client = config.max_streams_per_client;
   access.max_queued_per_client = config.max_queued_per_client;
   access.trust_forwarded_for = config.trust_forwarded_for;
@@ -93,10 +73,10 @@ std::shared_ptr<grpc::ServerCredentials> server_credentials(const ServerConfig& 
     return grpc::InsecureServerCredentials();
   }
   grpc::SslServerCredentialsOptions options(GRPC_SSL_DONT_REQUEST_CLIENT_CERTIFICATE);
-  options.pem_key_cert_pairs.push_back({read_file(config.tls_key_file, "TLS key"),
-                                        read_file(config.tls_cert_file, "TLS certificate")});
+  options.pem_key_cert_pairs.push_back({read_text_file(config.tls_key_file, "TLS key"),
+                                        read_text_file(config.tls_cert_file, "TLS certificate")});
   if (!config.tls_client_ca_file.empty()) {
-    options.pem_root_certs = read_file(config.tls_client_ca_file, "client CA");
+    options.pem_root_certs = read_text_file(config.tls_client_ca_file, "client CA");
     options.client_certificate_request = GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY;
   }
   return grpc::SslServerCredentials(options);

@@ -1,33 +1,13 @@
 #include "soltex/net/channel_security.h"
 
-#include <cctype>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
+#include "soltex/common/text_file.h"
+
 namespace soltex::net {
-namespace {
-
-std::string read_file(const std::string& path, const char* what) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw std::runtime_error(std::string("cannot read the ") + what + " file '" + path + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-}  // namespace
 
 std::string read_token_file(const std::string& path) {
-  std::string token = read_file(path, "token");
-  const auto space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
-  while (!token.empty() && space(token.back())) token.pop_back();
-  std::size_t first = 0;
-  while (first < token.size() && space(token[first])) ++first;
-  token.erase(0, first);
-  if (token.empty()) throw std::runtime_error("the token file '" + path + "' is empty");
-  return token;
+  return read_trimmed_text_file(path, "token");
 }
 
 std::shared_ptr<grpc::ChannelCredentials> channel_credentials(const ChannelSecurity& security) {
@@ -41,10 +21,10 @@ std::shared_ptr<grpc::ChannelCredentials> channel_credentials(const ChannelSecur
     throw std::runtime_error("a client certificate needs both its chain and its key");
   }
   grpc::SslCredentialsOptions options;
-  options.pem_root_certs = read_file(security.tls_ca_file, "server CA");
+  options.pem_root_certs = read_text_file(security.tls_ca_file, "server CA");
   if (!security.tls_cert_file.empty()) {
-    options.pem_cert_chain = read_file(security.tls_cert_file, "client certificate");
-    options.pem_private_key = read_file(security.tls_key_file, "client key");
+    options.pem_cert_chain = read_text_file(security.tls_cert_file, "client certificate");
+    options.pem_private_key = read_text_file(security.tls_key_file, "client key");
   }
   return grpc::SslCredentials(options);
 }
