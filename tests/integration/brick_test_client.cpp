@@ -121,6 +121,20 @@ int health_status(const SoltexdProcess& server) {
   return bytes.size() == 2 && bytes[0] == 0x08 ? bytes[1] : -100;
 }
 
+grpc::StatusCode reflection_status(const SoltexdProcess& server) {
+  auto channel = grpc::CreateChannel(server.grpc_address(), grpc::InsecureChannelCredentials());
+  grpc::GenericStub stub(channel);
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
+  grpc::Slice empty("");
+  grpc::ByteBuffer request(&empty, 1), response;
+  std::promise<grpc::Status> done;
+  stub.UnaryCall(&context, "/grpc.reflection.v1alpha.ServerReflection/ServerReflectionInfo",
+                 grpc::StubOptions(), &request, &response,
+                 [&](grpc::Status s) { done.set_value(s); });
+  return done.get_future().get().error_code();
+}
+
 std::string metrics(const SoltexdProcess& server) {
   return http_get(server.metrics_port(), "/metrics");
 }

@@ -50,6 +50,9 @@ std::vector<uint8_t> local_brick(const v1::RegisterTextureRequest& registration,
 // the status code of a failed call.
 int health_status(const SoltexdProcess& server);
 
+// The status of one call to server reflection: UNIMPLEMENTED when it is not offered.
+grpc::StatusCode reflection_status(const SoltexdProcess& server);
+
 // GET /metrics of the server.
 std::string metrics(const SoltexdProcess& server);
 

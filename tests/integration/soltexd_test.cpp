@@ -259,7 +259,8 @@ TEST(Soltexd, OversizeMessagesAreRefused) {
 
 TEST(Soltexd, HealthAndGracefulShutdownWithOpenStreams) {
   SoltexdProcess server({"--threads", "1"});
-  EXPECT_EQ(health_status(server), 1);  // SERVING
+  EXPECT_EQ(health_status(server), 1);                                    // SERVING
+  EXPECT_NE(reflection_status(server), grpc::StatusCode::UNIMPLEMENTED);  // offered without a token
   auto stub = connect(server);
   v1::RegisterTextureRequest registration = marble_request(7, 8);
   registration.set_mip_mode(v1::MIP_MODE_SUPERSAMPLED);
