@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <span>
@@ -39,6 +40,40 @@ const char* sample_filter_name(SampleFilter filter);
 // cover): log2(footprint / h_0), h_0 = layout.filter_width(0), clamped to
 // [0, coarsest_level]. NaN and +inf give the coarsest level; zero, negative and -inf give 0.
 double level_of_detail(const BrickLayout& layout, double footprint);
+
+// The level a nearest or trilinear lookup uses for a footprint: round(level_of_detail(layout,
+// footprint) + bias), clamped to [0, coarsest] as TextureSampler::sample clamps it, found by
+// comparing the footprint's bits with a table instead of calling log2 per sample. The table
+// holds, per level, the smallest float footprint that reaches it, found once by bisecting the
+// formula above over the ordered bit patterns of non-negative floats (the formula is monotone
+// in the footprint), so level(f) equals the formula for every float f, NaN included.
+class NearestLevelTable {
+ public:
+  NearestLevelTable() = default;
+  NearestLevelTable(const BrickLayout& layout, double bias);
+
+  // The formula itself (what the table reproduces), for the table and for tests.
+  static int level_by_formula(const BrickLayout& layout, double bias, float footprint);
+
+  int level(float footprint) const {
+    const uint32_t bits = std::bit_cast<uint32_t>(footprint);
+    const uint32_t magnitude = bits & 0x7fffffffu;
+    if (magnitude > 0x7f800000u) return nan_level_;
+    if (bits != magnitude) return non_positive_level_;  // negative, -0
+    int level = base_level_;
+    for (const uint32_t threshold : thresholds_) level += bits >= threshold ? 1 : 0;
+    return level;
+  }
+
+ private:
+  static constexpr int kMaxLevels = SpecLimits::kMaxFinestLevelLog2 + 1;
+  int base_level_ = 0;  // the level of footprint +0
+  int nan_level_ = 0;
+  int non_positive_level_ = 0;
+  // thresholds_[k]: the bits of the smallest footprint at level base_level_ + k + 1; all ones
+  // (above every non-negative float) past the coarsest level.
+  std::array<uint32_t, kMaxLevels> thresholds_{};
+};
 
 // The bricks one sample wanted and did not find: the level(s) it asked for and, when not
 // even a coarser level was resident, the coarsest brick. Filled (from count 0) by each
