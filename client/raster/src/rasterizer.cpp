@@ -168,6 +168,11 @@ int Rasterizer::thread_count() const {
   return impl_->pool.thread_count();
 }
 
+void Rasterizer::parallel_for(std::size_t count,
+                              const std::function<void(std::size_t, int)>& task) {
+  impl_->pool.parallel_for(count, task);
+}
+
 RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObject> objects,
                                GBuffer& target) {
   validate(view, objects);

@@ -33,20 +33,17 @@ glm::vec3 level_colour(int level) {
   return kPalette[std::min<std::size_t>(static_cast<std::size_t>(level), std::size(kPalette) - 1)];
 }
 
-int thread_count(int requested) {
-  if (requested > 0) return requested;
-  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-}
+// Pixels per side of the tiles the shading pass hands to threads.
+constexpr int kShadeTile = 32;
+// Rows per block of the reference renderer's pass.
+constexpr int kReferenceRows = 8;
 
-// Runs body(band, first_row, end_row) over `threads` bands of rows; returns when all are done.
-template <typename Body>
-void parallel_rows(int height, int threads, Body body) {
-  const int bands = std::min(threads, std::max(height, 1));
-  std::vector<std::jthread> workers;
-  for (int b = 1; b < bands; ++b) {
-    workers.emplace_back([&, b] { body(b, height * b / bands, height * (b + 1) / bands); });
-  }
-  body(0, 0, height / bands);
+bool key_less(const BrickKey& a, const BrickKey& b) {
+  if (a.texture != b.texture) return a.texture < b.texture;
+  if (a.level != b.level) return a.level < b.level;
+  if (a.brick.z != b.brick.z) return a.brick.z < b.brick.z;
+  if (a.brick.y != b.brick.y) return a.brick.y < b.brick.y;
+  return a.brick.x < b.brick.x;
 }
 
 // Frames are drawn relative to the eye: the float matrices the rasterizer gets then carry only
@@ -155,70 +152,99 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
   cache_.begin_frame();
   const glm::dmat4 inverse_vp = glm::inverse(vp);
   const PreparedLights lights = prepare_lights(*scene.scene);
-  const int threads = thread_count(options_.threads);
-  struct Band {
-    std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
-    std::size_t covered = 0, fallback = 0, empty = 0, shaded = 0;
-  };
-  std::vector<Band> bands(static_cast<std::size_t>(threads));
+  const auto threads = static_cast<std::size_t>(rasterizer_.thread_count());
   const GBuffer& g = gbuffer_;
-  // Samplers (and their microcaches) live across frames, one set per band of rows.
+  // Samplers (and their microcaches) live across frames, one set per render thread.
   std::vector<uint64_t> texture_ids;
   for (const PreparedObject& o : scene.objects) texture_ids.push_back(o.texture_id);
-  if (samplers_.size() != static_cast<std::size_t>(threads) || sampler_textures_ != texture_ids) {
+  if (samplers_.size() != threads || sampler_textures_ != texture_ids) {
     samplers_.clear();
-    samplers_.resize(static_cast<std::size_t>(threads));
-    for (auto& band_samplers : samplers_) {
+    samplers_.resize(threads);
+    for (auto& worker_samplers : samplers_) {
       for (const PreparedObject& o : scene.objects) {
-        band_samplers.push_back(
+        worker_samplers.push_back(
             std::make_unique<TextureSampler>(cache_, o.texture_id, o.layout, o.channels));
       }
     }
     sampler_textures_ = std::move(texture_ids);
   }
-  parallel_rows(height, threads, [&](int band_index, int first, int end) {
-    Band& band = bands[static_cast<std::size_t>(band_index)];
-    auto& samplers = samplers_[static_cast<std::size_t>(band_index)];
-    MissedBricks missed;
-    for (int y = first; y < end; ++y) {
-      for (int x = 0; x < width; ++x) {
-        const std::size_t i = g.index(x, y);
-        if (!g.covered(i) || g.object_id[i] >= scene.objects.size()) {
-          frame.image.set(x, y, kBackground.r, kBackground.g, kBackground.b);
-          continue;
-        }
-        ++band.covered;
-        const PreparedObject& object = scene.objects[g.object_id[i]];
-        TextureSampler& sampler = *samplers[g.object_id[i]];
-        const double lod = sampler.level_of_detail(g.footprint[i]) + options_.level_bias;
-        const SampleResult result =
-            sampler.sample(g.texture_position[i], lod, options_.filter, &missed);
-        for (const BrickKey& key : missed.view()) ++band.misses[key];
-        if (!result.complete) ++band.fallback;
-        if (result.level < 0) ++band.empty;
-        glm::vec3 colour;
-        if (options_.false_colour_levels) {
-          colour = level_colour(result.level);
-        } else {
-          colour = shade_pixel(lights, object, result.values.data(),
-                               surface_at(g, i, x, y, inverse_vp, camera.position));
-          band.shaded += object.object->material.unlit ? 0 : 1;
-        }
-        frame.image.set(x, y, colour.r, colour.g, colour.b);
-      }
+  // Per object: the level each footprint asks for, by table (quadrilinear needs the fraction
+  // and keeps the continuous level of detail).
+  const bool by_table = options_.filter != SampleFilter::quadrilinear;
+  std::vector<NearestLevelTable> level_tables;
+  if (by_table) {
+    level_tables.reserve(scene.objects.size());
+    for (const PreparedObject& o : scene.objects) {
+      level_tables.emplace_back(o.layout, options_.level_bias);
     }
-    for (auto& s : samplers) s->flush_statistics();
-  });
+  }
+  struct Worker {
+    std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
+    std::size_t covered = 0, fallback = 0, empty = 0, shaded = 0;
+  };
+  std::vector<Worker> workers(threads);
+  // Square tiles: the pixels of one tile read few bricks, which stay in cache.
+  const int columns = (width + kShadeTile - 1) / kShadeTile;
+  const int rows = (height + kShadeTile - 1) / kShadeTile;
+  const std::size_t object_count = scene.objects.size();
+  rasterizer_.parallel_for(
+      static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows),
+      [&](std::size_t tile, int worker_index) {
+        Worker& worker = workers[static_cast<std::size_t>(worker_index)];
+        auto& samplers = samplers_[static_cast<std::size_t>(worker_index)];
+        const int x0 = static_cast<int>(tile % static_cast<std::size_t>(columns)) * kShadeTile;
+        const int y0 = static_cast<int>(tile / static_cast<std::size_t>(columns)) * kShadeTile;
+        const int x1 = std::min(width, x0 + kShadeTile);
+        const int y1 = std::min(height, y0 + kShadeTile);
+        MissedBricks missed;
+        for (int y = y0; y < y1; ++y) {
+          for (int x = x0; x < x1; ++x) {
+            const std::size_t i = g.index(x, y);
+            const uint32_t id = g.object_id[i];
+            if (!g.covered(i) || id >= object_count) {
+              frame.image.set(x, y, kBackground.r, kBackground.g, kBackground.b);
+              continue;
+            }
+            ++worker.covered;
+            const PreparedObject& object = scene.objects[id];
+            TextureSampler& sampler = *samplers[id];
+            const double lod = by_table
+                                   ? static_cast<double>(level_tables[id].level(g.footprint[i]))
+                                   : sampler.level_of_detail(g.footprint[i]) + options_.level_bias;
+            const SampleResult result =
+                sampler.sample(g.texture_position[i], lod, options_.filter, &missed);
+            for (const BrickKey& key : missed.view()) ++worker.misses[key];
+            if (!result.complete) ++worker.fallback;
+            if (result.level < 0) ++worker.empty;
+            glm::vec3 colour;
+            if (options_.false_colour_levels) {
+              colour = level_colour(result.level);
+            } else {
+              colour = shade_pixel(lights, object, result.values.data(),
+                                   surface_at(g, i, x, y, inverse_vp, camera.position));
+              worker.shaded += object.object->material.unlit ? 0 : 1;
+            }
+            frame.image.set(x, y, colour.r, colour.g, colour.b);
+          }
+        }
+      });
+  for (auto& worker_samplers : samplers_) {
+    for (auto& sampler : worker_samplers) sampler->flush_statistics();
+  }
   std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
-  for (const Band& band : bands) {
-    for (const auto& [key, pixels] : band.misses) misses[key] += pixels;
-    frame.stats.covered_pixels += band.covered;
-    frame.stats.fallback_pixels += band.fallback;
-    frame.stats.empty_pixels += band.empty;
-    frame.stats.shaded_pixels += band.shaded;
+  for (const Worker& worker : workers) {
+    for (const auto& [key, pixels] : worker.misses) misses[key] += pixels;
+    frame.stats.covered_pixels += worker.covered;
+    frame.stats.fallback_pixels += worker.fallback;
+    frame.stats.empty_pixels += worker.empty;
+    frame.stats.shaded_pixels += worker.shaded;
   }
   frame.misses.reserve(misses.size());
   for (const auto& [key, pixels] : misses) frame.misses.push_back({key, pixels});
+  // Which thread drew which tile varies from frame to frame; the list does not.
+  std::sort(
+      frame.misses.begin(), frame.misses.end(),
+      [](const net::BrickWant& a, const net::BrickWant& b) { return key_less(a.key, b.key); });
   frame.stats.shade_ms = ms_since(shade_start);
   return frame;
 }
@@ -241,7 +267,10 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
   const glm::dmat4 inverse_vp = glm::inverse(vp);
   const PreparedLights lights = prepare_lights(*scene.scene);
   std::vector<glm::vec3> colours(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-  parallel_rows(h, thread_count(options_.threads), [&](int, int first, int end) {
+  const int row_blocks = (h + kReferenceRows - 1) / kReferenceRows;
+  rasterizer_.parallel_for(static_cast<std::size_t>(row_blocks), [&](std::size_t block, int) {
+    const int first = static_cast<int>(block) * kReferenceRows;
+    const int end = std::min(h, first + kReferenceRows);
     for (int y = first; y < end; ++y) {
       for (int x = 0; x < w; ++x) {
         const std::size_t i = g.index(x, y);

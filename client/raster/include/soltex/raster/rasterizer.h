@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <memory>
 #include <span>
 
@@ -48,6 +50,13 @@ class Rasterizer {
   // One render at a time per Rasterizer; the render itself uses thread_count() threads.
   RasterStats render(const RasterView& view, std::span<const RasterObject> objects,
                      GBuffer& target);
+
+  // Runs task(index, worker) for every index in [0, count) on the render threads (the
+  // caller's included; worker in [0, thread_count()) names the thread, for per-thread state),
+  // handing indices out one at a time; returns when all are done. For the passes that follow a
+  // render (shading the G-buffer), so that they reuse the same persistent threads. Not while a
+  // render runs.
+  void parallel_for(std::size_t count, const std::function<void(std::size_t, int)>& task);
 
  private:
   struct Impl;
