@@ -121,6 +121,128 @@ glm::vec3 shade_pixel(const PreparedLights& lights, const PreparedObject& object
   return colour;
 }
 
+// Where a texture's sampled channels go: albedo (three channels, or one grey), opacity and
+// specular (their index in the samples, or -1 for none), as shade_pixel() reads them.
+struct MaterialInputs {
+  bool colour = true;
+  int opacity = -1;
+  int specular = -1;
+  float material_specular = 0.0f;
+  float shininess = 0.0f;
+  bool unlit = false;
+};
+
+MaterialInputs material_inputs(const PreparedObject& object) {
+  const ChannelSet& channels = object.texture.channels;
+  const Material& material = object.object->material;
+  MaterialInputs m;
+  m.colour = channels.colour;
+  int next = channels.colour ? 3 : 0;
+  if (channels.opacity) m.opacity = next++;
+  if (channels.specular) m.specular = next++;
+  m.material_specular = material.specular;
+  m.shininess = material.shininess;
+  m.unlit = material.unlit;
+  return m;
+}
+
+// shade_pixel()'s last step: blend towards the background by the opacity, and store.
+void set_pixel(Image& image, int x, int y, glm::vec3 colour, float opacity) {
+  if (opacity < 1.0f) colour = kBackground + opacity * (colour - kBackground);
+  image.set(x, y, colour.r, colour.g, colour.b);
+}
+
+// The lit pixels of a tile waiting to be shaded together: where they are, their texture
+// values, and the batch that shade_batch() lights.
+struct LitPixels {
+  ShadeBatch batch;
+  ShadeBatch::Lanes<int> x, y;
+  ShadeBatch::Lanes<std::size_t> index;  // in the G-buffer
+  ShadeBatch::Lanes<float> opacity;
+
+  void add(int lane, int px, int py, std::size_t i, const glm::vec3& albedo, float alpha,
+           float specular, float shininess) {
+    const auto l = static_cast<std::size_t>(lane);
+    x[l] = px;
+    y[l] = py;
+    index[l] = i;
+    opacity[l] = alpha;
+    batch.albedo_r[l] = albedo.r;
+    batch.albedo_g[l] = albedo.g;
+    batch.albedo_b[l] = albedo.b;
+    batch.specular[l] = specular;
+    batch.shininess[l] = shininess;
+  }
+
+  void write(Image& image) const {
+    for (std::size_t l = 0; l < static_cast<std::size_t>(batch.count); ++l) {
+      set_pixel(image, x[l], y[l], {batch.colour_r[l], batch.colour_g[l], batch.colour_b[l]},
+                opacity[l]);
+    }
+  }
+};
+
+// surface_at() across a batch, with the same operations in the same order: the lanes get
+// exactly the position, normal and direction to the viewer surface_at() gives.
+struct SurfaceUnprojection {
+  glm::dmat4 inverse_vp;
+  glm::dvec3 eye;
+  int width;
+  int height;
+
+  void fill(const GBuffer& g, LitPixels& lit) const {
+    ShadeBatch& b = lit.batch;
+    const auto count = static_cast<std::size_t>(b.count);
+    // Gathered first, so that the arithmetic below runs over plain arrays.
+    alignas(64) ShadeBatch::Lanes<float> depth, nx, ny, nz;
+    alignas(64) ShadeBatch::Lanes<uint8_t> back;
+    for (std::size_t l = 0; l < count; ++l) {
+      const std::size_t i = lit.index[l];
+      depth[l] = g.depth[i];
+      nx[l] = g.normal[i].x;
+      ny[l] = g.normal[i].y;
+      nz[l] = g.normal[i].z;
+      back[l] = g.back_face(i) ? 1 : 0;
+    }
+    const glm::dmat4& m = inverse_vp;
+    const double w = width, h = height;
+    for (std::size_t l = 0; l < count; ++l) {
+      const double ndc_x = (lit.x[l] + 0.5) / w * 2.0 - 1.0;
+      const double ndc_y = 1.0 - (lit.y[l] + 0.5) / h * 2.0;
+      const double ndc_z = static_cast<double>(depth[l]) * 2.0 - 1.0;
+      // glm's matrix-vector product: (m0 x + m1 y) + (m2 z + m3 w), with w = 1.
+      const double hx = (m[0].x * ndc_x + m[1].x * ndc_y) + (m[2].x * ndc_z + m[3].x * 1.0);
+      const double hy = (m[0].y * ndc_x + m[1].y * ndc_y) + (m[2].y * ndc_z + m[3].y * 1.0);
+      const double hz = (m[0].z * ndc_x + m[1].z * ndc_y) + (m[2].z * ndc_z + m[3].z * 1.0);
+      const double hw = (m[0].w * ndc_x + m[1].w * ndc_y) + (m[2].w * ndc_z + m[3].w * 1.0);
+      const double rx = hx / hw, ry = hy / hw, rz = hz / hw;
+      b.position_x[l] = eye.x + rx;
+      b.position_y[l] = eye.y + ry;
+      b.position_z[l] = eye.z + rz;
+      const auto vx = static_cast<float>(-rx);
+      const auto vy = static_cast<float>(-ry);
+      const auto vz = static_cast<float>(-rz);
+      const float length = std::sqrt((vx * vx + vy * vy) + vz * vz);
+      const bool has_length = length > 0.0f;
+      const float tx = has_length ? vx / length : 0.0f;
+      const float ty = has_length ? vy / length : 0.0f;
+      const float tz = has_length ? vz / length : 1.0f;
+      const float n_length = std::sqrt((nx[l] * nx[l] + ny[l] * ny[l]) + nz[l] * nz[l]);
+      const bool has_normal = n_length > 0.0f;
+      float ux = has_normal ? nx[l] / n_length : tx;
+      float uy = has_normal ? ny[l] / n_length : ty;
+      float uz = has_normal ? nz[l] / n_length : tz;
+      const bool flip = back[l] != 0 || ((ux * tx + uy * ty) + uz * tz) < 0.0f;
+      b.normal_x[l] = flip ? -ux : ux;
+      b.normal_y[l] = flip ? -uy : uy;
+      b.normal_z[l] = flip ? -uz : uz;
+      b.to_viewer_x[l] = tx;
+      b.to_viewer_y[l] = ty;
+      b.to_viewer_z[l] = tz;
+    }
+  }
+};
+
 }  // namespace
 
 glm::dmat4 view_projection(const Camera& camera, int width, int height) {
@@ -178,11 +300,16 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
       level_tables.emplace_back(o.layout, options_.level_bias);
     }
   }
+  // Per object: how the texture's channels become albedo, opacity and specular.
+  std::vector<MaterialInputs> materials;
+  materials.reserve(scene.objects.size());
+  for (const PreparedObject& o : scene.objects) materials.push_back(material_inputs(o));
   struct Worker {
     std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
     std::size_t covered = 0, fallback = 0, empty = 0, shaded = 0;
   };
   std::vector<Worker> workers(threads);
+  const SurfaceUnprojection unprojection{inverse_vp, camera.position, width, height};
   // Square tiles: the pixels of one tile read few bricks, which stay in cache.
   const int columns = (width + kShadeTile - 1) / kShadeTile;
   const int rows = (height + kShadeTile - 1) / kShadeTile;
@@ -192,6 +319,13 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
       [&](std::size_t tile, int worker_index) {
         Worker& worker = workers[static_cast<std::size_t>(worker_index)];
         auto& samplers = samplers_[static_cast<std::size_t>(worker_index)];
+        LitPixels lit;  // about 40 KB of stack, uninitialised but for the count
+        const auto flush = [&] {
+          unprojection.fill(g, lit);
+          shade_batch(lights, lit.batch);
+          lit.write(frame.image);
+          lit.batch.count = 0;
+        };
         const int x0 = static_cast<int>(tile % static_cast<std::size_t>(columns)) * kShadeTile;
         const int y0 = static_cast<int>(tile / static_cast<std::size_t>(columns)) * kShadeTile;
         const int x1 = std::min(width, x0 + kShadeTile);
@@ -206,7 +340,6 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
               continue;
             }
             ++worker.covered;
-            const PreparedObject& object = scene.objects[id];
             TextureSampler& sampler = *samplers[id];
             const double lod = by_table
                                    ? static_cast<double>(level_tables[id].level(g.footprint[i]))
@@ -216,17 +349,27 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
             for (const BrickKey& key : missed.view()) ++worker.misses[key];
             if (!result.complete) ++worker.fallback;
             if (result.level < 0) ++worker.empty;
-            glm::vec3 colour;
             if (options_.false_colour_levels) {
-              colour = level_colour(result.level);
-            } else {
-              colour = shade_pixel(lights, object, result.values.data(),
-                                   surface_at(g, i, x, y, inverse_vp, camera.position));
-              worker.shaded += object.object->material.unlit ? 0 : 1;
+              const glm::vec3 colour = level_colour(result.level);
+              frame.image.set(x, y, colour.r, colour.g, colour.b);
+              continue;
             }
-            frame.image.set(x, y, colour.r, colour.g, colour.b);
+            const MaterialInputs& m = materials[id];
+            const float* v = result.values.data();
+            const glm::vec3 albedo = m.colour ? glm::vec3(v[0], v[1], v[2]) : glm::vec3(v[0]);
+            const float opacity = m.opacity >= 0 ? v[m.opacity] : 1.0f;
+            if (m.unlit) {
+              set_pixel(frame.image, x, y, albedo, opacity);
+              continue;
+            }
+            ++worker.shaded;
+            const int lane = lit.batch.count++;
+            lit.add(lane, x, y, i, albedo, opacity,
+                    m.specular >= 0 ? v[m.specular] : m.material_specular, m.shininess);
+            if (lit.batch.count == ShadeBatch::kCapacity) flush();
           }
         }
+        if (lit.batch.count > 0) flush();
       });
   for (auto& worker_samplers : samplers_) {
     for (auto& sampler : worker_samplers) sampler->flush_statistics();

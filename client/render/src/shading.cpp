@@ -58,4 +58,90 @@ glm::vec3 shade(const PreparedLights& lights, const glm::vec3& albedo, float spe
   return colour;
 }
 
+namespace {
+
+// light_term() across the batch, for a light whose direction and radiance are in the batch's
+// light_* and radiance_* lanes; adds it to the colour lanes.
+void add_light_term(ShadeBatch& b) {
+  const int count = b.count;
+  // Diffuse, and the half vector's cosine, in vector loops.
+  for (int i = 0; i < count; ++i) {
+    const float n_dot_l = (b.normal_x[i] * b.light_x[i] + b.normal_y[i] * b.light_y[i]) +
+                          b.normal_z[i] * b.light_z[i];
+    const float hx = b.light_x[i] + b.to_viewer_x[i];
+    const float hy = b.light_y[i] + b.to_viewer_y[i];
+    const float hz = b.light_z[i] + b.to_viewer_z[i];
+    const float inverse_length = 1.0f / std::sqrt((hx * hx + hy * hy) + hz * hz);
+    b.n_dot_l[i] = n_dot_l;
+    b.n_dot_h[i] = (b.normal_x[i] * (hx * inverse_length) + b.normal_y[i] * (hy * inverse_length)) +
+                   b.normal_z[i] * (hz * inverse_length);
+  }
+  // pow() per lane, where light_term() calls it.
+  for (int i = 0; i < count; ++i) {
+    const float n_dot_h = b.n_dot_h[i];
+    b.highlight[i] = (b.n_dot_l[i] > 0.0f && b.specular[i] > 0.0f && n_dot_h > 0.0f)
+                         ? b.specular[i] * std::exp2(b.shininess[i] * std::log2(n_dot_h))
+                         : 0.0f;
+  }
+  for (int i = 0; i < count; ++i) {
+    const float n_dot_l = b.n_dot_l[i];
+    float r = b.albedo_r[i] * b.radiance_r[i] * n_dot_l;
+    float g = b.albedo_g[i] * b.radiance_g[i] * n_dot_l;
+    float bl = b.albedo_b[i] * b.radiance_b[i] * n_dot_l;
+    // light_term() adds the highlight only where it computed one; x + 0 is x for x >= +0,
+    // and a -0 colour prints as 0 all the same, but keep the exact sums anyway.
+    const bool lit_highlight = b.n_dot_l[i] > 0.0f && b.specular[i] > 0.0f && b.n_dot_h[i] > 0.0f;
+    if (lit_highlight) {
+      r = r + b.radiance_r[i] * b.highlight[i];
+      g = g + b.radiance_g[i] * b.highlight[i];
+      bl = bl + b.radiance_b[i] * b.highlight[i];
+    }
+    if (n_dot_l > 0.0f) {
+      b.colour_r[i] = b.colour_r[i] + r;
+      b.colour_g[i] = b.colour_g[i] + g;
+      b.colour_b[i] = b.colour_b[i] + bl;
+    }
+  }
+}
+
+}  // namespace
+
+void shade_batch(const PreparedLights& lights, ShadeBatch& b) {
+  const int count = b.count;
+  for (int i = 0; i < count; ++i) {
+    b.colour_r[i] = b.albedo_r[i] * lights.ambient.r;
+    b.colour_g[i] = b.albedo_g[i] * lights.ambient.g;
+    b.colour_b[i] = b.albedo_b[i] * lights.ambient.b;
+  }
+  for (const auto& d : lights.directional) {
+    for (int i = 0; i < count; ++i) {
+      b.light_x[i] = d.to_light.x;
+      b.light_y[i] = d.to_light.y;
+      b.light_z[i] = d.to_light.z;
+      b.radiance_r[i] = d.radiance.r;
+      b.radiance_g[i] = d.radiance.g;
+      b.radiance_b[i] = d.radiance.b;
+    }
+    add_light_term(b);
+  }
+  for (const auto& p : lights.point) {
+    for (int i = 0; i < count; ++i) {
+      const double ox = p.position.x - b.position_x[i];
+      const double oy = p.position.y - b.position_y[i];
+      const double oz = p.position.z - b.position_z[i];
+      const double dot = (ox * ox + oy * oy) + oz * oz;
+      const double distance2 = dot < 1e-12 ? 1e-12 : dot;  // std::max(dot, 1e-12)
+      const double distance = std::sqrt(distance2);
+      b.light_x[i] = static_cast<float>(ox / distance);
+      b.light_y[i] = static_cast<float>(oy / distance);
+      b.light_z[i] = static_cast<float>(oz / distance);
+      const auto d2 = static_cast<float>(distance2);
+      b.radiance_r[i] = p.radiance.r / d2;
+      b.radiance_g[i] = p.radiance.g / d2;
+      b.radiance_b[i] = p.radiance.b / d2;
+    }
+    add_light_term(b);
+  }
+}
+
 }  // namespace soltex
