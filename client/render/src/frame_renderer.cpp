@@ -223,15 +223,19 @@ struct SurfaceUnprojection {
       const auto vy = static_cast<float>(-ry);
       const auto vz = static_cast<float>(-rz);
       const float length = std::sqrt((vx * vx + vy * vy) + vz * vz);
+      // Quotients first, selected after: a division under a condition would keep the loop
+      // scalar (it might trap), a selection does not.
+      const float qx = vx / length, qy = vy / length, qz = vz / length;
       const bool has_length = length > 0.0f;
-      const float tx = has_length ? vx / length : 0.0f;
-      const float ty = has_length ? vy / length : 0.0f;
-      const float tz = has_length ? vz / length : 1.0f;
+      const float tx = has_length ? qx : 0.0f;
+      const float ty = has_length ? qy : 0.0f;
+      const float tz = has_length ? qz : 1.0f;
       const float n_length = std::sqrt((nx[l] * nx[l] + ny[l] * ny[l]) + nz[l] * nz[l]);
+      const float mx = nx[l] / n_length, my = ny[l] / n_length, mz = nz[l] / n_length;
       const bool has_normal = n_length > 0.0f;
-      float ux = has_normal ? nx[l] / n_length : tx;
-      float uy = has_normal ? ny[l] / n_length : ty;
-      float uz = has_normal ? nz[l] / n_length : tz;
+      const float ux = has_normal ? mx : tx;
+      const float uy = has_normal ? my : ty;
+      const float uz = has_normal ? mz : tz;
       const bool flip = back[l] != 0 || ((ux * tx + uy * ty) + uz * tz) < 0.0f;
       b.normal_x[l] = flip ? -ux : ux;
       b.normal_y[l] = flip ? -uy : uy;

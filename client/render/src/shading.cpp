@@ -85,22 +85,19 @@ void add_light_term(ShadeBatch& b) {
   }
   for (int i = 0; i < count; ++i) {
     const float n_dot_l = b.n_dot_l[i];
-    float r = b.albedo_r[i] * b.radiance_r[i] * n_dot_l;
-    float g = b.albedo_g[i] * b.radiance_g[i] * n_dot_l;
-    float bl = b.albedo_b[i] * b.radiance_b[i] * n_dot_l;
-    // light_term() adds the highlight only where it computed one; x + 0 is x for x >= +0,
-    // and a -0 colour prints as 0 all the same, but keep the exact sums anyway.
-    const bool lit_highlight = b.n_dot_l[i] > 0.0f && b.specular[i] > 0.0f && b.n_dot_h[i] > 0.0f;
-    if (lit_highlight) {
-      r = r + b.radiance_r[i] * b.highlight[i];
-      g = g + b.radiance_g[i] * b.highlight[i];
-      bl = bl + b.radiance_b[i] * b.highlight[i];
-    }
-    if (n_dot_l > 0.0f) {
-      b.colour_r[i] = b.colour_r[i] + r;
-      b.colour_g[i] = b.colour_g[i] + g;
-      b.colour_b[i] = b.colour_b[i] + bl;
-    }
+    const float r = b.albedo_r[i] * b.radiance_r[i] * n_dot_l;
+    const float g = b.albedo_g[i] * b.radiance_g[i] * n_dot_l;
+    const float bl = b.albedo_b[i] * b.radiance_b[i] * n_dot_l;
+    // Every sum computed, then selected: additions under a condition would keep the loop scalar.
+    // light_term() adds the highlight only where it computed one.
+    const bool has_highlight = n_dot_l > 0.0f && b.specular[i] > 0.0f && b.n_dot_h[i] > 0.0f;
+    const float r_total = has_highlight ? r + b.radiance_r[i] * b.highlight[i] : r;
+    const float g_total = has_highlight ? g + b.radiance_g[i] * b.highlight[i] : g;
+    const float b_total = has_highlight ? bl + b.radiance_b[i] * b.highlight[i] : bl;
+    const bool lit = n_dot_l > 0.0f;
+    b.colour_r[i] = lit ? b.colour_r[i] + r_total : b.colour_r[i];
+    b.colour_g[i] = lit ? b.colour_g[i] + g_total : b.colour_g[i];
+    b.colour_b[i] = lit ? b.colour_b[i] + b_total : b.colour_b[i];
   }
 }
 
@@ -125,10 +122,12 @@ void shade_batch(const PreparedLights& lights, ShadeBatch& b) {
     add_light_term(b);
   }
   for (const auto& p : lights.point) {
+    const glm::dvec3 light = p.position;
+    const glm::vec3 radiance = p.radiance;
     for (int i = 0; i < count; ++i) {
-      const double ox = p.position.x - b.position_x[i];
-      const double oy = p.position.y - b.position_y[i];
-      const double oz = p.position.z - b.position_z[i];
+      const double ox = light.x - b.position_x[i];
+      const double oy = light.y - b.position_y[i];
+      const double oz = light.z - b.position_z[i];
       const double dot = (ox * ox + oy * oy) + oz * oz;
       const double distance2 = dot < 1e-12 ? 1e-12 : dot;  // std::max(dot, 1e-12)
       const double distance = std::sqrt(distance2);
@@ -136,9 +135,9 @@ void shade_batch(const PreparedLights& lights, ShadeBatch& b) {
       b.light_y[i] = static_cast<float>(oy / distance);
       b.light_z[i] = static_cast<float>(oz / distance);
       const auto d2 = static_cast<float>(distance2);
-      b.radiance_r[i] = p.radiance.r / d2;
-      b.radiance_g[i] = p.radiance.g / d2;
-      b.radiance_b[i] = p.radiance.b / d2;
+      b.radiance_r[i] = radiance.r / d2;
+      b.radiance_g[i] = radiance.g / d2;
+      b.radiance_b[i] = radiance.b / d2;
     }
     add_light_term(b);
   }
