@@ -152,6 +152,10 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   const float x0 = t.x0_pixels();
   const float y0 = t.y0_pixels();
   const AffineForm* forms = t.clip_mask != 0 ? clip_forms.data() + t.first_clip_form : nullptr;
+  if (forms == nullptr && coverage == nullptr) {
+    draw_unclipped(t, first_x, last_x, first_y, last_y, row, step_x, step_y, stats);
+    return;
+  }
   // Counted locally, added once: the counters must not cost a store per fragment.
   uint64_t rasterized = 0, depth_passed = 0, clip_tested = 0, clip_discarded = 0;
   for (int y = first_y; y <= last_y; ++y) {
@@ -197,6 +201,49 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   stats.fragments_depth_passed += depth_passed;
   stats.fragments_clip_tested += clip_tested;
   stats.fragments_clip_discarded += clip_discarded;
+}
+
+void TileRasterizer::draw_unclipped(const ScreenTriangle& t, int first_x, int last_x, int first_y,
+                                    int last_y, std::array<int64_t, 3> row,
+                                    const std::array<int64_t, 3>& step_x,
+                                    const std::array<int64_t, 3>& step_y, RasterStats& stats) {
+  // The loop of draw() without clip forms and coverage counts, written with selects instead
+  // of early exits so that it runs across the row in vector lanes: the same tests (edge
+  // functions, depth, far plane) and the same float depth, so the same fragments win.
+  const float x0 = t.x0_pixels();
+  const float y0 = t.y0_pixels();
+  const float at_vertex0 = t.depth.at_vertex0;
+  const float per_x = t.depth.per_x;
+  const float per_y = t.depth.per_y;
+  const ScreenTriangle* const self = &t;
+  const int count = last_x - first_x + 1;
+  uint64_t rasterized = 0, depth_passed = 0;
+  for (int y = first_y; y <= last_y; ++y) {
+    const float dy = static_cast<float>(y) + 0.5f - y0;
+    const float depth_y = per_y * dy;
+    const auto row_start = static_cast<std::ptrdiff_t>((y - y0_) * kTileSize + (first_x - x0_));
+    float* __restrict depth_row = depth_.data() + row_start;
+    const ScreenTriangle** __restrict winner_row = winner_.data() + row_start;
+    const int64_t r0 = row[0], r1 = row[1], r2 = row[2];
+    const int64_t s0 = step_x[0], s1 = step_x[1], s2 = step_x[2];
+    for (int k = 0; k < count; ++k) {
+      const int64_t e0 = r0 + s0 * k, e1 = r1 + s1 * k, e2 = r2 + s2 * k;
+      const bool inside = (e0 | e1 | e2) >= 0;
+      const float dx = static_cast<float>(first_x + k) + 0.5f - x0;
+      const float depth = (at_vertex0 + per_x * dx) + depth_y;
+      const float old_depth = depth_row[k];
+      const bool pass = inside & (depth < old_depth) & !(depth > kFarDepth);
+      rasterized += inside ? 1 : 0;
+      depth_passed += pass ? 1 : 0;
+      depth_row[k] = pass ? depth : old_depth;
+      winner_row[k] = pass ? self : winner_row[k];
+    }
+    row[0] += step_y[0];
+    row[1] += step_y[1];
+    row[2] += step_y[2];
+  }
+  stats.fragments_rasterized += rasterized;
+  stats.fragments_depth_passed += depth_passed;
 }
 
 void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, RasterStats& stats) const {
