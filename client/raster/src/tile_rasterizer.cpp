@@ -54,13 +54,14 @@ struct GBufferPlanes {
   float* footprint;
 };
 
-void write_empty(const GBufferPlanes& target, std::size_t i) {
-  target.depth[i] = std::numeric_limits<float>::infinity();
-  target.flags[i] = 0;
-  target.object_id[i] = GBuffer::kNoObject;
-  target.texture_position[i] = glm::dvec3(0.0);
-  target.normal[i] = glm::vec3(0.0f);
-  target.footprint[i] = 0.0f;
+// Pixels [i, i + count) of one row: nothing drawn.
+void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) {
+  std::fill_n(target.depth + i, count, std::numeric_limits<float>::infinity());
+  std::fill_n(target.flags + i, count, uint8_t{0});
+  std::fill_n(target.object_id + i, count, GBuffer::kNoObject);
+  std::fill_n(target.texture_position + i, count, glm::dvec3(0.0));
+  std::fill_n(target.normal + i, count, glm::vec3(0.0f));
+  std::fill_n(target.footprint + i, count, 0.0f);
 }
 
 // The winner's attributes at pixel (x, y), perspective-correct: with barycentric weights b
@@ -252,12 +253,17 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, RasterSta
   uint64_t covered = 0, back_faces = 0, cap_rays = 0, caps = 0;
   for (int y = y0_; y < y1_; ++y) {
     const std::size_t row = static_cast<std::size_t>(y) * width;
+    const ScreenTriangle* const* winners = winner_.data() + (y - y0_) * kTileSize - x0_;
     for (int x = x0_; x < x1_; ++x) {
       const auto local = static_cast<std::size_t>((y - y0_) * kTileSize + (x - x0_));
       const std::size_t i = row + static_cast<std::size_t>(x);
-      const ScreenTriangle* winner = winner_[local];
+      const ScreenTriangle* winner = winners[x];
       if (winner == nullptr) {
-        write_empty(target, i);
+        // A run of empty pixels is written plane by plane (memset-like stores).
+        int end = x + 1;
+        while (end < x1_ && winners[end] == nullptr) ++end;
+        write_empty(target, i, static_cast<std::size_t>(end - x));
+        x = end - 1;
         continue;
       }
       ++covered;
