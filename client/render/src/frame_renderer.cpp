@@ -130,6 +130,9 @@ struct MaterialInputs {
   float material_specular = 0.0f;
   float shininess = 0.0f;
   bool unlit = false;
+  // Lit, three channels (colour only), drawn with a trilinear lookup at a tabled level: the
+  // shading pass's fast path (TextureSampler::locate_rgb()).
+  bool rgb_trilinear = false;
 };
 
 MaterialInputs material_inputs(const PreparedObject& object) {
@@ -172,6 +175,44 @@ struct LitPixels {
     batch.albedo_b[l] = albedo.b;
     batch.specular[l] = specular;
     batch.shininess[l] = shininess;
+    cell[l] = nullptr;
+  }
+
+  // A lane whose albedo is still to be read from a brick cell (located, and prefetched).
+  ShadeBatch::Lanes<const uint8_t*> cell;  // nullptr: the albedo is in the batch already
+  ShadeBatch::Lanes<glm::vec3> fraction;
+  ShadeBatch::Lanes<const TextureSampler*> sampler;
+
+  void add_cell(int lane, int px, int py, std::size_t i, const uint8_t* first_sample,
+                const glm::vec3& frac, const TextureSampler& texture, float specular,
+                float shininess) {
+    const auto l = static_cast<std::size_t>(lane);
+    x[l] = px;
+    y[l] = py;
+    index[l] = i;
+    opacity[l] = 1.0f;
+    cell[l] = first_sample;
+    fraction[l] = frac;
+    sampler[l] = &texture;
+    batch.specular[l] = specular;
+    batch.shininess[l] = shininess;
+    const int y_stride = texture.y_stride(), z_stride = texture.z_stride();
+    __builtin_prefetch(first_sample);
+    __builtin_prefetch(first_sample + y_stride);
+    __builtin_prefetch(first_sample + z_stride);
+    __builtin_prefetch(first_sample + y_stride + z_stride);
+  }
+
+  // The located cells' trilinear lookups, by now (one batch after their prefetch) in cache.
+  void read_cells() {
+    for (std::size_t l = 0; l < static_cast<std::size_t>(batch.count); ++l) {
+      if (cell[l] == nullptr) continue;
+      alignas(16) float rgb[4];
+      sampler[l]->trilinear_rgb(cell[l], fraction[l], rgb);
+      batch.albedo_r[l] = rgb[0];
+      batch.albedo_g[l] = rgb[1];
+      batch.albedo_b[l] = rgb[2];
+    }
   }
 
   void write(Image& image) const {
@@ -307,7 +348,12 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
   // Per object: how the texture's channels become albedo, opacity and specular.
   std::vector<MaterialInputs> materials;
   materials.reserve(scene.objects.size());
-  for (const PreparedObject& o : scene.objects) materials.push_back(material_inputs(o));
+  for (const PreparedObject& o : scene.objects) {
+    MaterialInputs m = material_inputs(o);
+    m.rgb_trilinear = by_table && options_.filter == SampleFilter::trilinear &&
+                      !options_.false_colour_levels && !m.unlit && o.channels == 3;
+    materials.push_back(m);
+  }
   struct Worker {
     std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
     std::size_t covered = 0, fallback = 0, empty = 0, shaded = 0;
@@ -325,6 +371,7 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
         auto& samplers = samplers_[static_cast<std::size_t>(worker_index)];
         LitPixels lit;  // about 40 KB of stack, uninitialised but for the count
         const auto flush = [&] {
+          lit.read_cells();
           unprojection.fill(g, lit);
           shade_batch(lights, lit.batch);
           lit.write(frame.image);
@@ -345,11 +392,26 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
             }
             ++worker.covered;
             TextureSampler& sampler = *samplers[id];
-            const double lod = by_table
-                                   ? static_cast<double>(level_tables[id].level(g.footprint[i]))
-                                   : sampler.level_of_detail(g.footprint[i]) + options_.level_bias;
-            const SampleResult result =
-                sampler.sample(g.texture_position[i], lod, options_.filter, &missed);
+            const MaterialInputs& m = materials[id];
+            SampleResult result;
+            if (m.rgb_trilinear) {
+              // The common case in two steps: locate and prefetch now, read at the flush.
+              const int level = level_tables[id].level(g.footprint[i]);
+              glm::vec3 frac;
+              if (const uint8_t* cell = sampler.locate_rgb(g.texture_position[i], level, frac)) {
+                ++worker.shaded;
+                lit.add_cell(lit.batch.count++, x, y, i, cell, frac, sampler, m.material_specular,
+                             m.shininess);
+                if (lit.batch.count == ShadeBatch::kCapacity) flush();
+                continue;
+              }
+              result = sampler.sample_after_miss(g.texture_position[i], level, &missed);
+            } else {
+              const double lod =
+                  by_table ? static_cast<double>(level_tables[id].level(g.footprint[i]))
+                           : sampler.level_of_detail(g.footprint[i]) + options_.level_bias;
+              result = sampler.sample(g.texture_position[i], lod, options_.filter, &missed);
+            }
             for (const BrickKey& key : missed.view()) ++worker.misses[key];
             if (!result.complete) ++worker.fallback;
             if (result.level < 0) ++worker.empty;
@@ -358,7 +420,6 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
               frame.image.set(x, y, colour.r, colour.g, colour.b);
               continue;
             }
-            const MaterialInputs& m = materials[id];
             const float* v = result.values.data();
             const glm::vec3 albedo = m.colour ? glm::vec3(v[0], v[1], v[2]) : glm::vec3(v[0]);
             const float opacity = m.opacity >= 0 ? v[m.opacity] : 1.0f;

@@ -161,6 +161,34 @@ class TextureSampler {
     return result;
   }
 
+  // sample()'s trilinear fast path in two steps, for callers that look many points up and
+  // prefetch in between. For a three-channel texture and a level in [0, coarsest]: the
+  // address of the cell's first sample in its resident brick (bricks found in this frame stay
+  // resident until the next BrickCache::begin_frame()), and the fraction; nullptr when the
+  // brick is not resident, and then sample_after_miss() gives what sample() would have.
+  const uint8_t* locate_rgb(const glm::dvec3& p, int level, glm::vec3& frac) {
+    const Location location = locate(p, level);
+    const Current* brick = resident(level, location.brick);
+    if (brick == nullptr) return nullptr;
+    frac = location.frac;
+    const glm::ivec3& c = location.cell;
+    return brick->samples + c.z * z_stride_ + c.y * y_stride_ + c.x * 3;
+  }
+  // The lookup of locate_rgb()'s cell: writes four floats, R, G, B and 0, as sample() gives them.
+  void trilinear_rgb(const uint8_t* cell, const glm::vec3& frac, float* out) const {
+    trilinear_u8<3>(cell, y_stride_, z_stride_, frac.x, frac.y, frac.z, out);
+  }
+  // The strides of a cell's four sample rows from its first sample, for prefetching.
+  int y_stride() const { return y_stride_; }
+  int z_stride() const { return z_stride_; }
+  // sample(p, level, trilinear, missed) after locate_rgb(p, level) returned nullptr, without
+  // looking the missing brick up a second time.
+  SampleResult sample_after_miss(const glm::dvec3& p, int level, MissedBricks* missed) {
+    SampleResult result{};
+    sample_general(p, static_cast<double>(level), SampleFilter::trilinear, missed, result);
+    return result;
+  }
+
   SampleResult sample_footprint(const glm::dvec3& p, double footprint, SampleFilter filter,
                                 MissedBricks* missed = nullptr) {
     return sample(p, level_of_detail(footprint), filter, missed);
