@@ -83,6 +83,9 @@ struct SurfaceBatch {
   Lanes<float> depth;
 
   void add(const ScreenTriangle* t, int px, int py, std::size_t i, float z) {
+    // The lines past the first (which drawing read) hold what write() gathers.
+    __builtin_prefetch(reinterpret_cast<const char*>(t) + 64);
+    __builtin_prefetch(reinterpret_cast<const char*>(t) + 128);
     const auto l = static_cast<std::size_t>(count++);
     triangle[l] = t;
     x[l] = px;
