@@ -200,9 +200,12 @@ RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObj
     impl.first_triangle.push_back(impl.first_triangle.back() + objects[i].mesh.triangle_count());
   }
   impl.vertices.resize(vertex_count, plane_count);
+  const TriangleSetup setup(view.width, view.height, plane_count);
   impl.pool.parallel_for(blocks.size(), [&](std::size_t b, int) {
-    raster_internal::transform_vertices(impl.objects[blocks[b].object], blocks[b].begin,
-                                        blocks[b].end, impl.vertices);
+    const ObjectFrame& object = impl.objects[blocks[b].object];
+    raster_internal::transform_vertices(object, blocks[b].begin, blocks[b].end, impl.vertices);
+    setup.project_vertices(impl.vertices, object.first_vertex + blocks[b].begin,
+                           object.first_vertex + blocks[b].end);
   });
 
   // 2. Setup and binning.
@@ -211,7 +214,6 @@ RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObj
   const std::size_t triangle_count = impl.first_triangle.back();
   const std::size_t chunk_count = (triangle_count + kTrianglesPerChunk - 1) / kTrianglesPerChunk;
   if (impl.chunks.size() < chunk_count) impl.chunks.resize(chunk_count);
-  const TriangleSetup setup(view.width, view.height, plane_count);
   impl.pool.parallel_for(chunk_count, [&](std::size_t c, int) {
     SetupChunk& chunk = impl.chunks[c];
     chunk.triangles.clear();

@@ -32,6 +32,7 @@ void TransformedVertices::resize(std::size_t vertex_count, int planes) {
   texture.resize(vertex_count);
   normal.resize(vertex_count);
   valid.resize(vertex_count);
+  screen.resize(vertex_count);
   plane_distance.resize(vertex_count * static_cast<std::size_t>(planes));
 }
 

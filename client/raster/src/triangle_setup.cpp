@@ -88,7 +88,18 @@ TriangleSetup::ProjectedVertex TriangleSetup::project(const glm::vec4& clip) con
   const double scale = static_cast<double>(kSubpixelScale);
   return {static_cast<int64_t>(std::nearbyint(std::clamp(screen_x * scale, -kLimit, kLimit))),
           static_cast<int64_t>(std::nearbyint(std::clamp(screen_y * scale, -kLimit, kLimit))),
-          ndc_z * 0.5 + 0.5};
+          ndc_z * 0.5 + 0.5, static_cast<float>(inv_w)};
+}
+
+void TriangleSetup::project_vertices(TransformedVertices& vertices, std::size_t begin,
+                                     std::size_t end) const {
+  for (std::size_t i = begin; i < end; ++i) {
+    const glm::vec4& clip = vertices.clip[i];
+    // Only where setup() would project the vertex itself: finite and inside the guard band.
+    if (vertices.valid[i] != 0 && clip_planes_.outside(clip) == 0) {
+      vertices.screen[i] = project(clip);
+    }
+  }
 }
 
 void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
@@ -166,9 +177,13 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
   }
 
   std::array<ProjectedVertex, ClipPolygon::kCapacity> projected;
-  for (int k = 0; k < polygon.size; ++k) {
-    const auto index = static_cast<std::size_t>(k);
-    projected[index] = project(polygon.vertices[index].clip);
+  if (outside == 0) {
+    for (std::size_t k = 0; k < 3; ++k) projected[k] = vertices.screen[at[k]];
+  } else {
+    for (int k = 0; k < polygon.size; ++k) {
+      const auto index = static_cast<std::size_t>(k);
+      projected[index] = project(polygon.vertices[index].clip);
+    }
   }
   for (int k = 1; k + 1 < polygon.size; ++k) {
     emit(source, polygon, projected, {0, k, k + 1}, triangles, clip_forms, stats);
@@ -225,7 +240,7 @@ void TriangleSetup::emit(const SourceTriangle& source, const ClipPolygon& polygo
     const ClipVertex& clip_vertex = polygon.vertices[static_cast<std::size_t>(corner)];
     const glm::dvec3 weights(clip_vertex.weights);
     depth[k] = vertex(static_cast<int>(k)).depth;
-    triangle.inv_w[k] = static_cast<float>(1.0 / static_cast<double>(clip_vertex.clip.w));
+    triangle.inv_w[k] = vertex(static_cast<int>(k)).inv_w;  // 1 / clip_vertex.clip.w
     // Offsets from vertex 0's texture position, combined in double, small enough for float.
     const glm::dvec3 offset = weights.y * (source.texture[1] - source.texture[0]) +
                               weights.z * (source.texture[2] - source.texture[0]);
