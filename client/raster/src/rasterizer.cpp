@@ -176,6 +176,11 @@ void Rasterizer::parallel_for(std::size_t count,
 
 RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObject> objects,
                                GBuffer& target) {
+  return render(view, objects, target, TileCallback{});
+}
+
+RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObject> objects,
+                               GBuffer& target, const TileCallback& after_tile) {
   validate(view, objects);
   Impl& impl = *impl_;
   target.resize(view.width, view.height, impl.options.count_coverage);
@@ -263,6 +268,11 @@ RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObj
       }
     }
     tiles.resolve(tile_frame, target, stats);
+    if (after_tile) {
+      after_tile(column * kTileSize, row * kTileSize,
+                 std::min(view.width, (column + 1) * kTileSize),
+                 std::min(view.height, (row + 1) * kTileSize), worker);
+    }
   });
 
   RasterStats total;
