@@ -94,11 +94,9 @@ TriangleSetup::ProjectedVertex TriangleSetup::project(const glm::vec4& clip) con
 void TriangleSetup::project_vertices(TransformedVertices& vertices, std::size_t begin,
                                      std::size_t end) const {
   for (std::size_t i = begin; i < end; ++i) {
-    const glm::vec4& clip = vertices.clip[i];
+    TransformedVertex& v = vertices.vertex[i];
     // Only where setup() would project the vertex itself: finite and inside the guard band.
-    if (vertices.valid[i] != 0 && clip_planes_.outside(clip) == 0) {
-      vertices.screen[i] = project(clip);
-    }
+    if (v.valid != 0 && clip_planes_.outside(v.clip) == 0) v.screen = project(v.clip);
   }
 }
 
@@ -115,13 +113,16 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
   }
   const std::array<std::size_t, 3> at = {object.first_vertex + i0, object.first_vertex + i1,
                                          object.first_vertex + i2};
-  if (!vertices.valid[at[0]] || !vertices.valid[at[1]] || !vertices.valid[at[2]]) {
+  const TransformedVertex& v0 = vertices.vertex[at[0]];
+  const TransformedVertex& v1 = vertices.vertex[at[1]];
+  const TransformedVertex& v2 = vertices.vertex[at[2]];
+  if (!v0.valid || !v1.valid || !v2.valid) {
     ++stats.triangles_invalid;
     return;
   }
-  const glm::vec4& a = vertices.clip[at[0]];
-  const glm::vec4& b = vertices.clip[at[1]];
-  const glm::vec4& c = vertices.clip[at[2]];
+  const glm::vec4& a = v0.clip;
+  const glm::vec4& b = v1.clip;
+  const glm::vec4& c = v2.clip;
   if ((frustum_outcode(a) & frustum_outcode(b) & frustum_outcode(c)) != 0) {
     ++stats.triangles_culled;
     return;
@@ -166,19 +167,20 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
     }
   }
 
-  for (std::size_t k = 0; k < 3; ++k) source.texture[k] = vertices.texture[at[k]];
-  const bool has_normals = glm::dot(vertices.normal[at[0]], vertices.normal[at[0]]) > 0.0f &&
-                           glm::dot(vertices.normal[at[1]], vertices.normal[at[1]]) > 0.0f &&
-                           glm::dot(vertices.normal[at[2]], vertices.normal[at[2]]) > 0.0f;
+  const std::array<const TransformedVertex*, 3> corner_vertex = {&v0, &v1, &v2};
+  for (std::size_t k = 0; k < 3; ++k) source.texture[k] = corner_vertex[k]->texture;
+  const bool has_normals = glm::dot(v0.normal, v0.normal) > 0.0f &&
+                           glm::dot(v1.normal, v1.normal) > 0.0f &&
+                           glm::dot(v2.normal, v2.normal) > 0.0f;
   if (has_normals) {
-    for (std::size_t k = 0; k < 3; ++k) source.normal[k] = vertices.normal[at[k]];
+    for (std::size_t k = 0; k < 3; ++k) source.normal[k] = corner_vertex[k]->normal;
   } else {
     source.normal.fill(face_normal(object, i0, i1, i2));
   }
 
   std::array<ProjectedVertex, ClipPolygon::kCapacity> projected;
   if (outside == 0) {
-    for (std::size_t k = 0; k < 3; ++k) projected[k] = vertices.screen[at[k]];
+    for (std::size_t k = 0; k < 3; ++k) projected[k] = corner_vertex[k]->screen;
   } else {
     for (int k = 0; k < polygon.size; ++k) {
       const auto index = static_cast<std::size_t>(k);
