@@ -12,6 +12,9 @@ namespace soltex::raster_internal {
 namespace {
 
 constexpr float kFarDepth = 1.0f;
+// Triangles spanning at least this many pixel columns of a tile are drawn by the vectorised
+// loop.
+constexpr int kVectorColumns = 8;
 
 // Edge k is the edge opposite vertex k; its edge function, over the double area, is vertex
 // k's barycentric weight.
@@ -236,7 +239,9 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   const float x0 = t.x0_pixels();
   const float y0 = t.y0_pixels();
   const AffineForm* forms = t.clip_mask != 0 ? clip_forms.data() + t.first_clip_form : nullptr;
-  if (forms == nullptr && coverage == nullptr) {
+  // Narrow triangles (most of a fine mesh's) stay with the loop below: a vector loop's set-up
+  // per row would cost more than the few pixels it covers.
+  if (forms == nullptr && coverage == nullptr && last_x - first_x + 1 >= kVectorColumns) {
     draw_unclipped(t, first_x, last_x, first_y, last_y, row, step_x, step_y, stats);
     return;
   }
