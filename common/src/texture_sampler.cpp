@@ -1,7 +1,9 @@
 #include "soltex/common/texture_sampler.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -25,6 +27,38 @@ double level_of_detail(const BrickLayout& layout, double footprint) {
   if (!(footprint > 0.0)) return 0.0;  // zero, negative, -inf
   // +inf gives +inf and a quotient that underflows gives -inf: both clamp.
   return std::clamp(std::log2(footprint / layout.filter_width(0)), 0.0, coarsest);
+}
+
+int NearestLevelTable::level_by_formula(const BrickLayout& layout, double bias, float footprint) {
+  const double coarsest = static_cast<double>(layout.coarsest_level());
+  const double lod = level_of_detail(layout, footprint) + bias;
+  if (!(lod >= 0.0)) return std::isnan(lod) ? layout.coarsest_level() : 0;
+  return static_cast<int>(std::min(lod, coarsest) + 0.5);
+}
+
+NearestLevelTable::NearestLevelTable(const BrickLayout& layout, double bias) {
+  const auto level_at = [&](uint32_t bits) {
+    return level_by_formula(layout, bias, std::bit_cast<float>(bits));
+  };
+  constexpr uint32_t kInfinityBits = 0x7f800000u;
+  base_level_ = level_at(0);
+  nan_level_ = level_by_formula(layout, bias, std::numeric_limits<float>::quiet_NaN());
+  non_positive_level_ = level_by_formula(layout, bias, -1.0f);
+  const int top = level_at(kInfinityBits);
+  thresholds_.fill(0xffffffffu);
+  for (int k = 0; k < top - base_level_; ++k) {
+    // The smallest bits in (0, +inf] whose level exceeds base_level_ + k.
+    uint32_t low = 0, high = kInfinityBits;  // level(low) <= base + k < level(high)
+    while (high - low > 1) {
+      const uint32_t middle = low + (high - low) / 2;
+      if (level_at(middle) > base_level_ + k) {
+        high = middle;
+      } else {
+        low = middle;
+      }
+    }
+    thresholds_[static_cast<std::size_t>(k)] = high;
+  }
 }
 
 TextureSampler::TextureSampler(BrickCache& cache, uint64_t texture, const BrickLayout& layout,

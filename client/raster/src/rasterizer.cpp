@@ -44,6 +44,7 @@ namespace {
 constexpr std::size_t kVerticesPerBlock = 4096;
 constexpr std::size_t kTrianglesPerChunk = 2048;
 constexpr int kMaxThreads = 256;
+constexpr uint32_t kPrefetchAhead = 8;  // triangles
 
 // The screen triangles of one chunk of submitted triangles, and their tile bins: the
 // triangles of tile t are bin_items[bin_start[t] .. bin_start[t + 1]), in submission order.
@@ -168,8 +169,18 @@ int Rasterizer::thread_count() const {
   return impl_->pool.thread_count();
 }
 
+void Rasterizer::parallel_for(std::size_t count,
+                              const std::function<void(std::size_t, int)>& task) {
+  impl_->pool.parallel_for(count, task);
+}
+
 RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObject> objects,
                                GBuffer& target) {
+  return render(view, objects, target, TileCallback{});
+}
+
+RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObject> objects,
+                               GBuffer& target, const TileCallback& after_tile) {
   validate(view, objects);
   Impl& impl = *impl_;
   target.resize(view.width, view.height, impl.options.count_coverage);
@@ -194,9 +205,12 @@ RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObj
     impl.first_triangle.push_back(impl.first_triangle.back() + objects[i].mesh.triangle_count());
   }
   impl.vertices.resize(vertex_count, plane_count);
+  const TriangleSetup setup(view.width, view.height, plane_count);
   impl.pool.parallel_for(blocks.size(), [&](std::size_t b, int) {
-    raster_internal::transform_vertices(impl.objects[blocks[b].object], blocks[b].begin,
-                                        blocks[b].end, impl.vertices);
+    const ObjectFrame& object = impl.objects[blocks[b].object];
+    raster_internal::transform_vertices(object, blocks[b].begin, blocks[b].end, impl.vertices);
+    setup.project_vertices(impl.vertices, object.first_vertex + blocks[b].begin,
+                           object.first_vertex + blocks[b].end);
   });
 
   // 2. Setup and binning.
@@ -205,7 +219,6 @@ RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObj
   const std::size_t triangle_count = impl.first_triangle.back();
   const std::size_t chunk_count = (triangle_count + kTrianglesPerChunk - 1) / kTrianglesPerChunk;
   if (impl.chunks.size() < chunk_count) impl.chunks.resize(chunk_count);
-  const TriangleSetup setup(view.width, view.height, plane_count);
   impl.pool.parallel_for(chunk_count, [&](std::size_t c, int) {
     SetupChunk& chunk = impl.chunks[c];
     chunk.triangles.clear();
@@ -243,12 +256,23 @@ RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObj
                 std::min(view.height, (row + 1) * kTileSize));
     for (std::size_t c = 0; c < chunk_count; ++c) {
       const SetupChunk& chunk = impl.chunks[c];
-      for (uint32_t k = chunk.bin_start[tile]; k < chunk.bin_start[tile + 1]; ++k) {
+      const uint32_t end = chunk.bin_start[tile + 1];
+      for (uint32_t k = chunk.bin_start[tile]; k < end; ++k) {
+        // A tile's triangles lie scattered over the chunk: ask for the line drawing reads a
+        // few triangles ahead.
+        if (k + kPrefetchAhead < end) {
+          __builtin_prefetch(&chunk.triangles[chunk.bin_items[k + kPrefetchAhead]]);
+        }
         tiles.draw(chunk.triangles[chunk.bin_items[k]], chunk.clip_forms, coverage, view.width,
                    stats);
       }
     }
     tiles.resolve(tile_frame, target, stats);
+    if (after_tile) {
+      after_tile(column * kTileSize, row * kTileSize,
+                 std::min(view.width, (column + 1) * kTileSize),
+                 std::min(view.height, (row + 1) * kTileSize), worker);
+    }
   });
 
   RasterStats total;

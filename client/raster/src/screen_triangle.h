@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>
 
@@ -22,28 +23,30 @@ struct AffineForm {
   float per_y = 0.0f;
 };
 
-struct ScreenTriangle {
+// Laid out for the tile pass: what drawing reads (positions, bounds, depth, clip mask) fills
+// the first 64-byte line, so a triangle drawn into a tile and beaten there costs one line;
+// resolving a winner reads the other two.
+struct alignas(64) ScreenTriangle {
   // Fixed-point positions, y down, ordered so that double_area > 0 (clockwise on screen).
   std::array<int32_t, 3> x{};
   std::array<int32_t, 3> y{};
   int64_t double_area = 0;
   // Pixels whose centres can be inside, clamped to the viewport (inclusive).
   int32_t min_px = 0, min_py = 0, max_px = 0, max_py = 0;
-
   AffineForm depth;  // window depth, affine on screen
+  // User clip planes this triangle straddles (bit j: plane j needs a per-fragment test), and
+  // where their forms (signed distance / w, affine on screen; one per clip plane of the frame)
+  // start in the chunk's clip-form array.
+  uint32_t clip_mask = 0;
+
+  uint32_t first_clip_form = 0;
+  uint32_t object = 0;  // index of the object in the render call
+  bool back_face = false;
   // Per vertex (in the order above): 1/w, and attributes to interpolate perspective-correctly.
   std::array<float, 3> inv_w{};
   std::array<glm::vec3, 3> texture_offset{};  // texture position - texture_origin
   std::array<glm::vec3, 3> normal{};          // world space
   glm::dvec3 texture_origin{0.0};
-
-  uint32_t object = 0;  // index of the object in the render call
-  // User clip planes this triangle straddles (bit j: plane j needs a per-fragment test), and
-  // where their forms (signed distance / w, affine on screen; one per clip plane of the frame)
-  // start in the chunk's clip-form array.
-  uint32_t clip_mask = 0;
-  uint32_t first_clip_form = 0;
-  bool back_face = false;
 
   float x0_pixels() const { return static_cast<float>(x[0]) / static_cast<float>(kSubpixelScale); }
   float y0_pixels() const { return static_cast<float>(y[0]) / static_cast<float>(kSubpixelScale); }

@@ -12,6 +12,9 @@ namespace soltex::raster_internal {
 namespace {
 
 constexpr float kFarDepth = 1.0f;
+// Triangles spanning at least this many pixel columns of a tile are drawn by the vectorised
+// loop.
+constexpr int kVectorColumns = 8;
 
 // Edge k is the edge opposite vertex k; its edge function, over the double area, is vertex
 // k's barycentric weight.
@@ -26,13 +29,6 @@ std::array<Edge, 3> edges_of(const ScreenTriangle& t) {
 
 int64_t pixel_centre(int pixel) {
   return static_cast<int64_t>(pixel) * kSubpixelScale + kSubpixelScale / 2;
-}
-
-glm::vec3 unit_normal(const glm::vec3& sum, const glm::vec3& fallback) {
-  const float length = glm::length(sum);
-  if (length > 0.0f && std::isfinite(length)) return sum / length;
-  const float fallback_length = glm::length(fallback);
-  return fallback_length > 0.0f ? fallback / fallback_length : glm::vec3(0.0f, 0.0f, 1.0f);
 }
 
 // The G-buffer's planes as raw pointers, taken once per tile: a store through uint8_t* (the
@@ -54,68 +50,159 @@ struct GBufferPlanes {
   float* footprint;
 };
 
-void write_empty(const GBufferPlanes& target, std::size_t i) {
-  target.depth[i] = std::numeric_limits<float>::infinity();
-  target.flags[i] = 0;
-  target.object_id[i] = GBuffer::kNoObject;
-  target.texture_position[i] = glm::dvec3(0.0);
-  target.normal[i] = glm::vec3(0.0f);
-  target.footprint[i] = 0.0f;
+// Pixels [i, i + count) of one row: nothing drawn.
+void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) {
+  std::fill_n(target.depth + i, count, std::numeric_limits<float>::infinity());
+  std::fill_n(target.flags + i, count, uint8_t{0});
+  std::fill_n(target.object_id + i, count, GBuffer::kNoObject);
+  std::fill_n(target.texture_position + i, count, glm::dvec3(0.0));
+  std::fill_n(target.normal + i, count, glm::vec3(0.0f));
+  std::fill_n(target.footprint + i, count, 0.0f);
 }
 
-// The winner's attributes at pixel (x, y), perspective-correct: with barycentric weights b
-// (from the exact integer edge functions) and q = 1/w, P = sum(b q P) / sum(b q). Its
-// derivative per pixel step is analytic: dP/dx = (d(sum b q P)/dx - P d(sum b q)/dx) / sum(b q),
-// the weights' derivatives being constant over the triangle. Float suffices: P is an offset
-// from the triangle's double origin, so float's error is relative to the triangle's size.
-void write_surface(const ScreenTriangle& t, const ObjectFrame& object, float depth, int x, int y,
-                   const GBufferPlanes& target, std::size_t i) {
-  const std::array<Edge, 3> edges = edges_of(t);
-  const int64_t px = pixel_centre(x);
-  const int64_t py = pixel_centre(y);
-  const float inv_area = 1.0f / static_cast<float>(t.double_area);
-  const float step = static_cast<float>(kSubpixelScale) * inv_area;
+bool finite(float v) {
+  return std::fabs(v) <= std::numeric_limits<float>::max();  // std::isfinite, as a compare
+}
 
-  float q = 0.0f, dq_dx = 0.0f, dq_dy = 0.0f;
-  glm::vec3 n(0.0f), dn_dx(0.0f), dn_dy(0.0f), normal_sum(0.0f);
-  for (std::size_t k = 0; k < 3; ++k) {
-    const Edge& e = edges[k];
-    const float weight =
-        static_cast<float>(edge_function(e.ax, e.ay, e.bx, e.by, px, py)) * inv_area;
-    const float q_k = t.inv_w[k];
-    const float weight_q = weight * q_k;
-    const float weight_q_dx = -static_cast<float>(e.by - e.ay) * step * q_k;
-    const float weight_q_dy = static_cast<float>(e.bx - e.ax) * step * q_k;
-    q += weight_q;
-    dq_dx += weight_q_dx;
-    dq_dy += weight_q_dy;
-    n += weight_q * t.texture_offset[k];
-    dn_dx += weight_q_dx * t.texture_offset[k];
-    dn_dy += weight_q_dy * t.texture_offset[k];
-    normal_sum += weight_q * t.normal[k];
+// The winners' attributes at up to kCapacity pixels, perspective-correct: with barycentric
+// weights b (from the exact integer edge functions) and q = 1/w, P = sum(b q P) / sum(b q).
+// Its derivative per pixel step is analytic: dP/dx = (d(sum b q P)/dx - P d(sum b q)/dx) /
+// sum(b q), the weights' derivatives being constant over the triangle. Float suffices: P is an
+// offset from the triangle's double origin, so float's error is relative to the triangle's
+// size.
+//
+// The pixels' triangle data is gathered into arrays first, so that the arithmetic runs as one
+// loop across the pixels (vector lanes); every lane does the same IEEE operations in the same
+// order as a pixel-at-a-time loop would, selects standing in for its branches.
+struct SurfaceBatch {
+  static constexpr int kCapacity = 64;
+  template <typename T>
+  using Lanes = std::array<T, kCapacity>;
+
+  int count = 0;
+  Lanes<const ScreenTriangle*> triangle;
+  Lanes<int> x, y;
+  Lanes<std::size_t> index;
+  Lanes<float> depth;
+
+  void add(const ScreenTriangle* t, int px, int py, std::size_t i, float z) {
+    // The lines past the first (which drawing read) hold what write() gathers.
+    __builtin_prefetch(reinterpret_cast<const char*>(t) + 64);
+    __builtin_prefetch(reinterpret_cast<const char*>(t) + 128);
+    const auto l = static_cast<std::size_t>(count++);
+    triangle[l] = t;
+    x[l] = px;
+    y[l] = py;
+    index[l] = i;
+    depth[l] = z;
   }
 
-  glm::vec3 offset(0.0f);
-  float footprint = std::numeric_limits<float>::infinity();
-  if (q > 0.0f && std::isfinite(q)) {
-    const float inv_q = 1.0f / q;
-    offset = n * inv_q;
-    const glm::vec3 dp_dx = (dn_dx - offset * dq_dx) * inv_q;
-    const glm::vec3 dp_dy = (dn_dy - offset * dq_dy) * inv_q;
-    footprint = std::sqrt(std::max(glm::dot(dp_dx, dp_dx), glm::dot(dp_dy, dp_dy)));
-    if (!std::isfinite(offset.x) || !std::isfinite(offset.y) || !std::isfinite(offset.z)) {
-      offset = glm::vec3(0.0f);  // only with absurd inputs; stay at a vertex, never NaN
-      footprint = std::numeric_limits<float>::infinity();
+  void write(const TileFrame& frame, const GBufferPlanes& target) {
+    const auto n = static_cast<std::size_t>(count);
+    if (n == 0) return;
+    // Vertex k's position, 1/w, texture offset and normal, per lane.
+    alignas(64) std::array<Lanes<int64_t>, 3> vx, vy;
+    alignas(64) Lanes<int64_t> area, px, py;
+    alignas(64) std::array<Lanes<float>, 3> q, ox, oy, oz, nx, ny, nz;
+    for (std::size_t l = 0; l < n; ++l) {
+      const ScreenTriangle& t = *triangle[l];
+      for (std::size_t k = 0; k < 3; ++k) {
+        vx[k][l] = t.x[k];
+        vy[k][l] = t.y[k];
+        q[k][l] = t.inv_w[k];
+        ox[k][l] = t.texture_offset[k].x;
+        oy[k][l] = t.texture_offset[k].y;
+        oz[k][l] = t.texture_offset[k].z;
+        nx[k][l] = t.normal[k].x;
+        ny[k][l] = t.normal[k].y;
+        nz[k][l] = t.normal[k].z;
+      }
+      area[l] = t.double_area;
+      px[l] = pixel_centre(x[l]);
+      py[l] = pixel_centre(y[l]);
     }
+    alignas(64) Lanes<float> offset_x, offset_y, offset_z, footprint, normal_x, normal_y, normal_z;
+    for (std::size_t l = 0; l < n; ++l) {
+      const float inv_area = 1.0f / static_cast<float>(area[l]);
+      const float step = static_cast<float>(kSubpixelScale) * inv_area;
+      float sum_q = 0.0f, dq_dx = 0.0f, dq_dy = 0.0f;
+      float sx = 0.0f, sy = 0.0f, sz = 0.0f;  // sum b q P
+      float dx_x = 0.0f, dx_y = 0.0f, dx_z = 0.0f, dy_x = 0.0f, dy_y = 0.0f, dy_z = 0.0f;
+      float mx = 0.0f, my = 0.0f, mz = 0.0f;  // sum b q N
+      for (std::size_t k = 0; k < 3; ++k) {
+        // Edge k runs from vertex k + 1 to vertex k + 2 (edges_of()).
+        const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+        const int64_t ax = vx[a][l], ay = vy[a][l], bx = vx[b][l], by = vy[b][l];
+        const float weight =
+            static_cast<float>(edge_function(ax, ay, bx, by, px[l], py[l])) * inv_area;
+        const float q_k = q[k][l];
+        const float weight_q = weight * q_k;
+        const float weight_q_dx = -static_cast<float>(by - ay) * step * q_k;
+        const float weight_q_dy = static_cast<float>(bx - ax) * step * q_k;
+        sum_q += weight_q;
+        dq_dx += weight_q_dx;
+        dq_dy += weight_q_dy;
+        sx += weight_q * ox[k][l];
+        sy += weight_q * oy[k][l];
+        sz += weight_q * oz[k][l];
+        dx_x += weight_q_dx * ox[k][l];
+        dx_y += weight_q_dx * oy[k][l];
+        dx_z += weight_q_dx * oz[k][l];
+        dy_x += weight_q_dy * ox[k][l];
+        dy_y += weight_q_dy * oy[k][l];
+        dy_z += weight_q_dy * oz[k][l];
+        mx += weight_q * nx[k][l];
+        my += weight_q * ny[k][l];
+        mz += weight_q * nz[k][l];
+      }
+      const bool has_q = (sum_q > 0.0f) & finite(sum_q);
+      const float inv_q = 1.0f / sum_q;
+      const float cx = sx * inv_q, cy = sy * inv_q, cz = sz * inv_q;
+      const float ddx_x = (dx_x - cx * dq_dx) * inv_q;
+      const float ddx_y = (dx_y - cy * dq_dx) * inv_q;
+      const float ddx_z = (dx_z - cz * dq_dx) * inv_q;
+      const float ddy_x = (dy_x - cx * dq_dy) * inv_q;
+      const float ddy_y = (dy_y - cy * dq_dy) * inv_q;
+      const float ddy_z = (dy_z - cz * dq_dy) * inv_q;
+      const float along_x = (ddx_x * ddx_x + ddx_y * ddx_y) + ddx_z * ddx_z;
+      const float along_y = (ddy_x * ddy_x + ddy_y * ddy_y) + ddy_z * ddy_z;
+      const float size = std::sqrt(along_x < along_y ? along_y : along_x);  // std::max
+      // Non-finite offsets only come from absurd inputs: stay at a vertex, never NaN.
+      const bool keep = has_q & finite(cx) & finite(cy) & finite(cz);
+      constexpr float kInfinity = std::numeric_limits<float>::infinity();
+      offset_x[l] = keep ? cx : 0.0f;
+      offset_y[l] = keep ? cy : 0.0f;
+      offset_z[l] = keep ? cz : 0.0f;
+      const float kept_size = keep ? size : kInfinity;
+      footprint[l] = kept_size != kept_size ? kInfinity : kept_size;  // NaN -> +inf
+      // The unit normal: sum b q N normalised, or the first vertex's normal where that has no
+      // length, or +z.
+      const float length = std::sqrt((mx * mx + my * my) + mz * mz);
+      const float fx = nx[0][l], fy = ny[0][l], fz = nz[0][l];
+      const float fallback_length = std::sqrt((fx * fx + fy * fy) + fz * fz);
+      const bool has_sum = (length > 0.0f) & finite(length);
+      const bool has_fallback = fallback_length > 0.0f;
+      const float ux = has_fallback ? fx / fallback_length : 0.0f;
+      const float uy = has_fallback ? fy / fallback_length : 0.0f;
+      const float uz = has_fallback ? fz / fallback_length : 1.0f;
+      normal_x[l] = has_sum ? mx / length : ux;
+      normal_y[l] = has_sum ? my / length : uy;
+      normal_z[l] = has_sum ? mz / length : uz;
+    }
+    for (std::size_t l = 0; l < n; ++l) {
+      const ScreenTriangle& t = *triangle[l];
+      const std::size_t i = index[l];
+      target.depth[i] = depth[l];
+      target.flags[i] = GBuffer::kCovered | (t.back_face ? GBuffer::kBackFace : 0);
+      target.object_id[i] = frame.objects[t.object].source->object_id;
+      target.texture_position[i] =
+          t.texture_origin + glm::dvec3(glm::vec3(offset_x[l], offset_y[l], offset_z[l]));
+      target.normal[i] = glm::vec3(normal_x[l], normal_y[l], normal_z[l]);
+      target.footprint[i] = footprint[l];
+    }
+    count = 0;
   }
-
-  target.depth[i] = depth;
-  target.flags[i] = GBuffer::kCovered | (t.back_face ? GBuffer::kBackFace : 0);
-  target.object_id[i] = object.source->object_id;
-  target.texture_position[i] = t.texture_origin + glm::dvec3(offset);
-  target.normal[i] = unit_normal(normal_sum, t.normal[0]);
-  target.footprint[i] = std::isnan(footprint) ? std::numeric_limits<float>::infinity() : footprint;
-}
+};
 
 }  // namespace
 
@@ -152,6 +239,12 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   const float x0 = t.x0_pixels();
   const float y0 = t.y0_pixels();
   const AffineForm* forms = t.clip_mask != 0 ? clip_forms.data() + t.first_clip_form : nullptr;
+  // Narrow triangles (most of a fine mesh's) stay with the loop below: a vector loop's set-up
+  // per row would cost more than the few pixels it covers.
+  if (forms == nullptr && coverage == nullptr && last_x - first_x + 1 >= kVectorColumns) {
+    draw_unclipped(t, first_x, last_x, first_y, last_y, row, step_x, step_y, stats);
+    return;
+  }
   // Counted locally, added once: the counters must not cost a store per fragment.
   uint64_t rasterized = 0, depth_passed = 0, clip_tested = 0, clip_discarded = 0;
   for (int y = first_y; y <= last_y; ++y) {
@@ -199,18 +292,67 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   stats.fragments_clip_discarded += clip_discarded;
 }
 
+void TileRasterizer::draw_unclipped(const ScreenTriangle& t, int first_x, int last_x, int first_y,
+                                    int last_y, std::array<int64_t, 3> row,
+                                    const std::array<int64_t, 3>& step_x,
+                                    const std::array<int64_t, 3>& step_y, RasterStats& stats) {
+  // The loop of draw() without clip forms and coverage counts, written with selects instead
+  // of early exits so that it runs across the row in vector lanes: the same tests (edge
+  // functions, depth, far plane) and the same float depth, so the same fragments win.
+  const float x0 = t.x0_pixels();
+  const float y0 = t.y0_pixels();
+  const float at_vertex0 = t.depth.at_vertex0;
+  const float per_x = t.depth.per_x;
+  const float per_y = t.depth.per_y;
+  const ScreenTriangle* const self = &t;
+  const int count = last_x - first_x + 1;
+  uint64_t rasterized = 0, depth_passed = 0;
+  for (int y = first_y; y <= last_y; ++y) {
+    const float dy = static_cast<float>(y) + 0.5f - y0;
+    const float depth_y = per_y * dy;
+    const auto row_start = static_cast<std::ptrdiff_t>((y - y0_) * kTileSize + (first_x - x0_));
+    float* __restrict depth_row = depth_.data() + row_start;
+    const ScreenTriangle** __restrict winner_row = winner_.data() + row_start;
+    const int64_t r0 = row[0], r1 = row[1], r2 = row[2];
+    const int64_t s0 = step_x[0], s1 = step_x[1], s2 = step_x[2];
+    for (int k = 0; k < count; ++k) {
+      const int64_t e0 = r0 + s0 * k, e1 = r1 + s1 * k, e2 = r2 + s2 * k;
+      const bool inside = (e0 | e1 | e2) >= 0;
+      const float dx = static_cast<float>(first_x + k) + 0.5f - x0;
+      const float depth = (at_vertex0 + per_x * dx) + depth_y;
+      const float old_depth = depth_row[k];
+      const bool pass = inside & (depth < old_depth) & !(depth > kFarDepth);
+      rasterized += inside ? 1 : 0;
+      depth_passed += pass ? 1 : 0;
+      depth_row[k] = pass ? depth : old_depth;
+      winner_row[k] = pass ? self : winner_row[k];
+    }
+    row[0] += step_y[0];
+    row[1] += step_y[1];
+    row[2] += step_y[2];
+  }
+  stats.fragments_rasterized += rasterized;
+  stats.fragments_depth_passed += depth_passed;
+}
+
 void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, RasterStats& stats) const {
   const GBufferPlanes target(gbuffer);
   const auto width = static_cast<std::size_t>(gbuffer.width);
   uint64_t covered = 0, back_faces = 0, cap_rays = 0, caps = 0;
+  SurfaceBatch surfaces;
   for (int y = y0_; y < y1_; ++y) {
     const std::size_t row = static_cast<std::size_t>(y) * width;
+    const ScreenTriangle* const* winners = winner_.data() + (y - y0_) * kTileSize - x0_;
     for (int x = x0_; x < x1_; ++x) {
       const auto local = static_cast<std::size_t>((y - y0_) * kTileSize + (x - x0_));
       const std::size_t i = row + static_cast<std::size_t>(x);
-      const ScreenTriangle* winner = winner_[local];
+      const ScreenTriangle* winner = winners[x];
       if (winner == nullptr) {
-        write_empty(target, i);
+        // A run of empty pixels is written plane by plane (memset-like stores).
+        int end = x + 1;
+        while (end < x1_ && winners[end] == nullptr) ++end;
+        write_empty(target, i, static_cast<std::size_t>(end - x));
+        x = end - 1;
         continue;
       }
       ++covered;
@@ -230,9 +372,11 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, RasterSta
         }
       }
       if (winner->back_face) ++back_faces;
-      write_surface(*winner, object, depth_[local], x, y, target, i);
+      surfaces.add(winner, x, y, i, depth_[local]);
+      if (surfaces.count == SurfaceBatch::kCapacity) surfaces.write(frame, target);
     }
   }
+  surfaces.write(frame, target);
   stats.pixels_covered += covered;
   stats.back_face_pixels += back_faces;
   stats.cap_rays += cap_rays;

@@ -28,10 +28,7 @@ glm::vec3 unit_or_zero(const glm::vec3& v) {
 
 void TransformedVertices::resize(std::size_t vertex_count, int planes) {
   plane_count = planes;
-  clip.resize(vertex_count);
-  texture.resize(vertex_count);
-  normal.resize(vertex_count);
-  valid.resize(vertex_count);
+  vertex.resize(vertex_count);
   plane_distance.resize(vertex_count * static_cast<std::size_t>(planes));
 }
 
@@ -44,11 +41,12 @@ void transform_vertices(const ObjectFrame& object, std::size_t begin, std::size_
     const std::size_t at = object.first_vertex + i;
     const glm::vec3 position = mesh.positions[i];
     const glm::dvec4 position_d(glm::dvec3(position), 1.0);
-    out.clip[at] = object.clip_from_object * glm::vec4(position, 1.0f);
-    out.texture[at] = glm::dvec3(object.source->texture_from_object * position_d);
-    out.normal[at] = has_normals ? unit_or_zero(object.world_normal_from_object * mesh.normals[i])
-                                 : glm::vec3(0.0f);
-    out.valid[at] = is_finite(out.clip[at]) && is_finite(out.texture[at]) ? 1 : 0;
+    TransformedVertex& v = out.vertex[at];
+    v.clip = object.clip_from_object * glm::vec4(position, 1.0f);
+    v.texture = glm::dvec3(object.source->texture_from_object * position_d);
+    v.normal = has_normals ? unit_or_zero(object.world_normal_from_object * mesh.normals[i])
+                           : glm::vec3(0.0f);
+    v.valid = is_finite(v.clip) && is_finite(v.texture) ? 1 : 0;
     for (std::size_t j = 0; j < planes; ++j) {
       out.plane_distance[at * planes + j] =
           to_float_saturated(glm::dot(object.object_planes[j], position_d));

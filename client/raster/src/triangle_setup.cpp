@@ -88,7 +88,16 @@ TriangleSetup::ProjectedVertex TriangleSetup::project(const glm::vec4& clip) con
   const double scale = static_cast<double>(kSubpixelScale);
   return {static_cast<int64_t>(std::nearbyint(std::clamp(screen_x * scale, -kLimit, kLimit))),
           static_cast<int64_t>(std::nearbyint(std::clamp(screen_y * scale, -kLimit, kLimit))),
-          ndc_z * 0.5 + 0.5};
+          ndc_z * 0.5 + 0.5, static_cast<float>(inv_w)};
+}
+
+void TriangleSetup::project_vertices(TransformedVertices& vertices, std::size_t begin,
+                                     std::size_t end) const {
+  for (std::size_t i = begin; i < end; ++i) {
+    TransformedVertex& v = vertices.vertex[i];
+    // Only where setup() would project the vertex itself: finite and inside the guard band.
+    if (v.valid != 0 && clip_planes_.outside(v.clip) == 0) v.screen = project(v.clip);
+  }
 }
 
 void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
@@ -104,13 +113,16 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
   }
   const std::array<std::size_t, 3> at = {object.first_vertex + i0, object.first_vertex + i1,
                                          object.first_vertex + i2};
-  if (!vertices.valid[at[0]] || !vertices.valid[at[1]] || !vertices.valid[at[2]]) {
+  const TransformedVertex& v0 = vertices.vertex[at[0]];
+  const TransformedVertex& v1 = vertices.vertex[at[1]];
+  const TransformedVertex& v2 = vertices.vertex[at[2]];
+  if (!v0.valid || !v1.valid || !v2.valid) {
     ++stats.triangles_invalid;
     return;
   }
-  const glm::vec4& a = vertices.clip[at[0]];
-  const glm::vec4& b = vertices.clip[at[1]];
-  const glm::vec4& c = vertices.clip[at[2]];
+  const glm::vec4& a = v0.clip;
+  const glm::vec4& b = v1.clip;
+  const glm::vec4& c = v2.clip;
   if ((frustum_outcode(a) & frustum_outcode(b) & frustum_outcode(c)) != 0) {
     ++stats.triangles_culled;
     return;
@@ -155,20 +167,25 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
     }
   }
 
-  for (std::size_t k = 0; k < 3; ++k) source.texture[k] = vertices.texture[at[k]];
-  const bool has_normals = glm::dot(vertices.normal[at[0]], vertices.normal[at[0]]) > 0.0f &&
-                           glm::dot(vertices.normal[at[1]], vertices.normal[at[1]]) > 0.0f &&
-                           glm::dot(vertices.normal[at[2]], vertices.normal[at[2]]) > 0.0f;
+  const std::array<const TransformedVertex*, 3> corner_vertex = {&v0, &v1, &v2};
+  for (std::size_t k = 0; k < 3; ++k) source.texture[k] = corner_vertex[k]->texture;
+  const bool has_normals = glm::dot(v0.normal, v0.normal) > 0.0f &&
+                           glm::dot(v1.normal, v1.normal) > 0.0f &&
+                           glm::dot(v2.normal, v2.normal) > 0.0f;
   if (has_normals) {
-    for (std::size_t k = 0; k < 3; ++k) source.normal[k] = vertices.normal[at[k]];
+    for (std::size_t k = 0; k < 3; ++k) source.normal[k] = corner_vertex[k]->normal;
   } else {
     source.normal.fill(face_normal(object, i0, i1, i2));
   }
 
   std::array<ProjectedVertex, ClipPolygon::kCapacity> projected;
-  for (int k = 0; k < polygon.size; ++k) {
-    const auto index = static_cast<std::size_t>(k);
-    projected[index] = project(polygon.vertices[index].clip);
+  if (outside == 0) {
+    for (std::size_t k = 0; k < 3; ++k) projected[k] = corner_vertex[k]->screen;
+  } else {
+    for (int k = 0; k < polygon.size; ++k) {
+      const auto index = static_cast<std::size_t>(k);
+      projected[index] = project(polygon.vertices[index].clip);
+    }
   }
   for (int k = 1; k + 1 < polygon.size; ++k) {
     emit(source, polygon, projected, {0, k, k + 1}, triangles, clip_forms, stats);
@@ -225,7 +242,7 @@ void TriangleSetup::emit(const SourceTriangle& source, const ClipPolygon& polygo
     const ClipVertex& clip_vertex = polygon.vertices[static_cast<std::size_t>(corner)];
     const glm::dvec3 weights(clip_vertex.weights);
     depth[k] = vertex(static_cast<int>(k)).depth;
-    triangle.inv_w[k] = static_cast<float>(1.0 / static_cast<double>(clip_vertex.clip.w));
+    triangle.inv_w[k] = vertex(static_cast<int>(k)).inv_w;  // 1 / clip_vertex.clip.w
     // Offsets from vertex 0's texture position, combined in double, small enough for float.
     const glm::dvec3 offset = weights.y * (source.texture[1] - source.texture[0]) +
                               weights.z * (source.texture[2] - source.texture[0]);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -26,6 +27,10 @@ class TriangleSetup {
  public:
   TriangleSetup(int width, int height, int clip_plane_count);
 
+  // Projects vertices [begin, end) (indices into `vertices`) once, for setup() to reuse in
+  // every triangle that uses them and needs no clipping: the same values it would compute.
+  void project_vertices(TransformedVertices& vertices, std::size_t begin, std::size_t end) const;
+
   // Appends the screen triangles of the object's triangle (i0, i1, i2) to `triangles`, their
   // clip-plane forms to `clip_forms`, and counts what it did.
   void setup(const ObjectFrame& object, uint32_t object_index, const TransformedVertices& vertices,
@@ -33,11 +38,7 @@ class TriangleSetup {
              std::vector<AffineForm>& clip_forms, RasterStats& stats) const;
 
  private:
-  struct ProjectedVertex {
-    int64_t x = 0;  // fixed point
-    int64_t y = 0;
-    double depth = 0.0;  // window depth
-  };
+  using ProjectedVertex = ScreenVertex;
   struct SourceTriangle;
 
   ProjectedVertex project(const glm::vec4& clip) const;

@@ -33,20 +33,17 @@ glm::vec3 level_colour(int level) {
   return kPalette[std::min<std::size_t>(static_cast<std::size_t>(level), std::size(kPalette) - 1)];
 }
 
-int thread_count(int requested) {
-  if (requested > 0) return requested;
-  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-}
+// Pixels per side of the tiles the shading pass hands to threads.
+constexpr int kShadeTile = 32;
+// Rows per block of the reference renderer's pass.
+constexpr int kReferenceRows = 8;
 
-// Runs body(band, first_row, end_row) over `threads` bands of rows; returns when all are done.
-template <typename Body>
-void parallel_rows(int height, int threads, Body body) {
-  const int bands = std::min(threads, std::max(height, 1));
-  std::vector<std::jthread> workers;
-  for (int b = 1; b < bands; ++b) {
-    workers.emplace_back([&, b] { body(b, height * b / bands, height * (b + 1) / bands); });
-  }
-  body(0, 0, height / bands);
+bool key_less(const BrickKey& a, const BrickKey& b) {
+  if (a.texture != b.texture) return a.texture < b.texture;
+  if (a.level != b.level) return a.level < b.level;
+  if (a.brick.z != b.brick.z) return a.brick.z < b.brick.z;
+  if (a.brick.y != b.brick.y) return a.brick.y < b.brick.y;
+  return a.brick.x < b.brick.x;
 }
 
 // Frames are drawn relative to the eye: the float matrices the rasterizer gets then carry only
@@ -124,6 +121,173 @@ glm::vec3 shade_pixel(const PreparedLights& lights, const PreparedObject& object
   return colour;
 }
 
+// Where a texture's sampled channels go: albedo (three channels, or one grey), opacity and
+// specular (their index in the samples, or -1 for none), as shade_pixel() reads them.
+struct MaterialInputs {
+  bool colour = true;
+  int opacity = -1;
+  int specular = -1;
+  float material_specular = 0.0f;
+  float shininess = 0.0f;
+  bool unlit = false;
+  // Lit, three channels (colour only), drawn with a trilinear lookup at a tabled level: the
+  // shading pass's fast path (TextureSampler::locate_rgb()).
+  bool rgb_trilinear = false;
+};
+
+MaterialInputs material_inputs(const PreparedObject& object) {
+  const ChannelSet& channels = object.texture.channels;
+  const Material& material = object.object->material;
+  MaterialInputs m;
+  m.colour = channels.colour;
+  int next = channels.colour ? 3 : 0;
+  if (channels.opacity) m.opacity = next++;
+  if (channels.specular) m.specular = next++;
+  m.material_specular = material.specular;
+  m.shininess = material.shininess;
+  m.unlit = material.unlit;
+  return m;
+}
+
+// shade_pixel()'s last step: blend towards the background by the opacity, and store.
+void set_pixel(Image& image, int x, int y, glm::vec3 colour, float opacity) {
+  if (opacity < 1.0f) colour = kBackground + opacity * (colour - kBackground);
+  image.set(x, y, colour.r, colour.g, colour.b);
+}
+
+// The lit pixels of a tile waiting to be shaded together: where they are, their texture
+// values, and the batch that shade_batch() lights.
+struct LitPixels {
+  ShadeBatch batch;
+  ShadeBatch::Lanes<int> x, y;
+  ShadeBatch::Lanes<std::size_t> index;  // in the G-buffer
+  ShadeBatch::Lanes<float> opacity;
+
+  void add(int lane, int px, int py, std::size_t i, const glm::vec3& albedo, float alpha,
+           float specular, float shininess) {
+    const auto l = static_cast<std::size_t>(lane);
+    x[l] = px;
+    y[l] = py;
+    index[l] = i;
+    opacity[l] = alpha;
+    batch.albedo_r[l] = albedo.r;
+    batch.albedo_g[l] = albedo.g;
+    batch.albedo_b[l] = albedo.b;
+    batch.specular[l] = specular;
+    batch.shininess[l] = shininess;
+    cell[l] = nullptr;
+  }
+
+  // A lane whose albedo is still to be read from a brick cell (located, and prefetched).
+  ShadeBatch::Lanes<const uint8_t*> cell;  // nullptr: the albedo is in the batch already
+  ShadeBatch::Lanes<glm::vec3> fraction;
+  ShadeBatch::Lanes<const TextureSampler*> sampler;
+
+  void add_cell(int lane, int px, int py, std::size_t i, const uint8_t* first_sample,
+                const glm::vec3& frac, const TextureSampler& texture, float specular,
+                float shininess) {
+    const auto l = static_cast<std::size_t>(lane);
+    x[l] = px;
+    y[l] = py;
+    index[l] = i;
+    opacity[l] = 1.0f;
+    cell[l] = first_sample;
+    fraction[l] = frac;
+    sampler[l] = &texture;
+    batch.specular[l] = specular;
+    batch.shininess[l] = shininess;
+    const int y_stride = texture.y_stride(), z_stride = texture.z_stride();
+    __builtin_prefetch(first_sample);
+    __builtin_prefetch(first_sample + y_stride);
+    __builtin_prefetch(first_sample + z_stride);
+    __builtin_prefetch(first_sample + y_stride + z_stride);
+  }
+
+  // The located cells' trilinear lookups, by now (one batch after their prefetch) in cache.
+  void read_cells() {
+    for (std::size_t l = 0; l < static_cast<std::size_t>(batch.count); ++l) {
+      if (cell[l] == nullptr) continue;
+      alignas(16) float rgb[4];
+      sampler[l]->trilinear_rgb(cell[l], fraction[l], rgb);
+      batch.albedo_r[l] = rgb[0];
+      batch.albedo_g[l] = rgb[1];
+      batch.albedo_b[l] = rgb[2];
+    }
+  }
+
+  void write(Image& image) const {
+    for (std::size_t l = 0; l < static_cast<std::size_t>(batch.count); ++l) {
+      set_pixel(image, x[l], y[l], {batch.colour_r[l], batch.colour_g[l], batch.colour_b[l]},
+                opacity[l]);
+    }
+  }
+};
+
+// surface_at() across a batch, with the same operations in the same order: the lanes get
+// exactly the position, normal and direction to the viewer surface_at() gives.
+struct SurfaceUnprojection {
+  glm::dmat4 inverse_vp;
+  glm::dvec3 eye;
+  int width;
+  int height;
+
+  void fill(const GBuffer& g, LitPixels& lit) const {
+    ShadeBatch& b = lit.batch;
+    const auto count = static_cast<std::size_t>(b.count);
+    // Gathered first, so that the arithmetic below runs over plain arrays.
+    alignas(64) ShadeBatch::Lanes<float> depth, nx, ny, nz;
+    alignas(64) ShadeBatch::Lanes<uint8_t> back;
+    for (std::size_t l = 0; l < count; ++l) {
+      const std::size_t i = lit.index[l];
+      depth[l] = g.depth[i];
+      nx[l] = g.normal[i].x;
+      ny[l] = g.normal[i].y;
+      nz[l] = g.normal[i].z;
+      back[l] = g.back_face(i) ? 1 : 0;
+    }
+    const glm::dmat4& m = inverse_vp;
+    const double w = width, h = height;
+    for (std::size_t l = 0; l < count; ++l) {
+      const double ndc_x = (lit.x[l] + 0.5) / w * 2.0 - 1.0;
+      const double ndc_y = 1.0 - (lit.y[l] + 0.5) / h * 2.0;
+      const double ndc_z = static_cast<double>(depth[l]) * 2.0 - 1.0;
+      // glm's matrix-vector product: (m0 x + m1 y) + (m2 z + m3 w), with w = 1.
+      const double hx = (m[0].x * ndc_x + m[1].x * ndc_y) + (m[2].x * ndc_z + m[3].x * 1.0);
+      const double hy = (m[0].y * ndc_x + m[1].y * ndc_y) + (m[2].y * ndc_z + m[3].y * 1.0);
+      const double hz = (m[0].z * ndc_x + m[1].z * ndc_y) + (m[2].z * ndc_z + m[3].z * 1.0);
+      const double hw = (m[0].w * ndc_x + m[1].w * ndc_y) + (m[2].w * ndc_z + m[3].w * 1.0);
+      const double rx = hx / hw, ry = hy / hw, rz = hz / hw;
+      b.position_x[l] = eye.x + rx;
+      b.position_y[l] = eye.y + ry;
+      b.position_z[l] = eye.z + rz;
+      const auto vx = static_cast<float>(-rx);
+      const auto vy = static_cast<float>(-ry);
+      const auto vz = static_cast<float>(-rz);
+      const float length = std::sqrt((vx * vx + vy * vy) + vz * vz);
+      // Quotients first, selected after: a division under a condition would keep the loop
+      // scalar (it might trap), a selection does not.
+      const float qx = vx / length, qy = vy / length, qz = vz / length;
+      const bool has_length = length > 0.0f;
+      const float tx = has_length ? qx : 0.0f;
+      const float ty = has_length ? qy : 0.0f;
+      const float tz = has_length ? qz : 1.0f;
+      const float n_length = std::sqrt((nx[l] * nx[l] + ny[l] * ny[l]) + nz[l] * nz[l]);
+      const float mx = nx[l] / n_length, my = ny[l] / n_length, mz = nz[l] / n_length;
+      const bool has_normal = n_length > 0.0f;
+      const float ux = has_normal ? mx : tx;
+      const float uy = has_normal ? my : ty;
+      const float uz = has_normal ? mz : tz;
+      const bool flip = back[l] != 0 || ((ux * tx + uy * ty) + uz * tz) < 0.0f;
+      b.normal_x[l] = flip ? -ux : ux;
+      b.normal_y[l] = flip ? -uy : uy;
+      b.normal_z[l] = flip ? -uz : uz;
+      b.to_viewer_x[l] = tx;
+      b.to_viewer_y[l] = ty;
+      b.to_viewer_z[l] = tz;
+    }
+  }
+};
+
 }  // namespace
 
 glm::dmat4 view_projection(const Camera& camera, int width, int height) {
@@ -140,7 +304,7 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
                             int height) {
   Frame frame;
   frame.image = Image(width, height);
-  const auto raster_start = Clock::now();
+  const auto start = Clock::now();
   const EyeRelative relative = eye_relative(scene, camera, width, height);
   const glm::dmat4& vp = relative.view_projection;
   RasterView view;
@@ -148,78 +312,159 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
   view.height = height;
   view.view_projection = glm::mat4(vp);
   view.clip_planes = relative.clip_planes;
-  frame.stats.raster = rasterizer_.render(view, relative.objects, gbuffer_);
-  frame.stats.raster_ms = ms_since(raster_start);
 
-  const auto shade_start = Clock::now();
   cache_.begin_frame();
   const glm::dmat4 inverse_vp = glm::inverse(vp);
   const PreparedLights lights = prepare_lights(*scene.scene);
-  const int threads = thread_count(options_.threads);
-  struct Band {
-    std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
-    std::size_t covered = 0, fallback = 0, empty = 0, shaded = 0;
-  };
-  std::vector<Band> bands(static_cast<std::size_t>(threads));
+  const auto threads = static_cast<std::size_t>(rasterizer_.thread_count());
   const GBuffer& g = gbuffer_;
-  // Samplers (and their microcaches) live across frames, one set per band of rows.
+  // Samplers (and their microcaches) live across frames, one set per render thread.
   std::vector<uint64_t> texture_ids;
   for (const PreparedObject& o : scene.objects) texture_ids.push_back(o.texture_id);
-  if (samplers_.size() != static_cast<std::size_t>(threads) || sampler_textures_ != texture_ids) {
+  if (samplers_.size() != threads || sampler_textures_ != texture_ids) {
     samplers_.clear();
-    samplers_.resize(static_cast<std::size_t>(threads));
-    for (auto& band_samplers : samplers_) {
+    samplers_.resize(threads);
+    for (auto& worker_samplers : samplers_) {
       for (const PreparedObject& o : scene.objects) {
-        band_samplers.push_back(
+        worker_samplers.push_back(
             std::make_unique<TextureSampler>(cache_, o.texture_id, o.layout, o.channels));
       }
     }
     sampler_textures_ = std::move(texture_ids);
   }
-  parallel_rows(height, threads, [&](int band_index, int first, int end) {
-    Band& band = bands[static_cast<std::size_t>(band_index)];
-    auto& samplers = samplers_[static_cast<std::size_t>(band_index)];
+  // Per object: the level each footprint asks for, by table (quadrilinear needs the fraction
+  // and keeps the continuous level of detail).
+  const bool by_table = options_.filter != SampleFilter::quadrilinear;
+  std::vector<NearestLevelTable> level_tables;
+  if (by_table) {
+    level_tables.reserve(scene.objects.size());
+    for (const PreparedObject& o : scene.objects) {
+      level_tables.emplace_back(o.layout, options_.level_bias);
+    }
+  }
+  // Per object: how the texture's channels become albedo, opacity and specular.
+  std::vector<MaterialInputs> materials;
+  materials.reserve(scene.objects.size());
+  for (const PreparedObject& o : scene.objects) {
+    MaterialInputs m = material_inputs(o);
+    m.rgb_trilinear = by_table && options_.filter == SampleFilter::trilinear &&
+                      !options_.false_colour_levels && !m.unlit && o.channels == 3;
+    materials.push_back(m);
+  }
+  struct Worker {
+    std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
+    std::size_t covered = 0, fallback = 0, empty = 0, shaded = 0;
+    Clock::duration shading{0};
+  };
+  std::vector<Worker> workers(threads);
+  const SurfaceUnprojection unprojection{inverse_vp, camera.position, width, height};
+  const std::size_t object_count = scene.objects.size();
+  // Shades the pixels [x0, x1) x [y0, y1) of the G-buffer on render thread `worker_index`.
+  const auto shade_tile = [&](int x0, int y0, int x1, int y1, int worker_index) {
+    Worker& worker = workers[static_cast<std::size_t>(worker_index)];
+    auto& samplers = samplers_[static_cast<std::size_t>(worker_index)];
+    LitPixels lit;  // about 40 KB of stack, uninitialised but for the count
+    const auto flush = [&] {
+      lit.read_cells();
+      unprojection.fill(g, lit);
+      shade_batch(lights, lit.batch);
+      lit.write(frame.image);
+      lit.batch.count = 0;
+    };
     MissedBricks missed;
-    for (int y = first; y < end; ++y) {
-      for (int x = 0; x < width; ++x) {
+    for (int y = y0; y < y1; ++y) {
+      for (int x = x0; x < x1; ++x) {
         const std::size_t i = g.index(x, y);
-        if (!g.covered(i) || g.object_id[i] >= scene.objects.size()) {
+        const uint32_t id = g.object_id[i];
+        if (!g.covered(i) || id >= object_count) {
           frame.image.set(x, y, kBackground.r, kBackground.g, kBackground.b);
           continue;
         }
-        ++band.covered;
-        const PreparedObject& object = scene.objects[g.object_id[i]];
-        TextureSampler& sampler = *samplers[g.object_id[i]];
-        const double lod = sampler.level_of_detail(g.footprint[i]) + options_.level_bias;
-        const SampleResult result =
-            sampler.sample(g.texture_position[i], lod, options_.filter, &missed);
-        for (const BrickKey& key : missed.view()) ++band.misses[key];
-        if (!result.complete) ++band.fallback;
-        if (result.level < 0) ++band.empty;
-        glm::vec3 colour;
-        if (options_.false_colour_levels) {
-          colour = level_colour(result.level);
+        ++worker.covered;
+        TextureSampler& sampler = *samplers[id];
+        const MaterialInputs& m = materials[id];
+        SampleResult result;
+        if (m.rgb_trilinear) {
+          // The common case in two steps: locate and prefetch now, read at the flush.
+          const int level = level_tables[id].level(g.footprint[i]);
+          glm::vec3 frac;
+          if (const uint8_t* cell = sampler.locate_rgb(g.texture_position[i], level, frac)) {
+            ++worker.shaded;
+            lit.add_cell(lit.batch.count++, x, y, i, cell, frac, sampler, m.material_specular,
+                         m.shininess);
+            if (lit.batch.count == ShadeBatch::kCapacity) flush();
+            continue;
+          }
+          result = sampler.sample_after_miss(g.texture_position[i], level, &missed);
         } else {
-          colour = shade_pixel(lights, object, result.values.data(),
-                               surface_at(g, i, x, y, inverse_vp, camera.position));
-          band.shaded += object.object->material.unlit ? 0 : 1;
+          const double lod = by_table
+                                 ? static_cast<double>(level_tables[id].level(g.footprint[i]))
+                                 : sampler.level_of_detail(g.footprint[i]) + options_.level_bias;
+          result = sampler.sample(g.texture_position[i], lod, options_.filter, &missed);
         }
-        frame.image.set(x, y, colour.r, colour.g, colour.b);
+        for (const BrickKey& key : missed.view()) ++worker.misses[key];
+        if (!result.complete) ++worker.fallback;
+        if (result.level < 0) ++worker.empty;
+        if (options_.false_colour_levels) {
+          const glm::vec3 colour = level_colour(result.level);
+          frame.image.set(x, y, colour.r, colour.g, colour.b);
+          continue;
+        }
+        const float* v = result.values.data();
+        const glm::vec3 albedo = m.colour ? glm::vec3(v[0], v[1], v[2]) : glm::vec3(v[0]);
+        const float opacity = m.opacity >= 0 ? v[m.opacity] : 1.0f;
+        if (m.unlit) {
+          set_pixel(frame.image, x, y, albedo, opacity);
+          continue;
+        }
+        ++worker.shaded;
+        const int lane = lit.batch.count++;
+        lit.add(lane, x, y, i, albedo, opacity,
+                m.specular >= 0 ? v[m.specular] : m.material_specular, m.shininess);
+        if (lit.batch.count == ShadeBatch::kCapacity) flush();
       }
     }
-    for (auto& s : samplers) s->flush_statistics();
-  });
+    if (lit.batch.count > 0) flush();
+  };
+  // Each raster tile is shaded by the thread that resolved it, right after, while its part of
+  // the G-buffer is still in that core's cache; in square pieces, whose pixels read few bricks.
+  frame.stats.raster = rasterizer_.render(
+      view, relative.objects, gbuffer_, [&](int x0, int y0, int x1, int y1, int worker_index) {
+        const auto shade_start = Clock::now();
+        for (int ty = y0; ty < y1; ty += kShadeTile) {
+          for (int tx = x0; tx < x1; tx += kShadeTile) {
+            shade_tile(tx, ty, std::min(x1, tx + kShadeTile), std::min(y1, ty + kShadeTile),
+                       worker_index);
+          }
+        }
+        workers[static_cast<std::size_t>(worker_index)].shading += Clock::now() - shade_start;
+      });
+  for (auto& worker_samplers : samplers_) {
+    for (auto& sampler : worker_samplers) sampler->flush_statistics();
+  }
   std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
-  for (const Band& band : bands) {
-    for (const auto& [key, pixels] : band.misses) misses[key] += pixels;
-    frame.stats.covered_pixels += band.covered;
-    frame.stats.fallback_pixels += band.fallback;
-    frame.stats.empty_pixels += band.empty;
-    frame.stats.shaded_pixels += band.shaded;
+  for (const Worker& worker : workers) {
+    for (const auto& [key, pixels] : worker.misses) misses[key] += pixels;
+    frame.stats.covered_pixels += worker.covered;
+    frame.stats.fallback_pixels += worker.fallback;
+    frame.stats.empty_pixels += worker.empty;
+    frame.stats.shaded_pixels += worker.shaded;
   }
   frame.misses.reserve(misses.size());
   for (const auto& [key, pixels] : misses) frame.misses.push_back({key, pixels});
-  frame.stats.shade_ms = ms_since(shade_start);
+  // Which thread drew which tile varies from frame to frame; the list does not.
+  std::sort(
+      frame.misses.begin(), frame.misses.end(),
+      [](const net::BrickWant& a, const net::BrickWant& b) { return key_less(a.key, b.key); });
+  // One pass now does both: split its wall time by the share of render-thread time spent
+  // shading (an estimate; the threads are busy throughout the pass).
+  Clock::duration shading{0};
+  for (const Worker& worker : workers) shading += worker.shading;
+  const double total_ms = ms_since(start);
+  const double shading_ms =
+      std::chrono::duration<double, std::milli>(shading).count() / static_cast<double>(threads);
+  frame.stats.shade_ms = std::min(total_ms, shading_ms);
+  frame.stats.raster_ms = total_ms - frame.stats.shade_ms;
   return frame;
 }
 
@@ -241,7 +486,10 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
   const glm::dmat4 inverse_vp = glm::inverse(vp);
   const PreparedLights lights = prepare_lights(*scene.scene);
   std::vector<glm::vec3> colours(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-  parallel_rows(h, thread_count(options_.threads), [&](int, int first, int end) {
+  const int row_blocks = (h + kReferenceRows - 1) / kReferenceRows;
+  rasterizer_.parallel_for(static_cast<std::size_t>(row_blocks), [&](std::size_t block, int) {
+    const int first = static_cast<int>(block) * kReferenceRows;
+    const int end = std::min(h, first + kReferenceRows);
     for (int y = first; y < end; ++y) {
       for (int x = 0; x < w; ++x) {
         const std::size_t i = g.index(x, y);

@@ -10,19 +10,6 @@
 
 namespace soltex {
 
-void Image::set(int x, int y, float r, float g, float b) {
-  const auto to_byte = [](float v) -> uint8_t {
-    if (!(v > 0.0f)) return 0;                                       // also NaN
-    return static_cast<uint8_t>(std::min(v, 1.0f) * 255.0f + 0.5f);  // round half up
-  };
-  uint8_t* px = &rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                      static_cast<std::size_t>(x)) *
-                     3];
-  px[0] = to_byte(r);
-  px[1] = to_byte(g);
-  px[2] = to_byte(b);
-}
-
 void write_png(const std::filesystem::path& path, const Image& image) {
   if (!stbi_write_png(path.c_str(), image.width, image.height, 3, image.rgb.data(),
                       image.width * 3)) {

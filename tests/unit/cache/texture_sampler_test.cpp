@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -270,6 +271,45 @@ TEST(TextureSampler, LevelOfDetailFromFootprint) {
   EXPECT_DOUBLE_EQ(level_of_detail(layout, -1.0), 0.0);
   EXPECT_DOUBLE_EQ(level_of_detail(layout, -std::numeric_limits<double>::infinity()), 0.0);
   EXPECT_DOUBLE_EQ(level_of_detail(layout, std::numeric_limits<double>::denorm_min()), 0.0);
+}
+
+// The table gives the formula's level for every float: every power-of-two neighbourhood of the
+// thresholds, random bit patterns, and the special values, for several biases and layouts.
+TEST(NearestLevelTable, EqualsTheFormulaForEveryFootprint) {
+  std::mt19937 random(7);
+  for (const int finest : {4, 6, 9, 12}) {
+    const BrickLayout layout(test_volume(finest), 8);
+    for (const double bias : {0.0, -0.5, 0.5, -1.25, 0.3, 2.0, -8.0, 8.0}) {
+      const NearestLevelTable table(layout, bias);
+      const auto check = [&](float footprint) {
+        ASSERT_EQ(table.level(footprint),
+                  NearestLevelTable::level_by_formula(layout, bias, footprint))
+            << "footprint " << footprint << " bias " << bias << " finest " << finest;
+      };
+      for (const float special :
+           {0.0f, -0.0f, -1.0f, std::numeric_limits<float>::infinity(),
+            -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN(),
+            -std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::denorm_min(),
+            std::numeric_limits<float>::max()}) {
+        check(special);
+      }
+      const auto h0 = static_cast<float>(layout.filter_width(0));
+      for (int e = -40; e <= 40; ++e) {
+        const float centre = std::ldexp(h0, e / 2) * (e % 2 != 0 ? std::sqrt(2.0f) : 1.0f);
+        uint32_t bits = std::bit_cast<uint32_t>(centre);
+        for (uint32_t d = 0; d < 64; ++d) {
+          check(std::bit_cast<float>(bits - 32 + d));
+        }
+      }
+      // Around where the formula steps: h0 * 2^(k - 0.5 - bias).
+      for (int k = -2; k <= layout.coarsest_level() + 2; ++k) {
+        const auto step = static_cast<float>(h0 * std::exp2(k - 0.5 - bias));
+        const uint32_t bits = std::bit_cast<uint32_t>(step);
+        for (uint32_t d = 0; d < 64; ++d) check(std::bit_cast<float>(bits - 32 + d));
+      }
+      for (int i = 0; i < 20000; ++i) check(std::bit_cast<float>(static_cast<uint32_t>(random())));
+    }
+  }
 }
 
 TEST(TextureSampler, OddLevelsAndPointsGiveDefinedSamples) {

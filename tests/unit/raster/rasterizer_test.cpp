@@ -489,6 +489,41 @@ TEST(RasterizerThreads, EveryThreadCountGivesTheSameBuffer) {
   }
 }
 
+// Every pixel is handed to after_tile exactly once, on a valid worker, and by then its G-buffer
+// values are final: copying the tile out in the callback gives the finished buffer.
+TEST(RasterizerThreads, AfterTileSeesEachFinishedTileOnce) {
+  const Mesh sphere = raster_test::uv_sphere(40, 80);
+  RasterObject object;
+  object.mesh = sphere.view();
+  object.object_id = 3;
+  const int width = 300, height = 170;  // not multiples of the tile size
+  const RasterView view{
+      width, height, raster_test::perspective_look_at({0.5f, 1, 3}, {0, 0, 0}, width, height), {}};
+  for (const int threads : {1, 2, 3}) {
+    Rasterizer rasterizer({.threads = threads});
+    GBuffer g;
+    std::vector<int> visits(static_cast<std::size_t>(width) * height, 0);
+    std::vector<float> depth_seen(visits.size(), -1.0f);
+    std::vector<glm::dvec3> position_seen(visits.size());
+    rasterizer.render(view, std::span<const RasterObject>(&object, 1), g,
+                      [&](int x0, int y0, int x1, int y1, int worker) {
+                        EXPECT_GE(worker, 0);
+                        EXPECT_LT(worker, threads);
+                        for (int y = y0; y < y1; ++y) {
+                          for (int x = x0; x < x1; ++x) {
+                            const std::size_t i = g.index(x, y);
+                            ++visits[i];
+                            depth_seen[i] = g.depth[i];
+                            position_seen[i] = g.texture_position[i];
+                          }
+                        }
+                      });
+    EXPECT_TRUE(std::all_of(visits.begin(), visits.end(), [](int v) { return v == 1; }));
+    EXPECT_EQ(depth_seen, g.depth);
+    EXPECT_EQ(position_seen, g.texture_position);
+  }
+}
+
 bool refused(const RasterView& view, const RasterObject& object) {
   Rasterizer rasterizer({.threads = 1});
   GBuffer g;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <span>
@@ -39,6 +40,40 @@ const char* sample_filter_name(SampleFilter filter);
 // cover): log2(footprint / h_0), h_0 = layout.filter_width(0), clamped to
 // [0, coarsest_level]. NaN and +inf give the coarsest level; zero, negative and -inf give 0.
 double level_of_detail(const BrickLayout& layout, double footprint);
+
+// The level a nearest or trilinear lookup uses for a footprint: round(level_of_detail(layout,
+// footprint) + bias), clamped to [0, coarsest] as TextureSampler::sample clamps it, found by
+// comparing the footprint's bits with a table instead of calling log2 per sample. The table
+// holds, per level, the smallest float footprint that reaches it, found once by bisecting the
+// formula above over the ordered bit patterns of non-negative floats (the formula is monotone
+// in the footprint), so level(f) equals the formula for every float f, NaN included.
+class NearestLevelTable {
+ public:
+  NearestLevelTable() = default;
+  NearestLevelTable(const BrickLayout& layout, double bias);
+
+  // The formula itself (what the table reproduces), for the table and for tests.
+  static int level_by_formula(const BrickLayout& layout, double bias, float footprint);
+
+  int level(float footprint) const {
+    const uint32_t bits = std::bit_cast<uint32_t>(footprint);
+    const uint32_t magnitude = bits & 0x7fffffffu;
+    if (magnitude > 0x7f800000u) return nan_level_;
+    if (bits != magnitude) return non_positive_level_;  // negative, -0
+    int level = base_level_;
+    for (const uint32_t threshold : thresholds_) level += bits >= threshold ? 1 : 0;
+    return level;
+  }
+
+ private:
+  static constexpr int kMaxLevels = SpecLimits::kMaxFinestLevelLog2 + 1;
+  int base_level_ = 0;  // the level of footprint +0
+  int nan_level_ = 0;
+  int non_positive_level_ = 0;
+  // thresholds_[k]: the bits of the smallest footprint at level base_level_ + k + 1; all ones
+  // (above every non-negative float) past the coarsest level.
+  std::array<uint32_t, kMaxLevels> thresholds_{};
+};
 
 // The bricks one sample wanted and did not find: the level(s) it asked for and, when not
 // even a coarser level was resident, the coarsest brick. Filled (from count 0) by each
@@ -123,6 +158,34 @@ class TextureSampler {
       }
     }
     sample_general(p, lod, filter, missed, result);
+    return result;
+  }
+
+  // sample()'s trilinear fast path in two steps, for callers that look many points up and
+  // prefetch in between. For a three-channel texture and a level in [0, coarsest]: the
+  // address of the cell's first sample in its resident brick (bricks found in this frame stay
+  // resident until the next BrickCache::begin_frame()), and the fraction; nullptr when the
+  // brick is not resident, and then sample_after_miss() gives what sample() would have.
+  const uint8_t* locate_rgb(const glm::dvec3& p, int level, glm::vec3& frac) {
+    const Location location = locate(p, level);
+    const Current* brick = resident(level, location.brick);
+    if (brick == nullptr) return nullptr;
+    frac = location.frac;
+    const glm::ivec3& c = location.cell;
+    return brick->samples + c.z * z_stride_ + c.y * y_stride_ + c.x * 3;
+  }
+  // The lookup of locate_rgb()'s cell: writes four floats, R, G, B and 0, as sample() gives them.
+  void trilinear_rgb(const uint8_t* cell, const glm::vec3& frac, float* out) const {
+    trilinear_u8<3>(cell, y_stride_, z_stride_, frac.x, frac.y, frac.z, out);
+  }
+  // The strides of a cell's four sample rows from its first sample, for prefetching.
+  int y_stride() const { return y_stride_; }
+  int z_stride() const { return z_stride_; }
+  // sample(p, level, trilinear, missed) after locate_rgb(p, level) returned nullptr, without
+  // looking the missing brick up a second time.
+  SampleResult sample_after_miss(const glm::dvec3& p, int level, MissedBricks* missed) {
+    SampleResult result{};
+    sample_general(p, static_cast<double>(level), SampleFilter::trilinear, missed, result);
     return result;
   }
 

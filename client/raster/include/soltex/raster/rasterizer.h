@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <memory>
 #include <span>
 
@@ -48,6 +50,22 @@ class Rasterizer {
   // One render at a time per Rasterizer; the render itself uses thread_count() threads.
   RasterStats render(const RasterView& view, std::span<const RasterObject> objects,
                      GBuffer& target);
+
+  // The same, calling after_tile(x0, y0, x1, y1, worker) for each tile of pixels [x0, x1) x
+  // [y0, y1) as soon as that tile of `target` is final, on the render thread that drew it
+  // (worker in [0, thread_count()), as for parallel_for): a pass over the G-buffer (shading)
+  // can then read each tile while it is still in that core's cache. after_tile must touch no
+  // pixel outside its tile.
+  using TileCallback = std::function<void(int x0, int y0, int x1, int y1, int worker)>;
+  RasterStats render(const RasterView& view, std::span<const RasterObject> objects, GBuffer& target,
+                     const TileCallback& after_tile);
+
+  // Runs task(index, worker) for every index in [0, count) on the render threads (the
+  // caller's included; worker in [0, thread_count()) names the thread, for per-thread state),
+  // handing indices out one at a time; returns when all are done. For the passes that follow a
+  // render (shading the G-buffer), so that they reuse the same persistent threads. Not while a
+  // render runs.
+  void parallel_for(std::size_t count, const std::function<void(std::size_t, int)>& task);
 
  private:
   struct Impl;

@@ -23,6 +23,9 @@ struct RenderOptions {
 };
 
 struct FrameStats {
+  // Tiles are shaded as soon as they are rasterized, in one pass: its wall time (plus the
+  // frame's set-up) is split between these two by the share of render-thread time spent
+  // shading, so raster_ms + shade_ms is the frame's wall time.
   double raster_ms = 0.0;
   double shade_ms = 0.0;
   std::size_t covered_pixels = 0;
@@ -39,9 +42,10 @@ struct Frame {
   bool complete() const { return misses.empty(); }
 };
 
-// Draws a prepared scene from what the cache holds: rasterize into a G-buffer, then per pixel
-// look the texture up at the level its footprint asks for (a coarser resident level when that
-// one is missing), and shade (Lambert + Blinn-Phong, the texture as albedo). Reports the
+// Draws a prepared scene from what the cache holds: rasterize into a G-buffer, and per pixel
+// (each tile right after it is rasterized) look the texture up at the level its footprint asks
+// for (a coarser resident level when that one is missing), and shade (Lambert + Blinn-Phong,
+// the texture as albedo). Reports the
 // bricks it missed so the caller can fetch them; the next frame refines.
 class FrameRenderer {
  public:

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <vector>
@@ -14,9 +16,22 @@ struct Image {
 
   Image() = default;
   Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0) {}
-  // Clamps to [0, 1] (NaN to 0) and rounds to 8 bits.
-  void set(int x, int y, float r, float g, float b);
+  // Clamps to [0, 1] (NaN to 0) and rounds to 8 bits. Inline: the renderers call it per pixel.
+  void set(int x, int y, float r, float g, float b) {
+    uint8_t* px = &rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                        static_cast<std::size_t>(x)) *
+                       3];
+    px[0] = to_byte(r);
+    px[1] = to_byte(g);
+    px[2] = to_byte(b);
+  }
   bool operator==(const Image&) const = default;
+
+ private:
+  static uint8_t to_byte(float v) {
+    if (!(v > 0.0f)) return 0;                                       // also NaN
+    return static_cast<uint8_t>(std::min(v, 1.0f) * 255.0f + 0.5f);  // round half up
+  }
 };
 
 // Writes `image` as PNG; throws std::runtime_error naming the path on failure.
