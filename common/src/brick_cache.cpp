@@ -128,7 +128,8 @@ bool BrickCache::insert(const BrickKey& key, CachedBrick brick) {
       std::max(peak_resident_bytes_.load(std::memory_order_relaxed), resident),
       std::memory_order_relaxed);
   resident_bricks_.fetch_add(1, std::memory_order_relaxed);
-  insertions_.fetch_add(1, std::memory_order_relaxed);
+  // Release: an accessor that reads the new count also finds the brick.
+  insertions_.fetch_add(1, std::memory_order_release);
   return true;
 }
 

@@ -1,6 +1,7 @@
 #include "soltex/render/frame_renderer.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -15,6 +16,41 @@
 
 namespace soltex {
 namespace {
+
+// Counts the pixels that missed each brick. Neighbouring pixels miss the same few bricks, so a
+// handful of recent keys absorb nearly every count before the hash map sees one: a cold frame
+// misses at every pixel.
+class MissTally {
+ public:
+  void add(const BrickKey& key) {
+    for (Slot& slot : recent_) {
+      if (slot.pixels > 0 && slot.key == key) {
+        ++slot.pixels;
+        return;
+      }
+    }
+    Slot& victim = recent_[next_++ % recent_.size()];
+    if (victim.pixels > 0) counts_[victim.key] += victim.pixels;
+    victim = {key, 1};
+  }
+  template <typename Visit>
+  void for_each(Visit visit) {
+    for (Slot& slot : recent_) {
+      if (slot.pixels > 0) counts_[slot.key] += slot.pixels;
+      slot.pixels = 0;
+    }
+    for (const auto& [key, pixels] : counts_) visit(key, pixels);
+  }
+
+ private:
+  struct Slot {
+    BrickKey key{};
+    uint32_t pixels = 0;
+  };
+  std::array<Slot, 8> recent_{};
+  unsigned next_ = 0;
+  std::unordered_map<BrickKey, uint32_t, BrickKeyHash> counts_;
+};
 
 using Clock = std::chrono::steady_clock;
 
@@ -352,7 +388,7 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
     materials.push_back(m);
   }
   struct Worker {
-    std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
+    MissTally misses;
     std::size_t covered = 0, fallback = 0, empty = 0, shaded = 0;
     Clock::duration shading{0};
   };
@@ -402,7 +438,7 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
                                  : sampler.level_of_detail(g.footprint[i]) + options_.level_bias;
           result = sampler.sample(g.texture_position[i], lod, options_.filter, &missed);
         }
-        for (const BrickKey& key : missed.view()) ++worker.misses[key];
+        for (const BrickKey& key : missed.view()) worker.misses.add(key);
         if (!result.complete) ++worker.fallback;
         if (result.level < 0) ++worker.empty;
         if (options_.false_colour_levels) {
@@ -443,8 +479,8 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
     for (auto& sampler : worker_samplers) sampler->flush_statistics();
   }
   std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
-  for (const Worker& worker : workers) {
-    for (const auto& [key, pixels] : worker.misses) misses[key] += pixels;
+  for (Worker& worker : workers) {
+    worker.misses.for_each([&](const BrickKey& key, uint32_t pixels) { misses[key] += pixels; });
     frame.stats.covered_pixels += worker.covered;
     frame.stats.fallback_pixels += worker.fallback;
     frame.stats.empty_pixels += worker.empty;

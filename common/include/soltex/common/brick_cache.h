@@ -124,6 +124,9 @@ class BrickCache {
   // eviction and frame, which sends microcache hits back to check their entry once.
   alignas(64) std::atomic<uint64_t> generation_{1};
   std::atomic<uint64_t> frame_{1};  // entries start with stamp 0: unpinned
+  // Read by accessors with the generation (Accessor::insertions), so kept on its line rather
+  // than with the statistics that lookups write.
+  std::atomic<uint64_t> insertions_{0};
 
   // Writer state: guarded by writer_mutex_.
   alignas(64) std::mutex writer_mutex_;
@@ -135,7 +138,6 @@ class BrickCache {
   std::atomic<uint64_t> hits_{0};
   std::atomic<uint64_t> microcache_hits_{0};
   std::atomic<uint64_t> misses_{0};
-  std::atomic<uint64_t> insertions_{0};
   std::atomic<uint64_t> refused_insertions_{0};
   std::atomic<uint64_t> evictions_{0};
   std::atomic<uint64_t> resident_bytes_{0};
@@ -210,6 +212,11 @@ class BrickCache::Accessor {
   uint64_t generation() const { return cache_->generation_.load(std::memory_order_acquire); }
   // Counts a lookup such a layer answered from the brick it kept.
   void count_microcache_hit() { ++microcache_hits_; }
+  // Bricks inserted so far: while generation() and this are unchanged, a brick found missing
+  // is still missing, so a layer may remember the miss.
+  uint64_t insertions() const { return cache_->insertions_.load(std::memory_order_acquire); }
+  // Counts a lookup such a layer answered "not resident" from a miss it remembered.
+  void count_miss() { ++misses_; }
 
   void flush_statistics();
 

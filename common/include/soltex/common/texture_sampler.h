@@ -210,6 +210,14 @@ class TextureSampler {
     const uint8_t* samples = nullptr;  // data->sample(0, 0, 0)
   };
 
+  // The brick resident() last failed to find at one level, with the cache's generation
+  // (0: none; generations start at 1) and insertion count when it did.
+  struct Missing {
+    glm::ivec3 brick{0};
+    uint64_t generation = 0;
+    uint64_t insertions = 0;
+  };
+
   // Where a point falls at one level: its brick, its cell inside the brick, the fraction.
   struct Location {
     glm::ivec3 brick;
@@ -250,9 +258,19 @@ class TextureSampler {
       accessor_.count_microcache_hit();
       return &current;
     }
+    // A brick found missing is still missing while nothing was inserted or evicted since: a
+    // cold frame misses at nearly every pixel, over and over in the same few bricks per level.
+    Missing& missing = missing_[static_cast<std::size_t>(level)];
+    const uint64_t insertions = accessor_.insertions();
+    if ((brick.x == missing.brick.x) & (brick.y == missing.brick.y) & (brick.z == missing.brick.z) &
+        (generation == missing.generation) & (insertions == missing.insertions)) {
+      accessor_.count_miss();
+      return nullptr;
+    }
     const CachedBrick* found = find(level, brick);
     if (found == nullptr) {
       current = Current{};
+      missing = Missing{brick, generation, insertions};
       return nullptr;
     }
     current = Current{brick, level, generation, found, found->sample(0, 0, 0)};
@@ -283,6 +301,8 @@ class TextureSampler {
   // The bricks resident() found last, per level parity; each valid while the cache's
   // generation is the one it was found in (no eviction since: still resident and alive).
   std::array<Current, 2> current_;
+  // Per level, the brick last found missing.
+  std::array<Missing, SpecLimits::kMaxFinestLevelLog2 + 1> missing_{};
 };
 
 }  // namespace soltex
