@@ -100,39 +100,46 @@ std::vector<uint8_t> local_brick(const v1::RegisterTextureRequest& registration,
   return quantize(samples);
 }
 
-int health_status(const SoltexdProcess& server) {
+namespace {
+
+// One unary call with an empty request message (which encodes to no bytes, but the buffer
+// must exist) to `method`, without credentials; the response's bytes go to `response_bytes`.
+grpc::Status call_with_empty_request(const SoltexdProcess& server, const std::string& method,
+                                     std::string& response_bytes) {
   auto channel = grpc::CreateChannel(server.grpc_address(), grpc::InsecureChannelCredentials());
   grpc::GenericStub stub(channel);
   grpc::ClientContext context;
   context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
-  // HealthCheckRequest{service: ""} encodes to no bytes (but the buffer must exist).
   grpc::Slice empty("");
   grpc::ByteBuffer request(&empty, 1), response;
   std::promise<grpc::Status> done;
-  stub.UnaryCall(&context, "/grpc.health.v1.Health/Check", grpc::StubOptions(), &request, &response,
+  stub.UnaryCall(&context, method, grpc::StubOptions(), &request, &response,
                  [&](grpc::Status s) { done.set_value(s); });
   const grpc::Status status = done.get_future().get();
-  if (!status.ok()) return -status.error_code();
   std::vector<grpc::Slice> slices;
-  (void)response.Dump(&slices);
+  if (status.ok()) (void)response.Dump(&slices);
+  for (const auto& s : slices) {
+    response_bytes.append(reinterpret_cast<const char*>(s.begin()), s.size());
+  }
+  return status;
+}
+
+}  // namespace
+
+int health_status(const SoltexdProcess& server) {
   std::string bytes;
-  for (const auto& s : slices) bytes.append(reinterpret_cast<const char*>(s.begin()), s.size());
+  const grpc::Status status =
+      call_with_empty_request(server, "/grpc.health.v1.Health/Check", bytes);
+  if (!status.ok()) return -status.error_code();
   // HealthCheckResponse{status = 1}: field 1, varint.
   return bytes.size() == 2 && bytes[0] == 0x08 ? bytes[1] : -100;
 }
 
 grpc::StatusCode reflection_status(const SoltexdProcess& server) {
-  auto channel = grpc::CreateChannel(server.grpc_address(), grpc::InsecureChannelCredentials());
-  grpc::GenericStub stub(channel);
-  grpc::ClientContext context;
-  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
-  grpc::Slice empty("");
-  grpc::ByteBuffer request(&empty, 1), response;
-  std::promise<grpc::Status> done;
-  stub.UnaryCall(&context, "/grpc.reflection.v1alpha.ServerReflection/ServerReflectionInfo",
-                 grpc::StubOptions(), &request, &response,
-                 [&](grpc::Status s) { done.set_value(s); });
-  return done.get_future().get().error_code();
+  std::string bytes;
+  return call_with_empty_request(
+             server, "/grpc.reflection.v1alpha.ServerReflection/ServerReflectionInfo", bytes)
+      .error_code();
 }
 
 std::string metrics(const SoltexdProcess& server) {
