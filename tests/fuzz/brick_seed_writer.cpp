@@ -12,11 +12,12 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "seed_file.h"
 #include "soltex/common/brick_codec.h"
 
 namespace {
@@ -58,13 +59,6 @@ std::vector<uint8_t> field_samples(const SeedField& field, int brick_size, int c
   return soltex::quantize(samples);
 }
 
-void write_file(const std::filesystem::path& path, const std::vector<uint8_t>& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(bytes.data()),
-            static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw std::runtime_error("cannot write " + path.string());
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -95,8 +89,11 @@ int main(int argc, char** argv) {
                                      soltex::brick_filter_name(filter);
             soltex::CodecOptions options;
             options.codec = codec;
-            write_file(dir / name,
-                       soltex::encode_brick(samples, brick_size, channels, options, filter));
+            const std::vector<uint8_t> encoded =
+                soltex::encode_brick(samples, brick_size, channels, options, filter);
+            soltex::fuzz::write_seed_file(
+                dir / name,
+                std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()));
             ++written;
           }
         }

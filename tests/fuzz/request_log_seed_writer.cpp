@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -18,6 +17,7 @@
 #include <vector>
 
 #include "request_log.h"
+#include "seed_file.h"
 
 namespace {
 
@@ -56,12 +56,6 @@ struct NamedText {
   std::string text;
 };
 
-void write_text(const std::filesystem::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  if (!out) throw std::runtime_error("cannot write " + path.string());
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -84,7 +78,7 @@ int main(int argc, char** argv) {
         {"no-final-newline", header + "\n0.25 1 2 3 4 5"},
     };
     for (const NamedText& seed : seeds)
-      write_text(dir / (std::string("seed-") + seed.name), seed.text);
+      soltex::fuzz::write_seed_file(dir / (std::string("seed-") + seed.name), seed.text);
     std::printf("wrote %zu seed logs to %s\n", std::size(seeds), dir.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "request_log_seed_writer: %s\n", e.what());

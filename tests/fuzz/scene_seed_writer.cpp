@@ -10,9 +10,10 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <string>
+
+#include "seed_file.h"
 
 namespace {
 
@@ -156,12 +157,6 @@ constexpr NamedText kScenes[] = {
 })"},
 };
 
-void write_text(const std::filesystem::path& path, const char* text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-  if (!out) throw std::runtime_error("cannot write " + path.string());
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -176,12 +171,12 @@ int main(int argc, char** argv) {
     std::filesystem::create_directories(obj_dir);
     int written = 0;
     for (const NamedText& obj : kObjFiles) {
-      write_text(obj_dir / obj.name, obj.text);
-      write_text(corpus / (std::string("seed-") + obj.name), obj.text);
+      soltex::fuzz::write_seed_file(obj_dir / obj.name, obj.text);
+      soltex::fuzz::write_seed_file(corpus / (std::string("seed-") + obj.name), obj.text);
       ++written;
     }
     for (const NamedText& scene : kScenes) {
-      write_text(corpus / (std::string("seed-") + scene.name), scene.text);
+      soltex::fuzz::write_seed_file(corpus / (std::string("seed-") + scene.name), scene.text);
       ++written;
     }
     std::printf("wrote %d seeds to %s and %zu OBJ files to %s\n", written, corpus.c_str(),

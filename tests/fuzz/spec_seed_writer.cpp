@@ -10,11 +10,11 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "seed_file.h"
 #include "soltex/v1/brick_service.pb.h"
 #include "soltex/v1/texture.pb.h"
 
@@ -153,12 +153,6 @@ constexpr NamedVolume kVolumes[] = {
     {"tiny", {1e5, 1e5, 1e5}, {1e5 + 1e-3, 1e5 + 1e-3, 1e5 + 1e-3}, 4},
 };
 
-void write_file(const std::filesystem::path& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw std::runtime_error("cannot write " + path.string());
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -172,7 +166,8 @@ int main(int argc, char** argv) {
     const std::vector<NamedSpec> specs = seed_specs();
     int written = 0;
     for (const NamedSpec& spec : specs) {
-      write_file(dir / ("seed-spec-" + spec.name), spec.spec.SerializeAsString());
+      soltex::fuzz::write_seed_file(dir / ("seed-spec-" + spec.name),
+                                    spec.spec.SerializeAsString());
       ++written;
     }
     // Requests pair specs with volumes, brick sizes and MIP modes in rotation: every one of
@@ -194,8 +189,8 @@ int main(int argc, char** argv) {
       if (request.mip_mode() == v1::MIP_MODE_SUPERSAMPLED) {
         request.set_supersample(static_cast<uint32_t>(i % 3));  // 0 means 2
       }
-      write_file(dir / ("seed-request-" + specs[i].name + "-" + volume.name),
-                 request.SerializeAsString());
+      soltex::fuzz::write_seed_file(dir / ("seed-request-" + specs[i].name + "-" + volume.name),
+                                    request.SerializeAsString());
       ++written;
     }
     std::printf("wrote %d seed messages to %s\n", written, dir.c_str());
