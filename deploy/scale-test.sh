@@ -82,19 +82,24 @@ done
 nodes="127.0.0.1:${memcached_port[0]},127.0.0.1:${memcached_port[1]}"
 
 grpc_port=() metrics_port=() alive=()
-for r in 0 1 2; do
-  "$soltexd" --listen 127.0.0.1:0 --metrics-listen 127.0.0.1:0 --ready-file "$work/ready$r" \
+start_replica() {  # start_replica R PORT: replica R on 127.0.0.1:PORT (0: any), in the background
+  local r=$1 port=$2
+  rm -f "$work/ready$r"
+  "$soltexd" --listen "127.0.0.1:$port" --metrics-listen 127.0.0.1:0 --ready-file "$work/ready$r" \
     --memcached "$nodes" --memcached-timeout-ms 100 --trust-forwarded-for --threads 2 \
-    --shutdown-grace 2 --log-level warn >"$work/soltexd$r.log" 2>&1 &
+    --shutdown-grace 2 --log-level warn >>"$work/soltexd$r.log" 2>&1 &
   replica_pid[$r]=$!
   pids+=("$!")
-done
-for r in 0 1 2; do
+}
+replica_ready() {  # replica_ready R: wait for its ready file, read its ports
+  local r=$1
   for _ in $(seq 1 400); do [ -s "$work/ready$r" ] && break; sleep 0.05; done
   grpc_port[$r]=$(sed -n 's/^grpc=//p' "$work/ready$r")
   metrics_port[$r]=$(sed -n 's/^metrics=//p' "$work/ready$r")
   alive[$r]=1
-done
+}
+for r in 0 1 2; do start_replica "$r" 0; done
+for r in 0 1 2; do replica_ready "$r"; done
 
 start_nginx() {  # start_nginx DIR PORT UPSTREAM...
   local dir=$1 port=$2; shift 2
@@ -166,15 +171,9 @@ check "all three pictures are identical" sh -c "cmp -s '$work/client0.png' '$wor
 render alone "127.0.0.1:${grpc_port[$(( (victim + 1) % 3 ))]}" "${phase2[@]}"
 check "and equal to a render from one surviving replica" cmp -s "$work/client0.png" "$work/alone.png"
 
-# Bring the killed replica back for the rest.
-"$soltexd" --listen "127.0.0.1:${grpc_port[$victim]}" --metrics-listen 127.0.0.1:0 \
-  --ready-file "$work/ready${victim}b" --memcached "$nodes" --memcached-timeout-ms 100 \
-  --trust-forwarded-for --threads 2 --shutdown-grace 2 --log-level warn >>"$work/soltexd$victim.log" 2>&1 &
-replica_pid[$victim]=$!
-pids+=("$!")
-for _ in $(seq 1 400); do [ -s "$work/ready${victim}b" ] && break; sleep 0.05; done
-metrics_port[$victim]=$(sed -n 's/^metrics=//p' "$work/ready${victim}b")
-alive[$victim]=1
+# Bring the killed replica back for the rest, on its port (nginx knows it by that).
+start_replica "$victim" "${grpc_port[$victim]}"
+replica_ready "$victim"
 
 echo "-- 3. one memcached killed mid-load: no client-visible errors"
 errors_of() {  # errors_of JSON_FILE: every error soltex-load counted
