@@ -40,6 +40,14 @@ std::vector<net::BrickWant> level(uint64_t texture, int level, int bricks) {
   return wants;
 }
 
+// Reconnects within half a second, so restart tests do not wait on the default backoff.
+net::FetcherOptions quick_reconnect() {
+  net::FetcherOptions options;
+  options.initial_backoff = std::chrono::milliseconds(50);
+  options.max_backoff = std::chrono::milliseconds(400);
+  return options;
+}
+
 // Compares every sample of a cached brick with this process's evaluation.
 void expect_cached_brick_is_local(BrickCache& cache, uint64_t id, int level_index,
                                   glm::ivec3 brick) {
@@ -108,9 +116,7 @@ TEST(BrickFetcher, SurvivesAServerRestart) {
   const int port = testing::free_port();
   std::optional<SoltexdProcess> server(std::in_place, std::vector<std::string>{}, port);
   BrickCache cache(64 << 20);
-  net::FetcherOptions options;
-  options.initial_backoff = std::chrono::milliseconds(50);
-  options.max_backoff = std::chrono::milliseconds(400);
+  const net::FetcherOptions options = quick_reconnect();
   net::BrickFetcher fetcher("127.0.0.1:" + std::to_string(port), cache, options);
   const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
   fetcher.want(level(id, 2, 2));
@@ -154,9 +160,7 @@ TEST(BrickFetcher, SurvivesAServerKilledMidStream) {
   std::optional<SoltexdProcess> server(
       std::in_place, std::vector<std::string>{"--fault-delay-ms", "20", "--threads", "1"}, port);
   BrickCache cache(64 << 20);
-  net::FetcherOptions options;
-  options.initial_backoff = std::chrono::milliseconds(50);
-  options.max_backoff = std::chrono::milliseconds(400);
+  const net::FetcherOptions options = quick_reconnect();
   net::BrickFetcher fetcher("127.0.0.1:" + std::to_string(port), cache, options);
   const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
   fetcher.want(level(id, 1, 4));
