@@ -48,6 +48,10 @@ BrickStream::BrickStream(Context context, uint64_t id, std::string peer,
 
 BrickStream::~BrickStream() {
   context_.metrics.streams_open.fetch_sub(1, std::memory_order_relaxed);
+  drop_queue();
+}
+
+void BrickStream::drop_queue() {
   count_queued(-static_cast<int64_t>(queue_.clear()));
 }
 
@@ -308,14 +312,14 @@ void BrickStream::on_write_done(bool ok) {
 void BrickStream::on_cancel() {
   std::lock_guard lock(mutex_);
   cancelled_ = true;
-  count_queued(-static_cast<int64_t>(queue_.clear()));
+  drop_queue();
   pump();
 }
 
 void BrickStream::shut_down() {
   std::lock_guard lock(mutex_);
   shutting_down_ = true;
-  count_queued(-static_cast<int64_t>(queue_.clear()));
+  drop_queue();
   pump();
 }
 

@@ -82,6 +82,7 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   std::size_t accept_request();  // returns how many keys were queued
   void register_textures();
   void count_queued(int64_t delta);  // this stream's queue grew or shrank by delta
+  void drop_queue();                 // empties the queue, counted
   void add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message);
   void add_request_error(grpc::StatusCode code, std::string message);
   void pump();               // start the next read, write or finish, whichever is due
