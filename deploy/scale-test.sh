@@ -145,28 +145,50 @@ for c in 0 1 2; do
   render "client$c" "127.0.0.1:$lb_port" "${phase2[@]}" &
   client_pid[$c]=$!
 done
-# Kill a replica while it still owes bricks to its streams (its queue is not empty).
-victim="" queued=0
-for _ in $(seq 1 1000); do
+# Kill a replica while it carries clients' main streams. Each client first opens a short
+# stream to probe the link, then its main stream, which stays open until that client has every
+# brick. Once six streams were opened in this phase and three are open, the open ones are the
+# three main streams, each still short of its frame; the victim is the replica with most of them.
+# (A deep queue is no proof: a fast client may already hold what it needs while cancelled wants
+# still sit in the replica's queue.)
+stream_counts() {  # stream_counts R: "OPENED_TOTAL OPEN" for replica R
+  curl -fsS "http://127.0.0.1:${metrics_port[$1]}/metrics" 2>/dev/null | awk '
+    $1 == "soltex_streams_opened_total" { opened = $2 } $1 == "soltex_streams_open" { open = $2 }
+    END { printf "%d %d\n", opened, open }'
+}
+for r in 0 1 2; do read -r opened_before[r] _ < <(stream_counts "$r"); done
+victim="" victim_streams=0
+for _ in $(seq 1 600); do
+  opened_sum=0 open_sum=0 busiest=0
   for r in 0 1 2; do
-    depth=$(metric "$r" soltex_queue_depth); depth=${depth%.*}
-    if [ "$depth" -gt 20 ]; then victim=$r queued=$depth; break; fi
+    read -r opened open < <(stream_counts "$r")
+    opened_sum=$((opened_sum + opened - opened_before[r])) open_sum=$((open_sum + open))
+    if [ "$open" -gt "$busiest" ]; then busiest=$open candidate=$r; fi
   done
-  [ -n "$victim" ] && break
-  sleep 0.01
+  if [ "$opened_sum" -ge 6 ] && [ "$open_sum" -eq 3 ]; then victim=$candidate victim_streams=$busiest; break; fi
+  sleep 0.005
 done
 victim=${victim:-2}
+# Let it get under way first: 100 bricks more, far short of the frame its clients need.
+served() { local v; v=$(metric "$1" soltex_bricks_served_total); echo "${v%.*}"; }
+served_then=$(served "$victim")
+for _ in $(seq 1 400); do
+  [ $(($(served "$victim") - served_then)) -ge 100 ] && break
+  sleep 0.005
+done
+queued=$(metric "$victim" soltex_queue_depth) into=$(($(served "$victim") - served_then))
 kill -9 "${replica_pid[$victim]}"
 wait "${replica_pid[$victim]}" 2>/dev/null || true
 alive[$victim]=""
-echo "   killed replica $victim with $queued bricks still queued for its clients"
+echo "   killed replica $victim while it carried $victim_streams of the 3 main streams, $into bricks into them, ${queued%.*} queued"
 client_failures=0
 for c in 0 1 2; do wait "${client_pid[$c]}" || client_failures=$((client_failures + 1)); done
 reconnects=0
 for c in 0 1 2; do reconnects=$((reconnects + $(field "$work/client$c.txt" reconnects))); done
 check "every client exited cleanly" test "$client_failures" -eq 0
 check "every client converged" converged "$work/client0.txt" "$work/client1.txt" "$work/client2.txt"
-check "the killed replica's clients reconnected ($reconnects reconnects)" test "$reconnects" -ge 1
+check "the killed replica's clients reconnected ($reconnects reconnects for $victim_streams streams)" \
+  test "$victim_streams" -ge 1 -a "$reconnects" -ge "$victim_streams"
 check "all three pictures are identical" sh -c "cmp -s '$work/client0.png' '$work/client1.png' && cmp -s '$work/client0.png' '$work/client2.png'"
 render alone "127.0.0.1:${grpc_port[$(( (victim + 1) % 3 ))]}" "${phase2[@]}"
 check "and equal to a render from one surviving replica" cmp -s "$work/client0.png" "$work/alone.png"
