@@ -8,9 +8,10 @@
 // First argument: the thread count (the caller's thread included). Second: 0 for the scene as
 // it is, 1 for the bunny alone (the floor removed): the wood floor's two-colour rings keep the
 // whole frame at about 26 dB against the reference, the marble alone is above 40 dB, so the
-// speed ratio at PSNR >= 40 dB is read from the second. Times are wall-clock per frame; the CPU
-// column is the whole process's CPU time (all render threads) per frame.
-// Counters: the warm frame's raster and shade wall times (ms) as FrameRenderer reports them,
+// speed ratio at PSNR >= 40 dB is read from the second; 2 for the bunny alone drawn with both
+// faces (the scene draws front faces only), to show what back-face culling saves. Times are
+// wall-clock per frame; the CPU column is the whole process's CPU time (all render threads) per
+// frame. Counters: the warm frame's raster and shade wall times (ms) as FrameRenderer reports them,
 // and its PSNR against the per-pixel reference (dB).
 
 #include <benchmark/benchmark.h>
@@ -37,8 +38,8 @@ constexpr int kHeight = 720;
 
 // One converged scene per thread count, kept for the whole run.
 struct WarmScene {
-  WarmScene(int threads, bool marble_only)
-      : scene(load(marble_only)),
+  WarmScene(int threads, int variant)
+      : scene(load(variant)),
         cache(std::make_unique<soltex::BrickCache>(512u << 20)),
         source(std::make_unique<soltex::net::LocalBrickSource>(*cache)),
         prepared(soltex::prepare_scene(scene, soltex::TextureResolution{8, 16, {}}, *source)),
@@ -59,10 +60,13 @@ struct WarmScene {
     psnr = soltex::psnr(warm, renderer->render_reference(prepared, scene.camera, kWidth, kHeight));
   }
 
-  static soltex::Scene load(bool marble_only) {
+  static soltex::Scene load(int variant) {
     soltex::Scene scene = soltex::load_scene(SOLTEX_SOURCE_DIR "/deploy/scenes/bunny-marble.json");
-    if (marble_only) {
+    if (variant >= 1) {
       std::erase_if(scene.objects, [](const soltex::SceneObject& o) { return o.name == "floor"; });
+    }
+    if (variant == 2) {
+      for (soltex::SceneObject& object : scene.objects) object.double_sided = true;
     }
     return scene;
   }
@@ -76,11 +80,11 @@ struct WarmScene {
 };
 
 WarmScene& warm_scene(const benchmark::State& state) {
-  static std::unique_ptr<WarmScene> scenes[3][2];
+  static std::unique_ptr<WarmScene> scenes[3][3];
   const auto threads = static_cast<int>(state.range(0));
-  const bool marble_only = state.range(1) != 0;
-  auto& s = scenes[threads][marble_only ? 1 : 0];
-  if (!s) s = std::make_unique<WarmScene>(threads, marble_only);
+  const auto variant = static_cast<int>(state.range(1));
+  auto& s = scenes[threads][variant];
+  if (!s) s = std::make_unique<WarmScene>(threads, variant);
   return *s;
 }
 
@@ -142,6 +146,7 @@ BENCHMARK(BM_WarmFrame)
     ->Args({1, 0})
     ->Args({2, 0})
     ->Args({2, 1})
+    ->Args({2, 2})
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
@@ -154,6 +159,7 @@ BENCHMARK(BM_Raster)
 BENCHMARK(BM_ReferenceFrame)
     ->Args({2, 0})
     ->Args({2, 1})
+    ->Args({2, 2})
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();

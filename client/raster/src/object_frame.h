@@ -22,6 +22,8 @@ struct ObjectFrame {
   // . p), so a vertex's signed distance needs no world position.
   std::array<glm::dvec4, RasterView::kMaxClipPlanes> object_planes{};
   std::size_t first_vertex = 0;  // where its vertices start in TransformedVertices
+  // RasterObject::cull_back_faces, unless one of this frame's clip planes cuts the object.
+  bool cull_back_faces = false;
 };
 
 ObjectFrame make_object_frame(const RasterObject& object, const RasterView& view,

@@ -7,6 +7,7 @@ RasterStats& RasterStats::operator+=(const RasterStats& other) {
   triangles_invalid += other.triangles_invalid;
   triangles_degenerate += other.triangles_degenerate;
   triangles_culled += other.triangles_culled;
+  triangles_back_face_culled += other.triangles_back_face_culled;
   triangles_clipped_near += other.triangles_clipped_near;
   triangles_clipped_guard_band += other.triangles_clipped_guard_band;
   triangles_rasterized += other.triangles_rasterized;

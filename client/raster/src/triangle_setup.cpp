@@ -151,6 +151,16 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
 
   const uint32_t outside =
       clip_planes_.outside(a) | clip_planes_.outside(b) | clip_planes_.outside(c);
+  if (outside == 0 && object.cull_back_faces) {
+    // Projected already: the same orientation emit() would find, before any attribute work.
+    const ScreenVertex& s0 = v0.screen;
+    const ScreenVertex& s1 = v1.screen;
+    const ScreenVertex& s2 = v2.screen;
+    if (edge_function(s0.x, s0.y, s1.x, s1.y, s2.x, s2.y) > 0) {
+      ++stats.triangles_back_face_culled;
+      return;
+    }
+  }
   ClipPolygon polygon;
   if (outside == 0) {
     polygon.vertices[0] = {a, {1.0f, 0.0f, 0.0f}};
@@ -188,13 +198,15 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
     }
   }
   for (int k = 1; k + 1 < polygon.size; ++k) {
-    emit(source, polygon, projected, {0, k, k + 1}, triangles, clip_forms, stats);
+    emit(source, polygon, projected, {0, k, k + 1}, object.cull_back_faces, triangles, clip_forms,
+         stats);
   }
 }
 
 void TriangleSetup::emit(const SourceTriangle& source, const ClipPolygon& polygon,
                          const std::array<ProjectedVertex, ClipPolygon::kCapacity>& projected,
-                         std::array<int, 3> corners, std::vector<ScreenTriangle>& triangles,
+                         std::array<int, 3> corners, bool cull_back_faces,
+                         std::vector<ScreenTriangle>& triangles,
                          std::vector<AffineForm>& clip_forms, RasterStats& stats) const {
   const auto vertex = [&](int k) -> const ProjectedVertex& {
     return projected[static_cast<std::size_t>(corners[static_cast<std::size_t>(k)])];
@@ -207,6 +219,10 @@ void TriangleSetup::emit(const SourceTriangle& source, const ClipPolygon& polygo
   }
   // Counter-clockwise in NDC (y up) is clockwise on screen (y down): negative area here.
   const bool back_face = double_area > 0;
+  if (back_face && cull_back_faces) {
+    ++stats.triangles_back_face_culled;
+    return;
+  }
   if (!back_face) {
     std::swap(corners[1], corners[2]);
     double_area = -double_area;

@@ -44,8 +44,9 @@ class TriangleSetup {
   ProjectedVertex project(const glm::vec4& clip) const;
   void emit(const SourceTriangle& source, const ClipPolygon& polygon,
             const std::array<ProjectedVertex, ClipPolygon::kCapacity>& projected,
-            std::array<int, 3> corners, std::vector<ScreenTriangle>& triangles,
-            std::vector<AffineForm>& clip_forms, RasterStats& stats) const;
+            std::array<int, 3> corners, bool cull_back_faces,
+            std::vector<ScreenTriangle>& triangles, std::vector<AffineForm>& clip_forms,
+            RasterStats& stats) const;
 
   int width_;
   int height_;

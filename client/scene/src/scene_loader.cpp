@@ -440,6 +440,7 @@ Scene parse_scene(std::string_view json_text, const std::string& name_for_errors
       object.transform = read_transform(*transform);
     }
     object.material = read_material(fields.get("material"));
+    object.double_sided = fields.boolean("double_sided", true);
     fields.reject_unknown_keys();
     scene.objects.push_back(std::move(object));
   }

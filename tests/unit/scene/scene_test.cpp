@@ -136,6 +136,7 @@ TEST(ParseScene, ReadsEveryField) {
                     "volume": {"min": [-1, -1, -1], "max": [1, 1, 1], "finest_level_log2": 7},
                     "specular": 0.6, "shininess": 64, "unlit": true}},
       {"name": "b", "mesh": {"box": {"size": [1, 2, 3], "subdivisions": 2}}, "transform": {"scale": 2},
+       "double_sided": false,
        "material": {"texture": {"stripes": {"axis": "z"}}, "volume": {"finest_level_log2": 5}}},
       {"name": "c", "mesh": {"plane": {"size": 3}},
        "material": {"texture": {"noise": {"basis": "gradient"}}}}
@@ -168,6 +169,8 @@ TEST(ParseScene, ReadsEveryField) {
   EXPECT_EQ(a.mesh->triangle_count(), 2u * 8u * 6u);
   EXPECT_EQ(a.transform.rotate_degrees, glm::dvec3(90, 0, 0));
   EXPECT_EQ(a.transform.scale, glm::dvec3(1, 2, 3));
+  EXPECT_TRUE(a.double_sided) << "the default";
+  EXPECT_FALSE(scene.objects[1].double_sided);
   EXPECT_EQ(a.material.space, TextureSpace::world);
   EXPECT_TRUE(a.material.texture.channels.specular);
   EXPECT_FLOAT_EQ(a.material.texture.specular.high, 0.9f);
@@ -240,6 +243,8 @@ INSTANTIATE_TEST_SUITE_P(
                    first_object(s)["transform"] = {{"rotate", {1, 2}}};
                  },
                  "objects[0].transform.rotate", "expected 3 numbers"},
+        BadScene{"DoubleSidedNotABoolean", [](json& s) { first_object(s)["double_sided"] = "no"; },
+                 "objects[0].double_sided", "expected true or false, found a string"},
         BadScene{"MissingMaterial", [](json& s) { first_object(s).erase("material"); },
                  "objects[0].material", "missing required field"},
         BadScene{"MissingObjects", [](json& s) { s.erase("objects"); }, "objects",

@@ -23,6 +23,11 @@ struct RasterObject {
   // A scene's plane usually cuts one object and leaves the others whole.
   uint32_t clip_plane_mask = ~0u;
   bool closed = true;
+  // Draw front faces only (OpenGL's glCullFace(GL_BACK), glTF's doubleSided: false): back
+  // faces are dropped at set-up, before they cost any drawing. For a closed mesh seen from
+  // outside they are hidden anyway; an open mesh then shows nothing through its holes. Ignored
+  // while a clip plane cuts the object: its caps are drawn where back faces show.
+  bool cull_back_faces = false;
 };
 
 }  // namespace soltex

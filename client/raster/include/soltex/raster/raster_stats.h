@@ -12,6 +12,7 @@ struct RasterStats {
   uint64_t triangles_invalid = 0;             // skipped: non-finite vertex or index out of range
   uint64_t triangles_degenerate = 0;          // skipped: zero area on screen (after snapping)
   uint64_t triangles_culled = 0;              // outside the view volume or between pixel centres
+  uint64_t triangles_back_face_culled = 0;    // facing away, object draws front faces only
   uint64_t triangles_clipped_near = 0;        // cut by the near plane (homogeneous space)
   uint64_t triangles_clipped_guard_band = 0;  // cut to keep screen coordinates bounded
   uint64_t triangles_rasterized = 0;  // screen triangles set up (a clipped one may give more)

@@ -32,6 +32,10 @@ struct SceneObject {
   Transform transform;
   Material material;
   std::vector<ClipPlane> clip_planes;  // the scene's planes that cut this object
+  // false: only the faces turned towards the camera are drawn (back faces cost nothing). For a
+  // closed mesh seen from outside the picture is the same; an open one shows nothing through
+  // its holes. Objects cut by a clip plane draw both faces regardless (caps need them).
+  bool double_sided = true;
 };
 
 struct ImageSize {
