@@ -28,6 +28,10 @@ struct alignas(64) TransformedVertex {
   // Valid where `valid` is and the vertex is inside the guard band; unspecified elsewhere.
   ScreenVertex screen;
   uint8_t valid = 0;        // 0 when the position (or what it became) is not finite
+  // Where `valid` is: the sides of the view volume the vertex is outside of (for trivial
+  // rejection), and the planes (ClipPlaneBit) it would be clipped against.
+  uint8_t frustum_outside = 0;
+  uint8_t clip_outside = 0;
   glm::dvec3 texture{0.0};  // double: see GBuffer on texture-space precision
   glm::vec3 normal{0.0f};   // world space; zero when the mesh has no normals
 };

@@ -95,8 +95,12 @@ void TriangleSetup::project_vertices(TransformedVertices& vertices, std::size_t 
                                      std::size_t end) const {
   for (std::size_t i = begin; i < end; ++i) {
     TransformedVertex& v = vertices.vertex[i];
-    // Only where setup() would project the vertex itself: finite and inside the guard band.
-    if (v.valid != 0 && clip_planes_.outside(v.clip) == 0) v.screen = project(v.clip);
+    if (v.valid == 0) continue;
+    // Once per vertex rather than once per triangle that uses it (about six).
+    v.frustum_outside = static_cast<uint8_t>(frustum_outcode(v.clip));
+    v.clip_outside = static_cast<uint8_t>(clip_planes_.outside(v.clip));
+    // Only where setup() would project the vertex itself: inside the guard band.
+    if (v.clip_outside == 0) v.screen = project(v.clip);
   }
 }
 
@@ -123,9 +127,20 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
   const glm::vec4& a = v0.clip;
   const glm::vec4& b = v1.clip;
   const glm::vec4& c = v2.clip;
-  if ((frustum_outcode(a) & frustum_outcode(b) & frustum_outcode(c)) != 0) {
+  if ((v0.frustum_outside & v1.frustum_outside & v2.frustum_outside) != 0) {
     ++stats.triangles_culled;
     return;
+  }
+  const uint32_t outside = v0.clip_outside | v1.clip_outside | v2.clip_outside;
+  if (outside == 0 && object.cull_back_faces) {
+    // Projected already: the same orientation emit() would find, before any attribute work.
+    const ScreenVertex& s0 = v0.screen;
+    const ScreenVertex& s1 = v1.screen;
+    const ScreenVertex& s2 = v2.screen;
+    if (edge_function(s0.x, s0.y, s1.x, s1.y, s2.x, s2.y) > 0) {
+      ++stats.triangles_back_face_culled;
+      return;
+    }
   }
 
   SourceTriangle source;
@@ -149,18 +164,6 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
     if (source.straddling_planes != 0) ++stats.triangles_clip_straddling;
   }
 
-  const uint32_t outside =
-      clip_planes_.outside(a) | clip_planes_.outside(b) | clip_planes_.outside(c);
-  if (outside == 0 && object.cull_back_faces) {
-    // Projected already: the same orientation emit() would find, before any attribute work.
-    const ScreenVertex& s0 = v0.screen;
-    const ScreenVertex& s1 = v1.screen;
-    const ScreenVertex& s2 = v2.screen;
-    if (edge_function(s0.x, s0.y, s1.x, s1.y, s2.x, s2.y) > 0) {
-      ++stats.triangles_back_face_culled;
-      return;
-    }
-  }
   ClipPolygon polygon;
   if (outside == 0) {
     polygon.vertices[0] = {a, {1.0f, 0.0f, 0.0f}};
