@@ -5,6 +5,8 @@
 //   BM_WarmFrame       FrameRenderer::render: raster + brick lookup + shade
 //   BM_Raster          the rasterizer alone on the same view (FrameRenderer's raster part)
 //   BM_ReferenceFrame  FrameRenderer::render_reference: the texture evaluated per pixel
+//   BM_ColdFrame       FrameRenderer::render with nothing resident (a client's first frame):
+//                      every pixel misses, and the frame lists every brick it wants
 // First argument: the thread count (the caller's thread included). Second: 0 for the scene as
 // it is, 1 for the bunny alone (the floor removed): the wood floor's two-colour rings keep the
 // whole frame at about 26 dB against the reference, the marble alone is above 40 dB, so the
@@ -142,6 +144,26 @@ void BM_ReferenceFrame(benchmark::State& state) {
   }
 }
 
+void BM_ColdFrame(benchmark::State& state) {
+  WarmScene& w = warm_scene(state);
+  std::size_t misses = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto empty = std::make_unique<soltex::BrickCache>(512u << 20);
+    auto renderer = std::make_unique<soltex::FrameRenderer>(
+        *empty, soltex::RenderOptions{.threads = static_cast<int>(state.range(0))});
+    state.ResumeTiming();
+    soltex::Frame frame = renderer->render(w.prepared, w.scene.camera, kWidth, kHeight);
+    misses = frame.misses.size();
+    benchmark::DoNotOptimize(frame.image);
+    state.PauseTiming();
+    renderer.reset();
+    empty.reset();
+    state.ResumeTiming();
+  }
+  state.counters["bricks_wanted"] = static_cast<double>(misses);
+}
+
 BENCHMARK(BM_WarmFrame)
     ->Args({1, 0})
     ->Args({2, 0})
@@ -153,6 +175,12 @@ BENCHMARK(BM_WarmFrame)
 BENCHMARK(BM_Raster)
     ->Args({1, 0})
     ->Args({2, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+BENCHMARK(BM_ColdFrame)
+    ->Args({2, 0})
+    ->Args({2, 1})
     ->Unit(benchmark::kMillisecond)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
