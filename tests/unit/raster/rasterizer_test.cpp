@@ -36,7 +36,7 @@ std::vector<uint32_t> coverage_of(const Mesh& mesh, const glm::mat4& view_projec
   object.mesh = mesh.view();
   GBuffer g;
   render_one(rasterizer, view, object, g);
-  return g.coverage_count;
+  return {g.coverage_count.begin(), g.coverage_count.end()};
 }
 
 // A square whose edges and diagonal run through pixel centres: the top-left rule decides all.
@@ -503,8 +503,8 @@ TEST(RasterizerThreads, AfterTileSeesEachFinishedTileOnce) {
     Rasterizer rasterizer({.threads = threads});
     GBuffer g;
     std::vector<int> visits(static_cast<std::size_t>(width) * height, 0);
-    std::vector<float> depth_seen(visits.size(), -1.0f);
-    std::vector<glm::dvec3> position_seen(visits.size());
+    GBufferPlane<float> depth_seen(visits.size(), -1.0f);
+    GBufferPlane<glm::dvec3> position_seen(visits.size(), glm::dvec3(0.0));
     rasterizer.render(view, std::span<const RasterObject>(&object, 1), g,
                       [&](int x0, int y0, int x1, int y1, int worker) {
                         EXPECT_GE(worker, 0);

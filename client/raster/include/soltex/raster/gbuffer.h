@@ -4,6 +4,10 @@
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <limits>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 // The rasterizer's output: what each pixel sees, for shading and texture lookup later.
@@ -18,6 +22,33 @@
 // for objects at 1e6 or 1e9 in texture space, where a float would be off by 0.06 or 64 units.
 namespace soltex {
 
+// A std::allocator whose value-less construct() default-initialises: vector::resize then
+// leaves new pixels unwritten instead of zeroing them. Every render writes every pixel of
+// every plane, so zeroing only cost the first frame a single-threaded pass over the whole
+// buffer (about 45 MB at 1280 x 720), faulting in each page before the render threads wrote it.
+template <typename T>
+struct UninitializedAllocator : std::allocator<T> {
+  template <typename U>
+  struct rebind {
+    using other = UninitializedAllocator<U>;
+  };
+  UninitializedAllocator() = default;
+  template <typename U>
+  UninitializedAllocator(const UninitializedAllocator<U>&) noexcept {}  // NOLINT: rebinding
+
+  template <typename U>
+  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
+    ::new (static_cast<void*>(p)) U;
+  }
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+};
+
+template <typename T>
+using GBufferPlane = std::vector<T, UninitializedAllocator<T>>;
+
 struct GBuffer {
   static constexpr uint32_t kNoObject = std::numeric_limits<uint32_t>::max();
 
@@ -31,23 +62,23 @@ struct GBuffer {
   int height = 0;
 
   // Window depth in [0, 1] (NDC z mapped like glDepthRange(0, 1)); +inf where not covered.
-  std::vector<float> depth;
-  std::vector<uint8_t> flags;       // PixelFlag bits
-  std::vector<uint32_t> object_id;  // RasterObject::object_id; kNoObject where not covered
+  GBufferPlane<float> depth;
+  GBufferPlane<uint8_t> flags;       // PixelFlag bits
+  GBufferPlane<uint32_t> object_id;  // RasterObject::object_id; kNoObject where not covered
   // Where to evaluate the texture. On a cap: the view ray's intersection with the clip
   // plane, in the texture space of the cut object. Zero where not covered.
-  std::vector<glm::dvec3> texture_position;
+  GBufferPlane<glm::dvec3> texture_position;
   // World-space unit normal, interpolated, not flipped on back faces (see kBackFace). On a
   // cap: the clip plane's unit normal pointing out of the kept half-space, towards the
   // viewer: minus (a, b, c) normalized. Zero where not covered.
-  std::vector<glm::vec3> normal;
+  GBufferPlane<glm::vec3> normal;
   // Texture-space size of the pixel: max(|dP/dx|, |dP/dy|) of the texture position P per
   // pixel step. >= 0; +inf at grazing angles where the derivative is unbounded; never NaN.
   // Zero where not covered.
-  std::vector<float> footprint;
+  GBufferPlane<float> footprint;
   // Debug (RasterOptions::count_coverage): how many triangle fragments passed the fill rule
   // at each pixel, before depth and clip tests. Empty unless asked for.
-  std::vector<uint32_t> coverage_count;
+  GBufferPlane<uint32_t> coverage_count;
 
   std::size_t pixel_count() const {
     return static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
@@ -60,8 +91,8 @@ struct GBuffer {
   bool back_face(std::size_t i) const { return (flags[i] & kBackFace) != 0; }
   bool is_cap(std::size_t i) const { return (flags[i] & kCap) != 0; }
 
-  // Sizes every plane for width x height (coverage_count only when count_coverage). Leaves
-  // the contents to the next render.
+  // Sizes every plane for width x height (coverage_count only when count_coverage). New
+  // pixels are left unwritten, for the next render to write.
   void resize(int new_width, int new_height, bool count_coverage);
 };
 
