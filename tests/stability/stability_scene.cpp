@@ -58,7 +58,7 @@ GBuffer rasterize(const PreparedScene& scene, const Camera& camera, int width, i
                   RasterStats* stats) {
   // The renderer's own G-buffer: exactly what a frame is drawn from (eye-relative world).
   BrickCache cache(1u << 20);
-  FrameRenderer renderer(cache, RenderOptions{});
+  FrameRenderer renderer(cache, RenderOptions{.keep_gbuffer = true});
   const Frame frame = renderer.render(scene, camera, width, height);
   if (stats != nullptr) *stats = frame.stats.raster;
   return renderer.last_gbuffer();

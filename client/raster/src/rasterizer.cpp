@@ -147,6 +147,8 @@ struct Rasterizer::Impl {
       tiles.push_back(std::make_unique<TileRasterizer>());
     }
     worker_stats.resize(static_cast<std::size_t>(pool.thread_count()));
+    tile_targets.resize(static_cast<std::size_t>(pool.thread_count()));
+    for (GBuffer& tile : tile_targets) tile.resize(kTileSize, kTileSize, false);
   }
 
   RasterOptions options;
@@ -158,7 +160,10 @@ struct Rasterizer::Impl {
   std::vector<SetupChunk> chunks;
   std::vector<std::unique_ptr<TileRasterizer>> tiles;  // one per thread
   std::vector<RasterStats> worker_stats;
+  std::vector<GBuffer> tile_targets;  // one per thread, for render_tiles()
 };
+
+static_assert(Rasterizer::kTileSize == kTileSize);
 
 Rasterizer::Rasterizer(RasterOptions options) : impl_(std::make_unique<Impl>(options)) {}
 Rasterizer::~Rasterizer() = default;
@@ -182,9 +187,21 @@ RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObj
 RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObject> objects,
                                GBuffer& target, const TileCallback& after_tile) {
   validate(view, objects);
-  Impl& impl = *impl_;
-  target.resize(view.width, view.height, impl.options.count_coverage);
+  target.resize(view.width, view.height, impl_->options.count_coverage);
   std::fill(target.coverage_count.begin(), target.coverage_count.end(), 0u);
+  return draw(view, objects, &target, after_tile, TileGBufferCallback{});
+}
+
+RasterStats Rasterizer::render_tiles(const RasterView& view, std::span<const RasterObject> objects,
+                                     const TileGBufferCallback& tile_done) {
+  validate(view, objects);
+  return draw(view, objects, nullptr, TileCallback{}, tile_done);
+}
+
+RasterStats Rasterizer::draw(const RasterView& view, std::span<const RasterObject> objects,
+                             GBuffer* frame_target, const TileCallback& after_tile,
+                             const TileGBufferCallback& tile_done) {
+  Impl& impl = *impl_;
   const int plane_count = static_cast<int>(view.clip_planes.size());
 
   // 1. Vertices.
@@ -245,7 +262,9 @@ RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObj
   const std::optional<CapTracer> caps =
       plane_count > 0 ? std::optional<CapTracer>(std::in_place, view) : std::nullopt;
   const TileFrame tile_frame{impl.objects, caps ? &*caps : nullptr};
-  uint32_t* coverage = target.coverage_count.empty() ? nullptr : target.coverage_count.data();
+  uint32_t* coverage = frame_target == nullptr || frame_target->coverage_count.empty()
+                           ? nullptr
+                           : frame_target->coverage_count.data();
   std::fill(impl.worker_stats.begin(), impl.worker_stats.end(), RasterStats{});
   impl.pool.parallel_for(static_cast<std::size_t>(grid.count()), [&](std::size_t tile, int worker) {
     const int column = static_cast<int>(tile) % grid.columns;
@@ -267,11 +286,15 @@ RasterStats Rasterizer::render(const RasterView& view, std::span<const RasterObj
                    stats);
       }
     }
-    tiles.resolve(tile_frame, target, stats);
-    if (after_tile) {
-      after_tile(column * kTileSize, row * kTileSize,
-                 std::min(view.width, (column + 1) * kTileSize),
-                 std::min(view.height, (row + 1) * kTileSize), worker);
+    const int x0 = column * kTileSize, y0 = row * kTileSize;
+    const int x1 = std::min(view.width, x0 + kTileSize), y1 = std::min(view.height, y0 + kTileSize);
+    if (frame_target != nullptr) {
+      tiles.resolve(tile_frame, *frame_target, 0, 0, stats);
+      if (after_tile) after_tile(x0, y0, x1, y1, worker);
+    } else {
+      GBuffer& tile_target = impl.tile_targets[static_cast<std::size_t>(worker)];
+      tiles.resolve(tile_frame, tile_target, x0, y0, stats);
+      if (tile_done) tile_done(tile_target, x0, y0, x1, y1, worker);
     }
   });
 

@@ -335,17 +335,19 @@ void TileRasterizer::draw_unclipped(const ScreenTriangle& t, int first_x, int la
   stats.fragments_depth_passed += depth_passed;
 }
 
-void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, RasterStats& stats) const {
+void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origin_x, int origin_y,
+                             RasterStats& stats) const {
   const GBufferPlanes target(gbuffer);
-  const auto width = static_cast<std::size_t>(gbuffer.width);
+  const auto width = static_cast<std::ptrdiff_t>(gbuffer.width);
   uint64_t covered = 0, back_faces = 0, cap_rays = 0, caps = 0;
   SurfaceBatch surfaces;
   for (int y = y0_; y < y1_; ++y) {
-    const std::size_t row = static_cast<std::size_t>(y) * width;
+    // Where pixel (0, y) would be in the target: x is added below (x >= origin_x).
+    const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(y - origin_y) * width - origin_x;
     const ScreenTriangle* const* winners = winner_.data() + (y - y0_) * kTileSize - x0_;
     for (int x = x0_; x < x1_; ++x) {
       const auto local = static_cast<std::size_t>((y - y0_) * kTileSize + (x - x0_));
-      const std::size_t i = row + static_cast<std::size_t>(x);
+      const auto i = static_cast<std::size_t>(row + x);
       const ScreenTriangle* winner = winners[x];
       if (winner == nullptr) {
         // A run of empty pixels is written plane by plane (memset-like stores).

@@ -37,8 +37,11 @@ class TileRasterizer {
   void draw(const ScreenTriangle& triangle, std::span<const AffineForm> clip_forms,
             uint32_t* coverage, int coverage_stride, RasterStats& stats);
 
-  // Writes every pixel of the tile to `target`.
-  void resolve(const TileFrame& frame, GBuffer& target, RasterStats& stats) const;
+  // Writes every pixel of the tile to `target`, whose pixel (x, y) of the frame is at
+  // target.index(x - origin_x, y - origin_y): the frame's G-buffer (origin 0, 0), or a
+  // tile-sized one (origin x0, y0).
+  void resolve(const TileFrame& frame, GBuffer& target, int origin_x, int origin_y,
+               RasterStats& stats) const;
 
  private:
   void draw_unclipped(const ScreenTriangle& t, int first_x, int last_x, int first_y, int last_y,

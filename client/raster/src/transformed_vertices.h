@@ -27,7 +27,7 @@ struct alignas(64) TransformedVertex {
   glm::vec4 clip{0.0f};
   // Valid where `valid` is and the vertex is inside the guard band; unspecified elsewhere.
   ScreenVertex screen;
-  uint8_t valid = 0;        // 0 when the position (or what it became) is not finite
+  uint8_t valid = 0;  // 0 when the position (or what it became) is not finite
   // Where `valid` is: the sides of the view volume the vertex is outside of (for trivial
   // rejection), and the planes (ClipPlaneBit) it would be clipped against.
   uint8_t frustum_outside = 0;

@@ -353,7 +353,6 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
   const glm::dmat4 inverse_vp = glm::inverse(vp);
   const PreparedLights lights = prepare_lights(*scene.scene);
   const auto threads = static_cast<std::size_t>(rasterizer_.thread_count());
-  const GBuffer& g = gbuffer_;
   // Samplers (and their microcaches) live across frames, one set per render thread.
   std::vector<uint64_t> texture_ids;
   for (const PreparedObject& o : scene.objects) texture_ids.push_back(o.texture_id);
@@ -395,8 +394,10 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
   std::vector<Worker> workers(threads);
   const SurfaceUnprojection unprojection{inverse_vp, camera.position, width, height};
   const std::size_t object_count = scene.objects.size();
-  // Shades the pixels [x0, x1) x [y0, y1) of the G-buffer on render thread `worker_index`.
-  const auto shade_tile = [&](int x0, int y0, int x1, int y1, int worker_index) {
+  // Shades the frame's pixels [x0, x1) x [y0, y1) on render thread `worker_index`, from `g`,
+  // which holds the frame's pixel (x, y) at g.index(x - origin_x, y - origin_y).
+  const auto shade_tile = [&](const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1,
+                              int y1, int worker_index) {
     Worker& worker = workers[static_cast<std::size_t>(worker_index)];
     auto& samplers = samplers_[static_cast<std::size_t>(worker_index)];
     LitPixels lit;  // about 40 KB of stack, uninitialised but for the count
@@ -410,7 +411,7 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
     MissedBricks missed;
     for (int y = y0; y < y1; ++y) {
       for (int x = x0; x < x1; ++x) {
-        const std::size_t i = g.index(x, y);
+        const std::size_t i = g.index(x - origin_x, y - origin_y);
         const uint32_t id = g.object_id[i];
         if (!g.covered(i) || id >= object_count) {
           frame.image.set(x, y, kBackground.r, kBackground.g, kBackground.b);
@@ -462,19 +463,31 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
     }
     if (lit.batch.count > 0) flush();
   };
-  // Each raster tile is shaded by the thread that resolved it, right after, while its part of
-  // the G-buffer is still in that core's cache; in square pieces, whose pixels read few bricks.
-  frame.stats.raster = rasterizer_.render(
-      view, relative.objects, gbuffer_, [&](int x0, int y0, int x1, int y1, int worker_index) {
-        const auto shade_start = Clock::now();
-        for (int ty = y0; ty < y1; ty += kShadeTile) {
-          for (int tx = x0; tx < x1; tx += kShadeTile) {
-            shade_tile(tx, ty, std::min(x1, tx + kShadeTile), std::min(y1, ty + kShadeTile),
-                       worker_index);
-          }
-        }
-        workers[static_cast<std::size_t>(worker_index)].shading += Clock::now() - shade_start;
-      });
+  // Each raster tile is shaded by the thread that resolved it, right after, while its
+  // G-buffer is still in that core's cache; in square pieces, whose pixels read few bricks.
+  const auto shade_raster_tile = [&](const GBuffer& g, int origin_x, int origin_y, int x0, int y0,
+                                     int x1, int y1, int worker_index) {
+    const auto shade_start = Clock::now();
+    for (int ty = y0; ty < y1; ty += kShadeTile) {
+      for (int tx = x0; tx < x1; tx += kShadeTile) {
+        shade_tile(g, origin_x, origin_y, tx, ty, std::min(x1, tx + kShadeTile),
+                   std::min(y1, ty + kShadeTile), worker_index);
+      }
+    }
+    workers[static_cast<std::size_t>(worker_index)].shading += Clock::now() - shade_start;
+  };
+  if (options_.keep_gbuffer) {
+    frame.stats.raster = rasterizer_.render(
+        view, relative.objects, gbuffer_, [&](int x0, int y0, int x1, int y1, int worker_index) {
+          shade_raster_tile(gbuffer_, 0, 0, x0, y0, x1, y1, worker_index);
+        });
+  } else {
+    frame.stats.raster = rasterizer_.render_tiles(
+        view, relative.objects,
+        [&](const GBuffer& tile, int x0, int y0, int x1, int y1, int worker_index) {
+          shade_raster_tile(tile, x0, y0, x0, y0, x1, y1, worker_index);
+        });
+  }
   for (auto& worker_samplers : samplers_) {
     for (auto& sampler : worker_samplers) sampler->flush_statistics();
   }

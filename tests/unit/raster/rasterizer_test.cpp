@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <limits>
@@ -521,6 +522,58 @@ TEST(RasterizerThreads, AfterTileSeesEachFinishedTileOnce) {
     EXPECT_TRUE(std::all_of(visits.begin(), visits.end(), [](int v) { return v == 1; }));
     EXPECT_EQ(depth_seen, g.depth);
     EXPECT_EQ(position_seen, g.texture_position);
+  }
+}
+
+// render_tiles() hands each tile over in a tile-sized G-buffer: pixel for pixel what render()
+// writes into the frame's, caps included, whatever the thread count.
+TEST(RasterizerThreads, TileBuffersHoldWhatTheFrameBufferHolds) {
+  const Mesh sphere = raster_test::uv_sphere(40, 80);
+  const Mesh cube = raster_test::box({0.6f, 0.6f, 0.6f});
+  std::vector<RasterObject> objects(2);
+  objects[0].mesh = sphere.view();
+  objects[0].object_id = 1;
+  objects[1].mesh = cube.view();
+  objects[1].model = glm::translate(glm::mat4(1.0f), glm::vec3(0.8f, 0.1f, 0.2f));
+  objects[1].object_id = 2;
+  const std::vector<glm::dvec4> planes = {{0.3, 0.2, -1.0, 0.1}};
+  const int width = 201, height = 133;
+  const RasterView view{width, height,
+                        raster_test::perspective_look_at({0.5f, 1, 3}, {0, 0, 0}, width, height),
+                        planes};
+  Rasterizer full_frame({.threads = 1});
+  GBuffer frame;
+  const RasterStats frame_stats = full_frame.render(view, objects, frame);
+  ASSERT_GT(frame_stats.cap_pixels, 0u);
+  for (const int threads : {1, 2, 3}) {
+    Rasterizer rasterizer({.threads = threads});
+    std::vector<int> visits(frame.pixel_count(), 0);
+    std::vector<int> mismatches(static_cast<std::size_t>(threads), 0);
+    const RasterStats stats = rasterizer.render_tiles(
+        view, objects, [&](const GBuffer& tile, int x0, int y0, int x1, int y1, int worker) {
+          ASSERT_EQ(tile.width, Rasterizer::kTileSize);
+          ASSERT_LE(x1 - x0, Rasterizer::kTileSize);
+          ASSERT_LE(y1 - y0, Rasterizer::kTileSize);
+          int& wrong = mismatches[static_cast<std::size_t>(worker)];
+          for (int y = y0; y < y1; ++y) {
+            for (int x = x0; x < x1; ++x) {
+              const std::size_t f = frame.index(x, y);
+              const std::size_t t = tile.index(x - x0, y - y0);
+              ++visits[f];
+              const bool same =
+                  frame.flags[f] == tile.flags[t] && frame.object_id[f] == tile.object_id[t] &&
+                  std::memcmp(&frame.depth[f], &tile.depth[t], sizeof(float)) == 0 &&
+                  (!frame.covered(f) ||
+                   (frame.texture_position[f] == tile.texture_position[t] &&
+                    frame.normal[f] == tile.normal[t] && frame.footprint[f] == tile.footprint[t]));
+              wrong += same ? 0 : 1;
+            }
+          }
+        });
+    EXPECT_TRUE(std::all_of(visits.begin(), visits.end(), [](int v) { return v == 1; }));
+    for (const int wrong : mismatches) EXPECT_EQ(wrong, 0) << threads << " threads";
+    EXPECT_EQ(stats.pixels_covered, frame_stats.pixels_covered);
+    EXPECT_EQ(stats.cap_pixels, frame_stats.cap_pixels);
   }
 }
 

@@ -60,6 +60,18 @@ class Rasterizer {
   RasterStats render(const RasterView& view, std::span<const RasterObject> objects, GBuffer& target,
                      const TileCallback& after_tile);
 
+  // The same without a frame-sized G-buffer: each tile of pixels [x0, x1) x [y0, y1) is
+  // resolved into a tile-sized G-buffer (kTileSize on a side) of the render thread's own and
+  // handed at once to tile_done(tile, x0, y0, x1, y1, worker), where the frame's pixel (x, y)
+  // is tile.index(x - x0, y - y0); the thread's next tile overwrites it. For a pass that
+  // consumes each tile right away (shading): nothing frame-sized is written, read back, or
+  // faulted in on the first frame. RasterOptions::count_coverage does not apply.
+  static constexpr int kTileSize = 64;
+  using TileGBufferCallback =
+      std::function<void(const GBuffer& tile, int x0, int y0, int x1, int y1, int worker)>;
+  RasterStats render_tiles(const RasterView& view, std::span<const RasterObject> objects,
+                           const TileGBufferCallback& tile_done);
+
   // Runs task(index, worker) for every index in [0, count) on the render threads (the
   // caller's included; worker in [0, thread_count()) names the thread, for per-thread state),
   // handing indices out one at a time; returns when all are done. For the passes that follow a
@@ -68,6 +80,10 @@ class Rasterizer {
   void parallel_for(std::size_t count, const std::function<void(std::size_t, int)>& task);
 
  private:
+  RasterStats draw(const RasterView& view, std::span<const RasterObject> objects,
+                   GBuffer* frame_target, const TileCallback& after_tile,
+                   const TileGBufferCallback& tile_done);
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

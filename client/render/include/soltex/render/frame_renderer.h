@@ -20,6 +20,10 @@ struct RenderOptions {
   double level_bias = 0.0;           // added to every pixel's level of detail (negative: finer)
   bool false_colour_levels = false;  // show the level each pixel drew from instead of shading
   int threads = 0;                   // 0: one per core
+  // Keep the whole frame's G-buffer for last_gbuffer() (tests, tools). Off, each tile is
+  // shaded from a tile-sized G-buffer as soon as it is rasterized, and no frame-sized one is
+  // written, read back, or (on the first frame) faulted in.
+  bool keep_gbuffer = false;
 };
 
 struct FrameStats {
@@ -60,7 +64,8 @@ class FrameRenderer {
                          int supersample = 1);
 
   const RenderOptions& options() const { return options_; }
-  // The G-buffer of the last render() (eye-relative world space), for tests and tools.
+  // The G-buffer of the last render() (eye-relative world space), for tests and tools; empty
+  // unless RenderOptions::keep_gbuffer.
   const GBuffer& last_gbuffer() const { return gbuffer_; }
   void set_level_bias(double bias) { options_.level_bias = bias; }
 
