@@ -10,11 +10,13 @@
 
 namespace soltex::raster_internal {
 
+// Left uninitialised but for what every triangle sets: setup() fills texture and normal, and
+// plane_distance for the frame's clip planes (it is read for no others).
 struct TriangleSetup::SourceTriangle {
   uint32_t object_index = 0;
-  std::array<glm::dvec3, 3> texture{};
-  std::array<glm::vec3, 3> normal{};
-  std::array<std::array<float, RasterView::kMaxClipPlanes>, 3> plane_distance{};
+  std::array<glm::dvec3, 3> texture;
+  std::array<glm::vec3, 3> normal;
+  std::array<std::array<float, RasterView::kMaxClipPlanes>, 3> plane_distance;
   uint32_t straddling_planes = 0;
 };
 
@@ -191,14 +193,19 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
     source.normal.fill(face_normal(object, i0, i1, i2));
   }
 
-  std::array<ProjectedVertex, ClipPolygon::kCapacity> projected;
+  // Pointers, not copies: an unclipped triangle uses its vertices' projections as they are.
+  std::array<const ProjectedVertex*, ClipPolygon::kCapacity> projected;
   if (outside == 0) {
-    for (std::size_t k = 0; k < 3; ++k) projected[k] = corner_vertex[k]->screen;
-  } else {
-    for (int k = 0; k < polygon.size; ++k) {
-      const auto index = static_cast<std::size_t>(k);
-      projected[index] = project(polygon.vertices[index].clip);
-    }
+    for (std::size_t k = 0; k < 3; ++k) projected[k] = &corner_vertex[k]->screen;
+    emit(source, polygon, projected, {0, 1, 2}, object.cull_back_faces, triangles, clip_forms,
+         stats);
+    return;
+  }
+  std::array<ProjectedVertex, ClipPolygon::kCapacity> clipped;
+  for (int k = 0; k < polygon.size; ++k) {
+    const auto index = static_cast<std::size_t>(k);
+    clipped[index] = project(polygon.vertices[index].clip);
+    projected[index] = &clipped[index];
   }
   for (int k = 1; k + 1 < polygon.size; ++k) {
     emit(source, polygon, projected, {0, k, k + 1}, object.cull_back_faces, triangles, clip_forms,
@@ -206,13 +213,13 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
   }
 }
 
-void TriangleSetup::emit(const SourceTriangle& source, const ClipPolygon& polygon,
-                         const std::array<ProjectedVertex, ClipPolygon::kCapacity>& projected,
-                         std::array<int, 3> corners, bool cull_back_faces,
-                         std::vector<ScreenTriangle>& triangles,
-                         std::vector<AffineForm>& clip_forms, RasterStats& stats) const {
+void TriangleSetup::emit(
+    const SourceTriangle& source, const ClipPolygon& polygon,
+    const std::array<const ProjectedVertex*, ClipPolygon::kCapacity>& projected,
+    std::array<int, 3> corners, bool cull_back_faces, std::vector<ScreenTriangle>& triangles,
+    std::vector<AffineForm>& clip_forms, RasterStats& stats) const {
   const auto vertex = [&](int k) -> const ProjectedVertex& {
-    return projected[static_cast<std::size_t>(corners[static_cast<std::size_t>(k)])];
+    return *projected[static_cast<std::size_t>(corners[static_cast<std::size_t>(k)])];
   };
   int64_t double_area =
       edge_function(vertex(0).x, vertex(0).y, vertex(1).x, vertex(1).y, vertex(2).x, vertex(2).y);

@@ -43,7 +43,7 @@ class TriangleSetup {
 
   ProjectedVertex project(const glm::vec4& clip) const;
   void emit(const SourceTriangle& source, const ClipPolygon& polygon,
-            const std::array<ProjectedVertex, ClipPolygon::kCapacity>& projected,
+            const std::array<const ProjectedVertex*, ClipPolygon::kCapacity>& projected,
             std::array<int, 3> corners, bool cull_back_faces,
             std::vector<ScreenTriangle>& triangles, std::vector<AffineForm>& clip_forms,
             RasterStats& stats) const;
