@@ -4,6 +4,8 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "specular_power.h"
+
 namespace soltex {
 
 PreparedLights prepare_lights(const Scene& scene) {
@@ -23,8 +25,8 @@ PreparedLights prepare_lights(const Scene& scene) {
 
 namespace {
 
-// One light's contribution. pow() through exp2/log2 in float: the exponent is a material
-// constant and n.h is in (0, 1].
+// One light's contribution. The highlight's power through specular_power(), which the batched
+// loop below shares.
 inline glm::vec3 light_term(const glm::vec3& albedo, float specular, float shininess,
                             const glm::vec3& normal, const glm::vec3& to_viewer,
                             const glm::vec3& to_light, const glm::vec3& radiance) {
@@ -34,7 +36,9 @@ inline glm::vec3 light_term(const glm::vec3& albedo, float specular, float shini
   if (specular > 0.0f) {
     const glm::vec3 half = glm::normalize(to_light + to_viewer);
     const float n_dot_h = glm::dot(normal, half);
-    if (n_dot_h > 0.0f) colour += radiance * (specular * std::exp2(shininess * std::log2(n_dot_h)));
+    if (n_dot_h > 0.0f) {
+      colour += radiance * (specular * render_internal::specular_power(n_dot_h, shininess));
+    }
   }
   return colour;
 }
@@ -76,12 +80,13 @@ void add_light_term(ShadeBatch& b) {
     b.n_dot_h[i] = (b.normal_x[i] * (hx * inverse_length) + b.normal_y[i] * (hy * inverse_length)) +
                    b.normal_z[i] * (hz * inverse_length);
   }
-  // pow() per lane, where light_term() calls it.
+  // The highlight's power in every lane (a vector loop), kept where light_term() computes it.
   for (int i = 0; i < count; ++i) {
     const float n_dot_h = b.n_dot_h[i];
-    b.highlight[i] = (b.n_dot_l[i] > 0.0f && b.specular[i] > 0.0f && n_dot_h > 0.0f)
-                         ? b.specular[i] * std::exp2(b.shininess[i] * std::log2(n_dot_h))
-                         : 0.0f;
+    const float power = render_internal::specular_power(n_dot_h, b.shininess[i]);
+    // & rather than &&: no branches, or the loop stays scalar.
+    const bool wanted = (b.n_dot_l[i] > 0.0f) & (b.specular[i] > 0.0f) & (n_dot_h > 0.0f);
+    b.highlight[i] = wanted ? b.specular[i] * power : 0.0f;
   }
   for (int i = 0; i < count; ++i) {
     const float n_dot_l = b.n_dot_l[i];

@@ -36,8 +36,8 @@ glm::vec3 shade(const PreparedLights& lights, const glm::vec3& albedo, float spe
 // The lighting inputs of up to kCapacity pixels, one array per quantity, so that the lighting
 // loops run across pixels (and vectorise) instead of over one pixel's three components.
 // shade_batch() gives, lane by lane, exactly what shade() gives for the same inputs: the same
-// IEEE operations in the same order (vector lanes round like scalars), with pow() still
-// computed by the scalar exp2/log2 per lane.
+// IEEE operations in the same order (vector lanes round like scalars), the highlight's power
+// included (one branch-free function for both).
 struct ShadeBatch {
   static constexpr int kCapacity = 256;
   template <typename T>
