@@ -71,6 +71,20 @@ glm::vec3 level_colour(int level) {
 
 // Pixels per side of the tiles the shading pass hands to threads.
 constexpr int kShadeTile = 32;
+
+// A shading tile's row of background pixels, as Image::set() writes them: each row of a tile is
+// copied from it first, and only covered pixels are written after (most of a frame can be
+// background).
+const std::array<uint8_t, 3 * kShadeTile>& background_row() {
+  static const std::array<uint8_t, 3 * kShadeTile> row = [] {
+    Image one(1, 1);
+    one.set(0, 0, kBackground.r, kBackground.g, kBackground.b);
+    std::array<uint8_t, 3 * kShadeTile> r{};
+    for (std::size_t p = 0; p < r.size(); p += 3) std::copy_n(one.rgb.begin(), 3, r.begin() + p);
+    return r;
+  }();
+  return row;
+}
 // Rows per block of the reference renderer's pass.
 constexpr int kReferenceRows = 8;
 
@@ -409,14 +423,16 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
       lit.batch.count = 0;
     };
     MissedBricks missed;
+    const std::array<uint8_t, 3 * kShadeTile>& background = background_row();
     for (int y = y0; y < y1; ++y) {
+      std::copy_n(
+          background.begin(), 3 * (x1 - x0),
+          frame.image.rgb.begin() + 3 * (static_cast<std::ptrdiff_t>(y) * frame.image.width + x0));
       for (int x = x0; x < x1; ++x) {
         const std::size_t i = g.index(x - origin_x, y - origin_y);
+        if (!g.covered(i)) continue;  // the background is there already
         const uint32_t id = g.object_id[i];
-        if (!g.covered(i) || id >= object_count) {
-          frame.image.set(x, y, kBackground.r, kBackground.g, kBackground.b);
-          continue;
-        }
+        if (id >= object_count) continue;
         ++worker.covered;
         TextureSampler& sampler = *samplers[id];
         const MaterialInputs& m = materials[id];
