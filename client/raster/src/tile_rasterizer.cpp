@@ -344,15 +344,15 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
   for (int y = y0_; y < y1_; ++y) {
     // Where pixel (0, y) would be in the target: x is added below (x >= origin_x).
     const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(y - origin_y) * width - origin_x;
-    const ScreenTriangle* const* winners = winner_.data() + (y - y0_) * kTileSize - x0_;
+    const ScreenTriangle* const* winners = winner_.data() + (y - y0_) * kTileSize;  // from x0_
     for (int x = x0_; x < x1_; ++x) {
       const auto local = static_cast<std::size_t>((y - y0_) * kTileSize + (x - x0_));
       const auto i = static_cast<std::size_t>(row + x);
-      const ScreenTriangle* winner = winners[x];
+      const ScreenTriangle* winner = winners[x - x0_];
       if (winner == nullptr) {
         // A run of empty pixels is written plane by plane (memset-like stores).
         int end = x + 1;
-        while (end < x1_ && winners[end] == nullptr) ++end;
+        while (end < x1_ && winners[end - x0_] == nullptr) ++end;
         write_empty(target, i, static_cast<std::size_t>(end - x));
         x = end - 1;
         continue;

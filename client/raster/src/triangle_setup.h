@@ -13,7 +13,8 @@
 // Triangle setup: from three transformed vertices to zero or more screen triangles.
 //
 // In order: skip invalid triangles (index out of range, non-finite vertex); cull a triangle
-// wholly outside one side of the view volume; classify it against the user clip planes (wholly
+// wholly outside one side of the view volume; drop a back face of an object drawn front faces
+// only (ObjectFrame::cull_back_faces); classify it against the user clip planes (wholly
 // removed: dropped; straddling: its fragments will be tested); clip it in homogeneous space
 // against the near plane (and the guard band, when a vertex is far outside the viewport);
 // project, snap to fixed point, orient, and write the affine forms of depth and clip distance.

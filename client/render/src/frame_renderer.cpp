@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <atomic>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
@@ -424,6 +425,7 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
     };
     MissedBricks missed;
     const std::array<uint8_t, 3 * kShadeTile>& background = background_row();
+    assert(x1 - x0 <= kShadeTile);
     for (int y = y0; y < y1; ++y) {
       std::copy_n(
           background.begin(), 3 * (x1 - x0),

@@ -26,7 +26,8 @@ struct RasterObject {
   // Draw front faces only (OpenGL's glCullFace(GL_BACK), glTF's doubleSided: false): back
   // faces are dropped at set-up, before they cost any drawing. For a closed mesh seen from
   // outside they are hidden anyway; an open mesh then shows nothing through its holes. Ignored
-  // while a clip plane cuts the object: its caps are drawn where back faces show.
+  // while clip_plane_mask names one of the view's clip planes: caps are drawn where back
+  // faces show.
   bool cull_back_faces = false;
 };
 
