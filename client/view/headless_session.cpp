@@ -11,6 +11,8 @@ HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedSce
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
   };
   HeadlessResult result;
+  uint64_t received = source.stats().received;
+  int stalled = 0;  // frames in a row that missed bricks while nothing was on its way
   for (;;) {
     Frame frame = renderer.render(scene, camera, width, height);
     ++result.frames;
@@ -27,6 +29,16 @@ HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedSce
       return result;
     }
     if (elapsed_ms() > static_cast<double>(options.max_time.count())) return result;
+    // Bricks missing, none on its way and none arrived since the last frame: they failed (a
+    // failed brick is not asked for again), and drawing on would change nothing. Two frames
+    // in a row, because bricks that land during a frame leave it incomplete once.
+    const uint64_t now_received = source.stats().received;
+    stalled = !complete && source.idle() && now_received == received ? stalled + 1 : 0;
+    received = now_received;
+    if (stalled >= 2) {
+      result.bricks_failed = true;
+      return result;
+    }
     // The output is the converged image, so draw again when everything asked for is in (or
     // at 4 Hz, to notice the time limit): frames in between only take CPU from decoding and,
     // where soltexd shares the machine, from evaluation. This cut converging over loopback on

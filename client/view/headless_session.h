@@ -24,13 +24,17 @@ struct HeadlessResult {
   Image image;
   int frames = 0;
   double first_frame_ms = 0.0;
-  double converged_ms = -1.0;  // -1: did not converge in time
+  double converged_ms = -1.0;  // -1: did not converge
+  // Did not converge because bricks failed for good (refused, or corrupt after every
+  // refetch): nothing was on its way any more, so it stopped before max_time.
+  bool bricks_failed = false;
   double last_frame_ms = 0.0;  // raster + shade of the final frame
   FrameStats last_stats;
 };
 
 // Draws frames until nothing is missing and nothing is pending (converged), handing each
-// frame's misses to the source; every frame is drawn at once from what the cache holds.
+// frame's misses to the source; every frame is drawn at once from what the cache holds. Stops
+// early, not converged, when the frame still misses bricks that nobody is fetching any more.
 HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedScene& scene,
                                       const Camera& camera, int width, int height,
                                       net::BrickSource& source, const HeadlessOptions& options);

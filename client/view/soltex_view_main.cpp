@@ -265,6 +265,11 @@ int main(int argc, char** argv) {
                 result.first_frame_ms);
     if (result.converged_ms >= 0.0) {
       std::printf("converged after %.1f ms\n", result.converged_ms);
+    } else if (result.bricks_failed) {
+      std::printf(
+          "NOT converged: %llu bricks failed (refused, or corrupt after every refetch); "
+          "drawn from what arrived\n",
+          static_cast<unsigned long long>(fetched.errors));
     } else {
       std::printf("NOT converged within %.1f s (%zu bricks still missing)\n", max_seconds,
                   fetched.waiting + fetched.in_flight);

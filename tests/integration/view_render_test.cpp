@@ -190,5 +190,29 @@ TEST(ViewRender, ASlowServerLeavesTheClientDrawing) {
   EXPECT_TRUE(converged.image == render_with(local, local_cache, scene, 6).image);
 }
 
+// Every brick arrives corrupt, so every brick fails after its refetches. The headless loop
+// notices that nothing is on its way any more and stops, not converged, without waiting for
+// its time limit, with the picture drawn from what it has.
+TEST(ViewRender, HeadlessStopsEarlyWhenBricksFailForGood) {
+  const Scene scene = default_scene();
+  SoltexdProcess server({"--fault-corrupt-every", "1"});
+  BrickCache cache(256u << 20);
+  net::BrickFetcher fetcher(server.grpc_address(), cache);
+  const PreparedScene prepared = prepare_scene(scene, TextureResolution{6, 16, {}}, fetcher);
+  FrameRenderer renderer(cache, RenderOptions{});
+  view::HeadlessOptions headless;
+  headless.max_time = std::chrono::seconds(60);
+  const view::HeadlessResult result = view::render_until_converged(
+      renderer, prepared, scene.camera, kWidth, kHeight, fetcher, headless);
+  EXPECT_LT(result.converged_ms, 0.0);
+  EXPECT_TRUE(result.bricks_failed);
+  EXPECT_GT(fetcher.stats().errors, 0u);
+  EXPECT_EQ(fetcher.stats().received, 0u);
+  // A few frames (the failures settle, then two frames see nothing on its way), not the
+  // thousands a loop that waited for its time limit would draw.
+  EXPECT_LE(result.frames, 20);
+  EXPECT_EQ(result.image.width, kWidth);
+}
+
 }  // namespace
 }  // namespace soltex
