@@ -20,8 +20,7 @@ ObjectFrame make_object_frame(const RasterObject& object, const RasterView& view
                                  : glm::dvec4(0.0, 0.0, 0.0, 1.0);
   }
   frame.first_vertex = first_vertex;
-  const uint32_t planes_here =
-      view.clip_planes.size() >= 32 ? ~0u : (1u << view.clip_planes.size()) - 1u;
+  const uint32_t planes_here = (1u << view.clip_planes.size()) - 1u;  // at most kMaxClipPlanes
   frame.cull_back_faces = object.cull_back_faces && (object.clip_plane_mask & planes_here) == 0;
   return frame;
 }

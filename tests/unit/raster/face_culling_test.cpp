@@ -10,6 +10,7 @@
 namespace soltex {
 namespace {
 
+using raster_test::expect_same_buffer;
 using raster_test::Mesh;
 
 constexpr int kWidth = 160;
@@ -38,16 +39,6 @@ RasterStats render(const RasterView& view, const RasterObject& object, GBuffer& 
 RasterView looking_at(const glm::vec3& eye, std::vector<glm::dvec4> planes = {}) {
   return {kWidth, kHeight, raster_test::perspective_look_at(eye, {0, 0, 0}, kWidth, kHeight),
           std::move(planes)};
-}
-
-void expect_same_buffer(const GBuffer& a, const GBuffer& b) {
-  ASSERT_EQ(a.pixel_count(), b.pixel_count());
-  EXPECT_EQ(a.depth, b.depth);
-  EXPECT_EQ(a.flags, b.flags);
-  EXPECT_EQ(a.object_id, b.object_id);
-  EXPECT_EQ(a.texture_position, b.texture_position);
-  EXPECT_EQ(a.normal, b.normal);
-  EXPECT_EQ(a.footprint, b.footprint);
 }
 
 TEST(FaceCulling, FrontFacesAreDrawnBackFacesAreDropped) {

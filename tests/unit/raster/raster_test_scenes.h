@@ -1,5 +1,7 @@
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstdint>
 #include <glm/ext/matrix_clip_space.hpp>
@@ -131,6 +133,17 @@ inline bool all_values_sane(const GBuffer& g) {
     if (std::abs(glm::length(g.normal[i]) - 1.0f) > 1e-4f) return false;
   }
   return true;
+}
+
+// Every plane of two G-buffers equal, bit for bit.
+inline void expect_same_buffer(const GBuffer& a, const GBuffer& b) {
+  ASSERT_EQ(a.pixel_count(), b.pixel_count());
+  EXPECT_EQ(a.depth, b.depth);
+  EXPECT_EQ(a.flags, b.flags);
+  EXPECT_EQ(a.object_id, b.object_id);
+  EXPECT_EQ(a.texture_position, b.texture_position);
+  EXPECT_EQ(a.normal, b.normal);
+  EXPECT_EQ(a.footprint, b.footprint);
 }
 
 }  // namespace soltex::raster_test

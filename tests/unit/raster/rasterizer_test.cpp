@@ -453,18 +453,31 @@ TEST(RasterizerPrecision, FarFromOriginTexturePositionsKeepTheirPrecision) {
   }
 }
 
+// A sphere and an overlapping cube, cut by an oblique plane (so with caps), in a view whose size
+// is not a multiple of the tile size.
+struct SphereAndCubeCut {
+  Mesh sphere = raster_test::uv_sphere(40, 80);
+  Mesh cube = raster_test::box({0.6f, 0.6f, 0.6f});
+  std::vector<RasterObject> objects;
+  std::vector<glm::dvec4> planes = {{0.3, 0.2, -1.0, 0.1}};
+  RasterView view;  // its clip planes and the objects' meshes point into this scene
+
+  SphereAndCubeCut(const SphereAndCubeCut&) = delete;
+  SphereAndCubeCut& operator=(const SphereAndCubeCut&) = delete;
+  SphereAndCubeCut() : objects(2) {
+    objects[0].mesh = sphere.view();
+    objects[0].object_id = 1;
+    objects[1].mesh = cube.view();
+    objects[1].model = glm::translate(glm::mat4(1.0f), glm::vec3(0.8f, 0.1f, 0.2f));
+    objects[1].object_id = 2;
+    view = {201, 133, raster_test::perspective_look_at({0.5f, 1, 3}, {0, 0, 0}, 201, 133), planes};
+  }
+};
+
 TEST(RasterizerThreads, EveryThreadCountGivesTheSameBuffer) {
-  const Mesh sphere = raster_test::uv_sphere(40, 80);
-  const Mesh cube = raster_test::box({0.6f, 0.6f, 0.6f});
-  std::vector<RasterObject> objects(2);
-  objects[0].mesh = sphere.view();
-  objects[0].object_id = 1;
-  objects[1].mesh = cube.view();
-  objects[1].model = glm::translate(glm::mat4(1.0f), glm::vec3(0.8f, 0.1f, 0.2f));
-  objects[1].object_id = 2;
-  const std::vector<glm::dvec4> planes = {{0.3, 0.2, -1.0, 0.1}};
-  const RasterView view{
-      201, 133, raster_test::perspective_look_at({0.5f, 1, 3}, {0, 0, 0}, 201, 133), planes};
+  const SphereAndCubeCut scene;
+  const std::vector<RasterObject>& objects = scene.objects;
+  const RasterView& view = scene.view;
   GBuffer reference;
   RasterStats reference_stats;
   for (const int threads : {1, 2, 5}) {
@@ -478,12 +491,7 @@ TEST(RasterizerThreads, EveryThreadCountGivesTheSameBuffer) {
       EXPECT_GT(stats.cap_pixels, 0u);
       continue;
     }
-    EXPECT_EQ(g.depth, reference.depth);
-    EXPECT_EQ(g.flags, reference.flags);
-    EXPECT_EQ(g.object_id, reference.object_id);
-    EXPECT_EQ(g.texture_position, reference.texture_position);
-    EXPECT_EQ(g.normal, reference.normal);
-    EXPECT_EQ(g.footprint, reference.footprint);
+    raster_test::expect_same_buffer(g, reference);
     EXPECT_EQ(stats.pixels_covered, reference_stats.pixels_covered);
     EXPECT_EQ(stats.cap_pixels, reference_stats.cap_pixels);
     EXPECT_EQ(stats.triangles_rasterized, reference_stats.triangles_rasterized);
@@ -528,19 +536,9 @@ TEST(RasterizerThreads, AfterTileSeesEachFinishedTileOnce) {
 // render_tiles() hands each tile over in a tile-sized G-buffer: pixel for pixel what render()
 // writes into the frame's, caps included, whatever the thread count.
 TEST(RasterizerThreads, TileBuffersHoldWhatTheFrameBufferHolds) {
-  const Mesh sphere = raster_test::uv_sphere(40, 80);
-  const Mesh cube = raster_test::box({0.6f, 0.6f, 0.6f});
-  std::vector<RasterObject> objects(2);
-  objects[0].mesh = sphere.view();
-  objects[0].object_id = 1;
-  objects[1].mesh = cube.view();
-  objects[1].model = glm::translate(glm::mat4(1.0f), glm::vec3(0.8f, 0.1f, 0.2f));
-  objects[1].object_id = 2;
-  const std::vector<glm::dvec4> planes = {{0.3, 0.2, -1.0, 0.1}};
-  const int width = 201, height = 133;
-  const RasterView view{width, height,
-                        raster_test::perspective_look_at({0.5f, 1, 3}, {0, 0, 0}, width, height),
-                        planes};
+  const SphereAndCubeCut scene;
+  const std::vector<RasterObject>& objects = scene.objects;
+  const RasterView& view = scene.view;
   Rasterizer full_frame({.threads = 1});
   GBuffer frame;
   const RasterStats frame_stats = full_frame.render(view, objects, frame);

@@ -1,5 +1,5 @@
 // specular_power() against std::pow over the range the lighting uses it in.
-#include "../../../client/render/src/specular_power.h"
+#include "specular_power.h"
 
 #include <gtest/gtest.h>
 
