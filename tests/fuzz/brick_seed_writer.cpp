@@ -62,13 +62,8 @@ std::vector<uint8_t> field_samples(const SeedField& field, int brick_size, int c
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: %s <corpus-dir>\n", argv[0]);
-    return 2;
-  }
-  try {
-    const std::filesystem::path dir = argv[1];
-    std::filesystem::create_directories(dir);
+  return soltex::fuzz::seed_writer_main(argc, argv, {"corpus-dir"}, [](const auto& dirs) {
+    const std::filesystem::path& dir = dirs[0];
     const SeedField fields[] = {{"ramp", ramp}, {"bands", bands}, {"noise", noise}};
     const soltex::BrickFilter filters[] = {soltex::BrickFilter::none, soltex::BrickFilter::delta_x,
                                            soltex::BrickFilter::gradient_xy,
@@ -100,9 +95,5 @@ int main(int argc, char** argv) {
       }
     }
     std::printf("wrote %d seed bricks to %s\n", written, dir.c_str());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "brick_seed_writer: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+  });
 }

@@ -59,13 +59,8 @@ struct NamedText {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: %s <corpus-dir>\n", argv[0]);
-    return 2;
-  }
-  try {
-    const std::filesystem::path dir = argv[1];
-    std::filesystem::create_directories(dir);
+  return soltex::fuzz::seed_writer_main(argc, argv, {"corpus-dir"}, [](const auto& dirs) {
+    const std::filesystem::path& dir = dirs[0];
     const std::string header = soltex::load::kRequestLogHeader;
     const NamedText seeds[] = {
         {"recorded-frames", recorded(frames())},
@@ -80,9 +75,5 @@ int main(int argc, char** argv) {
     for (const NamedText& seed : seeds)
       soltex::fuzz::write_seed_file(dir / (std::string("seed-") + seed.name), seed.text);
     std::printf("wrote %zu seed logs to %s\n", std::size(seeds), dir.c_str());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "request_log_seed_writer: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+  });
 }

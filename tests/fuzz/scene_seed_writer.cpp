@@ -160,30 +160,21 @@ constexpr NamedText kScenes[] = {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 3) {
-    std::fprintf(stderr, "usage: %s <corpus-dir> <obj-dir>\n", argv[0]);
-    return 2;
-  }
-  try {
-    const std::filesystem::path corpus = argv[1];
-    const std::filesystem::path obj_dir = argv[2];
-    std::filesystem::create_directories(corpus);
-    std::filesystem::create_directories(obj_dir);
-    int written = 0;
-    for (const NamedText& obj : kObjFiles) {
-      soltex::fuzz::write_seed_file(obj_dir / obj.name, obj.text);
-      soltex::fuzz::write_seed_file(corpus / (std::string("seed-") + obj.name), obj.text);
-      ++written;
-    }
-    for (const NamedText& scene : kScenes) {
-      soltex::fuzz::write_seed_file(corpus / (std::string("seed-") + scene.name), scene.text);
-      ++written;
-    }
-    std::printf("wrote %d seeds to %s and %zu OBJ files to %s\n", written, corpus.c_str(),
-                std::size(kObjFiles), obj_dir.c_str());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "scene_seed_writer: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+  return soltex::fuzz::seed_writer_main(
+      argc, argv, {"corpus-dir", "obj-dir"}, [](const auto& dirs) {
+        const std::filesystem::path& corpus = dirs[0];
+        const std::filesystem::path& obj_dir = dirs[1];
+        int written = 0;
+        for (const NamedText& obj : kObjFiles) {
+          soltex::fuzz::write_seed_file(obj_dir / obj.name, obj.text);
+          soltex::fuzz::write_seed_file(corpus / (std::string("seed-") + obj.name), obj.text);
+          ++written;
+        }
+        for (const NamedText& scene : kScenes) {
+          soltex::fuzz::write_seed_file(corpus / (std::string("seed-") + scene.name), scene.text);
+          ++written;
+        }
+        std::printf("wrote %d seeds to %s and %zu OBJ files to %s\n", written, corpus.c_str(),
+                    std::size(kObjFiles), obj_dir.c_str());
+      });
 }

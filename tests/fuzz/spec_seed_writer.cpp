@@ -156,13 +156,8 @@ constexpr NamedVolume kVolumes[] = {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2) {
-    std::fprintf(stderr, "usage: %s <corpus-dir>\n", argv[0]);
-    return 2;
-  }
-  try {
-    const std::filesystem::path dir = argv[1];
-    std::filesystem::create_directories(dir);
+  return soltex::fuzz::seed_writer_main(argc, argv, {"corpus-dir"}, [](const auto& dirs) {
+    const std::filesystem::path& dir = dirs[0];
     const std::vector<NamedSpec> specs = seed_specs();
     int written = 0;
     for (const NamedSpec& spec : specs) {
@@ -194,9 +189,5 @@ int main(int argc, char** argv) {
       ++written;
     }
     std::printf("wrote %d seed messages to %s\n", written, dir.c_str());
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "spec_seed_writer: %s\n", e.what());
-    return 1;
-  }
-  return 0;
+  });
 }
