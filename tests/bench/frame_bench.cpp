@@ -3,7 +3,8 @@
 // LocalBrickSource, before timing), finest level 2^8 where a material does not set its own
 // (the bunny's marble sets 2^9).
 //   BM_WarmFrame       FrameRenderer::render: raster + brick lookup + shade
-//   BM_Raster          the rasterizer alone on the same view (FrameRenderer's raster part)
+//   BM_Raster          the rasterizer alone on the same view, into tile-sized G-buffers as
+//                      FrameRenderer draws (its raster part, without shading)
 //   BM_ReferenceFrame  FrameRenderer::render_reference: the texture evaluated per pixel
 //   BM_ColdFrame       FrameRenderer::render with nothing resident (a client's first frame):
 //                      every pixel misses, and the frame lists every brick it wants
@@ -114,7 +115,6 @@ void BM_Raster(benchmark::State& state) {
   // The same view and objects FrameRenderer draws (eye-relative), through a rasterizer of its
   // own so that FrameRenderer's G-buffer stays untouched.
   soltex::Rasterizer rasterizer({.threads = static_cast<int>(state.range(0))});
-  soltex::GBuffer gbuffer;
   const soltex::Camera& camera = w.scene.camera;
   soltex::Camera at_origin = camera;
   at_origin.target = camera.target - camera.position;
@@ -130,10 +130,15 @@ void BM_Raster(benchmark::State& state) {
   view.width = kWidth;
   view.height = kHeight;
   view.view_projection = glm::mat4(soltex::view_projection(at_origin, kWidth, kHeight));
+  std::size_t covered = 0;
   for (auto _ : state) {
-    rasterizer.render(view, objects, gbuffer);
-    benchmark::DoNotOptimize(gbuffer.depth.data());
+    const soltex::RasterStats stats = rasterizer.render_tiles(
+        view, objects, [](const soltex::GBuffer& tile, int, int, int, int, int) {
+          benchmark::DoNotOptimize(tile.depth.data());
+        });
+    covered = stats.pixels_covered;
   }
+  state.counters["covered"] = static_cast<double>(covered);
 }
 
 void BM_ReferenceFrame(benchmark::State& state) {
@@ -175,7 +180,7 @@ BENCHMARK(BM_WarmFrame)
     ->Args({2, 1})
     ->Args({2, 2})
     ->Apply(wall_and_process_cpu_ms);
-BENCHMARK(BM_Raster)->Args({1, 0})->Args({2, 0})->Apply(wall_and_process_cpu_ms);
+BENCHMARK(BM_Raster)->Args({1, 0})->Args({2, 0})->Args({2, 1})->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_ColdFrame)->Args({2, 0})->Args({2, 1})->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_ReferenceFrame)
     ->Args({2, 0})
