@@ -12,6 +12,7 @@
 
 #include "json_reader.h"
 #include "soltex/common/spec_error.h"
+#include "soltex/scene/mesh_order.h"
 #include "soltex/scene/obj_loader.h"
 #include "soltex/scene/scene_error.h"
 #include "soltex/scene/texture_spec_json.h"
@@ -390,7 +391,9 @@ std::shared_ptr<const Mesh> build_mesh(const MeshRequest& request, const std::st
   }
   const ObjFile& obj = std::get<ObjFile>(request.source);
   try {
-    return std::make_shared<const Mesh>(load_obj(obj.path, {.normalize = obj.normalize}).mesh);
+    Mesh mesh = load_obj(obj.path, {.normalize = obj.normalize}).mesh;
+    order_for_locality(mesh);
+    return std::make_shared<const Mesh>(std::move(mesh));
   } catch (const ObjError& error) {
     throw SceneError(file, request.field, error.what());
   }
