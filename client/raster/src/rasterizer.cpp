@@ -149,6 +149,12 @@ struct Rasterizer::Impl {
     worker_stats.resize(static_cast<std::size_t>(pool.thread_count()));
     tile_targets.resize(static_cast<std::size_t>(pool.thread_count()));
     for (GBuffer& tile : tile_targets) tile.resize(kTileSize, kTileSize, false);
+    // Resolved from a tile with nothing drawn, so it holds exactly what resolving writes there.
+    empty_tile.resize(kTileSize, kTileSize, false);
+    TileRasterizer nothing_drawn;
+    nothing_drawn.begin(0, 0, kTileSize, kTileSize);
+    RasterStats unused;
+    nothing_drawn.resolve(TileFrame{}, empty_tile, 0, 0, unused);
   }
 
   RasterOptions options;
@@ -161,6 +167,9 @@ struct Rasterizer::Impl {
   std::vector<std::unique_ptr<TileRasterizer>> tiles;  // one per thread
   std::vector<RasterStats> worker_stats;
   std::vector<GBuffer> tile_targets;  // one per thread, for render_tiles()
+  // What render_tiles() hands over for a tile no triangle touches (most of a frame around a
+  // single object): nothing to draw or resolve there.
+  GBuffer empty_tile;
 };
 
 static_assert(Rasterizer::kTileSize == kTileSize);
@@ -266,13 +275,24 @@ RasterStats Rasterizer::draw(const RasterView& view, std::span<const RasterObjec
                            ? nullptr
                            : frame_target->coverage_count.data();
   std::fill(impl.worker_stats.begin(), impl.worker_stats.end(), RasterStats{});
+  const auto tile_is_empty = [&](std::size_t tile) {
+    for (std::size_t c = 0; c < chunk_count; ++c) {
+      if (impl.chunks[c].bin_start[tile + 1] != impl.chunks[c].bin_start[tile]) return false;
+    }
+    return true;
+  };
   impl.pool.parallel_for(static_cast<std::size_t>(grid.count()), [&](std::size_t tile, int worker) {
     const int column = static_cast<int>(tile) % grid.columns;
     const int row = static_cast<int>(tile) / grid.columns;
+    const int x0 = column * kTileSize, y0 = row * kTileSize;
+    const int x1 = std::min(view.width, x0 + kTileSize), y1 = std::min(view.height, y0 + kTileSize);
+    if (frame_target == nullptr && tile_is_empty(tile)) {
+      if (tile_done) tile_done(impl.empty_tile, x0, y0, x1, y1, worker);
+      return;
+    }
     TileRasterizer& tiles = *impl.tiles[static_cast<std::size_t>(worker)];
     RasterStats& stats = impl.worker_stats[static_cast<std::size_t>(worker)];
-    tiles.begin(column * kTileSize, row * kTileSize, std::min(view.width, (column + 1) * kTileSize),
-                std::min(view.height, (row + 1) * kTileSize));
+    tiles.begin(x0, y0, x1, y1);
     for (std::size_t c = 0; c < chunk_count; ++c) {
       const SetupChunk& chunk = impl.chunks[c];
       const uint32_t end = chunk.bin_start[tile + 1];
@@ -286,8 +306,6 @@ RasterStats Rasterizer::draw(const RasterView& view, std::span<const RasterObjec
                    stats);
       }
     }
-    const int x0 = column * kTileSize, y0 = row * kTileSize;
-    const int x1 = std::min(view.width, x0 + kTileSize), y1 = std::min(view.height, y0 + kTileSize);
     if (frame_target != nullptr) {
       tiles.resolve(tile_frame, *frame_target, 0, 0, stats);
       if (after_tile) after_tile(x0, y0, x1, y1, worker);

@@ -63,8 +63,9 @@ class Rasterizer {
   // The same without a frame-sized G-buffer: each tile of pixels [x0, x1) x [y0, y1) is
   // resolved into a tile-sized G-buffer (kTileSize on a side) of the render thread's own and
   // handed at once to tile_done(tile, x0, y0, x1, y1, worker), where the frame's pixel (x, y)
-  // is tile.index(x - x0, y - y0); the thread's next tile overwrites it. For a pass that
-  // consumes each tile right away (shading): nothing frame-sized is written, read back, or
+  // is tile.index(x - x0, y - y0); the thread's next tile overwrites it. A tile no triangle
+  // reaches is handed one shared, already empty G-buffer (read-only, like every tile). For a pass
+  // that consumes each tile right away (shading): nothing frame-sized is written, read back, or
   // faulted in on the first frame. RasterOptions::count_coverage does not apply.
   static constexpr int kTileSize = 64;
   using TileGBufferCallback =
