@@ -80,6 +80,7 @@ struct SurfaceBatch {
   using Lanes = std::array<T, kCapacity>;
 
   int count = 0;
+  uint64_t back_faces = 0;  // pixels written, seen from behind
   Lanes<const ScreenTriangle*> triangle;
   Lanes<int> x, y;
   Lanes<std::size_t> index;
@@ -194,6 +195,7 @@ struct SurfaceBatch {
       const std::size_t i = index[l];
       target.depth[i] = depth[l];
       target.flags[i] = GBuffer::kCovered | (t.back_face ? GBuffer::kBackFace : 0);
+      back_faces += t.back_face ? 1 : 0;
       target.object_id[i] = frame.objects[t.object].source->object_id;
       target.texture_position[i] =
           t.texture_origin + glm::dvec3(glm::vec3(offset_x[l], offset_y[l], offset_z[l]));
@@ -339,7 +341,7 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
                              RasterStats& stats) const {
   const GBufferPlanes target(gbuffer);
   const auto width = static_cast<std::ptrdiff_t>(gbuffer.width);
-  uint64_t covered = 0, back_faces = 0, cap_rays = 0, caps = 0;
+  uint64_t covered = 0, cap_rays = 0, caps = 0;
   SurfaceBatch surfaces;
   for (int y = y0_; y < y1_; ++y) {
     // Where pixel (0, y) would be in the target: x is added below (x >= origin_x).
@@ -358,29 +360,30 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
         continue;
       }
       ++covered;
-      const ObjectFrame& object = frame.objects[winner->object];
-      if (winner->back_face && frame.caps != nullptr && object.source->closed) {
+      // Only a frame with caps reads the winner here: its object and facing are on the
+      // triangle's second cache line, which drawing did not load, and which add() prefetches.
+      const ObjectFrame* object = frame.caps != nullptr ? &frame.objects[winner->object] : nullptr;
+      if (object != nullptr && winner->back_face && object->source->closed) {
         ++cap_rays;
         if (const std::optional<CapSample> cap = frame.caps->trace(
-                x, y, object.texture_from_world, object.source->clip_plane_mask)) {
+                x, y, object->texture_from_world, object->source->clip_plane_mask)) {
           ++caps;
           target.depth[i] = cap->depth;
           target.flags[i] = GBuffer::kCovered | GBuffer::kCap;
-          target.object_id[i] = object.source->object_id;
+          target.object_id[i] = object->source->object_id;
           target.texture_position[i] = cap->texture_position;
           target.normal[i] = cap->normal;
           target.footprint[i] = cap->footprint;
           continue;
         }
       }
-      if (winner->back_face) ++back_faces;
       surfaces.add(winner, x, y, i, depth_[local]);
       if (surfaces.count == SurfaceBatch::kCapacity) surfaces.write(frame, target);
     }
   }
   surfaces.write(frame, target);
   stats.pixels_covered += covered;
-  stats.back_face_pixels += back_faces;
+  stats.back_face_pixels += surfaces.back_faces;
   stats.cap_rays += cap_rays;
   stats.cap_pixels += caps;
 }
