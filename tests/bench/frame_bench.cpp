@@ -12,7 +12,8 @@
 // it is, 1 for the bunny alone (the floor removed): the wood floor's two-colour rings keep the
 // whole frame at about 26 dB against the reference, the marble alone is above 40 dB, so the
 // speed ratio at PSNR >= 40 dB is read from the second; 2 for the bunny alone drawn with both
-// faces (the scene draws front faces only), to show what back-face culling saves. Times are
+// faces (the scene draws front faces only), to show what back-face culling saves; 3 for the
+// built-in default scene instead (four objects, two cut open by clip planes: caps). Times are
 // wall-clock per frame; the CPU column is the whole process's CPU time (all render threads) per
 // frame. Counters: the warm frame's raster and shade wall times (ms) as FrameRenderer reports them,
 // and its PSNR against the per-pixel reference (dB).
@@ -32,6 +33,7 @@
 #include "soltex/render/frame_renderer.h"
 #include "soltex/render/image.h"
 #include "soltex/render/prepared_scene.h"
+#include "soltex/scene/default_scene.h"
 #include "soltex/scene/scene_loader.h"
 
 namespace {
@@ -64,6 +66,7 @@ struct WarmScene {
   }
 
   static soltex::Scene load(int variant) {
+    if (variant == 3) return soltex::default_scene();
     soltex::Scene scene = soltex::load_scene(SOLTEX_SOURCE_DIR "/deploy/scenes/bunny-marble.json");
     if (variant >= 1) {
       std::erase_if(scene.objects, [](const soltex::SceneObject& o) { return o.name == "floor"; });
@@ -83,7 +86,7 @@ struct WarmScene {
 };
 
 WarmScene& warm_scene(const benchmark::State& state) {
-  static std::unique_ptr<WarmScene> scenes[3][3];
+  static std::unique_ptr<WarmScene> scenes[3][4];
   const auto threads = static_cast<int>(state.range(0));
   const auto variant = static_cast<int>(state.range(1));
   auto& s = scenes[threads][variant];
@@ -179,6 +182,7 @@ BENCHMARK(BM_WarmFrame)
     ->Args({2, 0})
     ->Args({2, 1})
     ->Args({2, 2})
+    ->Args({2, 3})
     ->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_Raster)->Args({1, 0})->Args({2, 0})->Args({2, 1})->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_ColdFrame)->Args({2, 0})->Args({2, 1})->Apply(wall_and_process_cpu_ms);
