@@ -4,11 +4,15 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <utility>
+#include <vector>
 
 namespace soltex {
 namespace {
 
-constexpr int kBitsPerAxis = 10;  // 2^30 cells: far finer than any mesh's triangle spacing
+// 1024 cells per axis: a cell per triangle or finer up to about 10^9 triangles; triangles
+// sharing a cell keep their file order.
+constexpr int kBitsPerAxis = 10;
 
 // 0 .. 2^kBitsPerAxis - 1 for `value` across [low, low + extent]; 0 for NaN or a flat axis.
 uint32_t cell_of(float value, float low, float extent) {
@@ -33,7 +37,9 @@ uint32_t spread_bits(uint32_t v) {
 void order_for_locality(Mesh& mesh) {
   const std::size_t triangles = mesh.triangle_count();
   const std::size_t vertices = mesh.positions.size();
-  if (triangles < 2) return;
+  // Fewer than two triangles have no order to improve; a ragged index list is left for the
+  // rasterizer to refuse as it is.
+  if (triangles < 2 || mesh.indices.size() % 3 != 0) return;
   const BoundingBox box = bounds_of(mesh.positions);
   const glm::vec3 extent = box.size();
 
@@ -74,8 +80,8 @@ void order_for_locality(Mesh& mesh) {
       indices.push_back(renumber[index]);
     }
   }
-  for (uint32_t v = 0; v < vertices; ++v) {
-    if (renumber[v] == kUnset) old_of_new.push_back(v);
+  for (std::size_t v = 0; v < vertices; ++v) {
+    if (renumber[v] == kUnset) old_of_new.push_back(static_cast<uint32_t>(v));
   }
   const bool has_normals = mesh.normals.size() == vertices;
   std::vector<glm::vec3> positions(vertices), normals(has_normals ? vertices : 0);

@@ -103,24 +103,44 @@ TEST(OrderForLocality, NumbersVerticesByFirstUseAndKeepsUnusedOnesAfter) {
   }
   EXPECT_EQ(next_new, mesh.vertex_count() - 1);
   EXPECT_EQ(mesh.positions.back(), glm::vec3(9.0f, 9.0f, 9.0f));
+  EXPECT_EQ(mesh.normals.back(), glm::vec3(0.0f, 0.0f, 1.0f));
 }
 
-TEST(OrderForLocality, EqualCentroidsKeepTheirOrder) {
-  // Two triangles over the same three points (front and back): their order decides which
-  // wins a depth tie, so a stable sort must keep it.
+TEST(OrderForLocality, TrianglesInOneCellKeepTheirOrder) {
+  // 40 small triangles whose centroids share one Morton cell, after a large one whose centroid
+  // is elsewhere: the order among them decides which wins a depth tie, so the sort must be
+  // stable (an unstable sort of this many equal keys reorders them).
   Mesh mesh;
-  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {5, 5, 5}, {6, 5, 5}, {5, 6, 5}};
-  mesh.normals.assign(6, glm::vec3(0, 0, 1));
-  mesh.indices = {3, 4, 5, 0, 1, 2, 0, 2, 1};
+  mesh.positions = {{10, 10, 10}, {9, 10, 10}, {10, 9, 10}};
+  mesh.indices = {0, 1, 2};
+  constexpr int kTied = 40;
+  for (int k = 0; k < kTied; ++k) {
+    const float d = 1e-4f * static_cast<float>(k + 1);
+    const auto first = static_cast<uint32_t>(mesh.positions.size());
+    mesh.positions.push_back({d, 0, 0});
+    mesh.positions.push_back({0, d, 0});
+    mesh.positions.push_back({0, 0, d});
+    // Alternate windings, so the triangles differ in more than size.
+    if (k % 2 == 0) {
+      mesh.indices.insert(mesh.indices.end(), {first, first + 1, first + 2});
+    } else {
+      mesh.indices.insert(mesh.indices.end(), {first, first + 2, first + 1});
+    }
+  }
+  mesh.normals.assign(mesh.positions.size(), glm::vec3(0, 0, 1));
   mesh.update_bounds();
   order_for_locality(mesh);
-  ASSERT_EQ(mesh.triangle_count(), 3u);
+  ASSERT_EQ(mesh.triangle_count(), static_cast<std::size_t>(kTied) + 1);
   const auto corner = [&](std::size_t t, std::size_t k) {
     return mesh.positions[mesh.indices[3 * t + k]];
   };
-  EXPECT_EQ(corner(0, 1), glm::vec3(1, 0, 0));  // (0, 1, 2) stays before (0, 2, 1)
-  EXPECT_EQ(corner(1, 1), glm::vec3(0, 1, 0));
-  EXPECT_EQ(corner(2, 0), glm::vec3(5, 5, 5));
+  for (int k = 0; k < kTied; ++k) {
+    const float d = 1e-4f * static_cast<float>(k + 1);
+    const auto t = static_cast<std::size_t>(k);
+    EXPECT_EQ(corner(t, 0), glm::vec3(d, 0, 0)) << "triangle " << k;
+    EXPECT_EQ(corner(t, 1), k % 2 == 0 ? glm::vec3(0, d, 0) : glm::vec3(0, 0, d)) << k;
+  }
+  EXPECT_EQ(corner(kTied, 0), glm::vec3(10, 10, 10));
 }
 
 TEST(OrderForLocality, OddMeshesAreLeftDrawable) {

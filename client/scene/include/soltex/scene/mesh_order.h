@@ -11,8 +11,10 @@ namespace soltex {
 // Reorders the triangles by the Morton code of their centroid in the mesh's box (ties keep
 // the file's order), keeping each triangle's own vertex order (so its winding and first
 // vertex), then renumbers the vertices by first use; vertices no triangle uses follow, in
-// their old order. Positions and normals move with their vertices, unchanged, so the mesh
-// draws the same surface; only which of two fragments at exactly equal depth wins can differ.
+// their old order. Positions and normals (when there is one per position) move with their
+// vertices, unchanged, so the mesh draws the same surface; only which of two fragments at
+// exactly equal depth wins can differ. A mesh of fewer than two triangles, or whose index
+// count is not a multiple of three, is left as it is.
 void order_for_locality(Mesh& mesh);
 
 }  // namespace soltex
