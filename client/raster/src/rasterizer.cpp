@@ -151,7 +151,7 @@ struct Rasterizer::Impl {
     for (GBuffer& tile : tile_targets) tile.resize(kTileSize, kTileSize, false);
     // Resolved from a tile with nothing drawn, so it holds exactly what resolving writes there.
     empty_tile.resize(kTileSize, kTileSize, false);
-    TileRasterizer nothing_drawn;
+    TileRasterizer& nothing_drawn = *tiles.front();
     nothing_drawn.begin(0, 0, kTileSize, kTileSize);
     RasterStats unused;
     nothing_drawn.resolve(TileFrame{}, empty_tile, 0, 0, unused);

@@ -9,9 +9,11 @@
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <random>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "raster_test_scenes.h"
@@ -573,6 +575,77 @@ TEST(RasterizerThreads, TileBuffersHoldWhatTheFrameBufferHolds) {
     EXPECT_EQ(stats.pixels_covered, frame_stats.pixels_covered);
     EXPECT_EQ(stats.cap_pixels, frame_stats.cap_pixels);
   }
+}
+
+TEST(RasterizerThreads, TilesNoTriangleReachesGetOneSharedEmptyBuffer) {
+  // A small sphere in the top-left corner of a frame of many tiles: the others are empty.
+  const raster_test::Mesh sphere = raster_test::uv_sphere(12, 24, 0.2f);
+  RasterObject object;
+  object.mesh = sphere.view();
+  object.model = glm::translate(glm::mat4(1.0f), glm::vec3(-1.6f, 0.85f, 0.0f));
+  RasterView view;
+  view.width = 5 * Rasterizer::kTileSize;
+  view.height = 3 * Rasterizer::kTileSize + 7;  // a partial row of tiles too
+  view.view_projection =
+      raster_test::perspective_look_at({0, 0, 3}, {0, 0, 0}, view.width, view.height);
+  const std::vector<RasterObject> objects{object};
+  Rasterizer full_frame({.threads = 1});
+  GBuffer frame;
+  const RasterStats frame_stats = full_frame.render(view, objects, frame);
+  ASSERT_GT(frame_stats.pixels_covered, 0u);
+
+  // One thread: its own tile buffer, and the shared empty one for every tile left undrawn.
+  Rasterizer rasterizer({.threads = 1});
+  std::vector<std::pair<const GBuffer*, bool>>
+      tiles;  // buffer, and whether the frame's tile is empty
+  int wrong = 0;
+  const RasterStats stats = rasterizer.render_tiles(
+      view, objects, [&](const GBuffer& tile, int x0, int y0, int x1, int y1, int) {
+        bool frame_tile_empty = true;
+        for (int y = y0; y < y1; ++y) {
+          for (int x = x0; x < x1; ++x) {
+            const std::size_t f = frame.index(x, y);
+            const std::size_t t = tile.index(x - x0, y - y0);
+            frame_tile_empty &= !frame.covered(f);
+            const bool same = tile.flags[t] == frame.flags[f] &&
+                              tile.object_id[t] == frame.object_id[f] &&
+                              std::memcmp(&tile.depth[t], &frame.depth[f], sizeof(float)) == 0;
+            wrong += same ? 0 : 1;
+          }
+        }
+        tiles.emplace_back(&tile, frame_tile_empty);
+      });
+  EXPECT_EQ(wrong, 0);
+  ASSERT_EQ(tiles.size(), 5u * 4u);
+  std::map<const GBuffer*, int> tiles_by_buffer;
+  for (const auto& [buffer, empty] : tiles) ++tiles_by_buffer[buffer];
+  ASSERT_EQ(tiles_by_buffer.size(), 2u);
+  const GBuffer* shared =
+      std::max_element(tiles_by_buffer.begin(), tiles_by_buffer.end(),
+                       [](const auto& a, const auto& b) { return a.second < b.second; })
+          ->first;
+  EXPECT_GE(tiles_by_buffer[shared], 15);  // the sphere's bounds reach a few tiles at most
+  for (const auto& [buffer, empty] : tiles) {
+    if (buffer == shared) {
+      EXPECT_TRUE(empty);
+    }
+  }
+  // The shared buffer is empty in every plane, as resolving an empty tile writes it.
+  const GBuffer& empty = *shared;
+  for (std::size_t i = 0; i < empty.pixel_count(); ++i) {
+    ASSERT_EQ(empty.flags[i], 0u);
+    ASSERT_EQ(empty.object_id[i], GBuffer::kNoObject);
+    ASSERT_EQ(empty.depth[i], std::numeric_limits<float>::infinity());
+    ASSERT_EQ(empty.texture_position[i], glm::dvec3(0.0));
+    ASSERT_EQ(empty.normal[i], glm::vec3(0.0f));
+    ASSERT_EQ(empty.footprint[i], 0.0f);
+  }
+  // Skipping tiles changes no count.
+  EXPECT_EQ(stats.pixels_covered, frame_stats.pixels_covered);
+  EXPECT_EQ(stats.back_face_pixels, frame_stats.back_face_pixels);
+  EXPECT_EQ(stats.fragments_rasterized, frame_stats.fragments_rasterized);
+  EXPECT_EQ(stats.fragments_depth_passed, frame_stats.fragments_depth_passed);
+  EXPECT_EQ(stats.triangles_rasterized, frame_stats.triangles_rasterized);
 }
 
 bool refused(const RasterView& view, const RasterObject& object) {
