@@ -13,7 +13,8 @@
 // whole frame at about 26 dB against the reference, the marble alone is above 40 dB, so the
 // speed ratio at PSNR >= 40 dB is read from the second; 2 for the bunny alone drawn with both
 // faces (the scene draws front faces only), to show what back-face culling saves; 3 for the
-// built-in default scene instead (four objects, two cut open by clip planes: caps). Times are
+// built-in default scene instead (four objects; a clip plane cuts the marble sphere open, so
+// the frame has caps). Times are
 // wall-clock per frame; the CPU column is the whole process's CPU time (all render threads) per
 // frame. Counters: the warm frame's raster and shade wall times (ms) as FrameRenderer reports them,
 // and its PSNR against the per-pixel reference (dB).
@@ -57,7 +58,7 @@ struct WarmScene {
       source->want(std::move(frame.misses));
       if (complete && source->idle()) break;
       if (std::chrono::steady_clock::now() > deadline) {
-        throw std::runtime_error("frame_bench: the bunny scene did not converge in 120 s");
+        throw std::runtime_error("frame_bench: the scene did not converge in 120 s");
       }
       source->wait_idle(std::chrono::milliseconds(50));
     }

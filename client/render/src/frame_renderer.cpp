@@ -482,7 +482,8 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
     if (lit.batch.count > 0) flush();
   };
   // Each raster tile is shaded by the thread that resolved it, right after, while its
-  // G-buffer is still in that core's cache; in square pieces, whose pixels read few bricks.
+  // G-buffer is still in that core's cache (a tile no triangle reached comes as the shared
+  // empty buffer); in square pieces, whose pixels read few bricks.
   const auto shade_raster_tile = [&](const GBuffer& g, int origin_x, int origin_y, int x0, int y0,
                                      int x1, int y1, int worker_index) {
     const auto shade_start = Clock::now();
