@@ -1,5 +1,7 @@
 #include "headless_session.h"
 
+#include <algorithm>
+
 namespace soltex::view {
 
 HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedScene& scene,
@@ -39,11 +41,11 @@ HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedSce
       result.bricks_failed = true;
       return result;
     }
-    // The output is the converged image, so draw again when everything asked for is in (or
-    // at 4 Hz, to notice the time limit): frames in between only take CPU from decoding and,
-    // where soltexd shares the machine, from evaluation. This cut converging over loopback on
-    // 2 cores by about 15 %. The interactive viewer draws every frame.
-    source.wait_idle(std::chrono::milliseconds(250));
+    // The output is the converged image, so draw again only when everything asked for is in
+    // (or the time is up): frames in between only take CPU from decoding and, where soltexd
+    // shares the machine, from evaluation. The interactive viewer draws every frame.
+    const auto left = options.max_time - std::chrono::milliseconds(static_cast<long>(elapsed_ms()));
+    source.wait_idle(std::max(left, std::chrono::milliseconds(1)));
   }
 }
 
