@@ -44,7 +44,8 @@ HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedSce
     // The output is the converged image, so draw again only when everything asked for is in
     // (or the time is up): frames in between only take CPU from decoding and, where soltexd
     // shares the machine, from evaluation. The interactive viewer draws every frame.
-    const auto left = options.max_time - std::chrono::milliseconds(static_cast<long>(elapsed_ms()));
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+        start + options.max_time - Clock::now());
     source.wait_idle(std::max(left, std::chrono::milliseconds(1)));
   }
 }

@@ -5,7 +5,10 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/brick_evaluator.h"
@@ -48,6 +51,20 @@ net::FetcherOptions quick_reconnect() {
   return options;
 }
 
+// A soltexd started with `server_args`, a cache, and a fetcher against that soltexd with the
+// marble texture registered as `id`.
+struct FetcherAgainstServer {
+  explicit FetcherAgainstServer(std::vector<std::string> server_args = {})
+      : server(std::move(server_args)),
+        fetcher(server.grpc_address(), cache),
+        id(fetcher.register_texture(marble(), unit_volume(6), 8, {})) {}
+
+  SoltexdProcess server;
+  BrickCache cache{64 << 20};
+  net::BrickFetcher fetcher;
+  uint64_t id;
+};
+
 // Compares every sample of a cached brick with this process's evaluation.
 void expect_cached_brick_is_local(BrickCache& cache, uint64_t id, int level_index,
                                   glm::ivec3 brick) {
@@ -69,10 +86,8 @@ void expect_cached_brick_is_local(BrickCache& cache, uint64_t id, int level_inde
 }
 
 TEST(BrickFetcher, FetchedBricksEqualLocalEvaluation) {
-  SoltexdProcess server;
-  BrickCache cache(64 << 20);
-  net::BrickFetcher fetcher(server.grpc_address(), cache);
-  const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  FetcherAgainstServer setup;
+  auto& [server, cache, fetcher, id] = setup;
   fetcher.want(level(id, 1, 4));
   ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
   const net::SourceStats stats = fetcher.stats();
@@ -84,10 +99,8 @@ TEST(BrickFetcher, FetchedBricksEqualLocalEvaluation) {
 }
 
 TEST(BrickFetcher, DuplicatesResidentAndStaleWantsAreNotFetchedTwice) {
-  SoltexdProcess server;
-  BrickCache cache(64 << 20);
-  net::BrickFetcher fetcher(server.grpc_address(), cache);
-  const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  FetcherAgainstServer setup;
+  auto& [server, cache, fetcher, id] = setup;
   std::vector<net::BrickWant> wants = level(id, 2, 2);
   const std::vector<net::BrickWant> again = wants;
   wants.insert(wants.end(), again.begin(), again.end());  // every key twice
@@ -100,10 +113,8 @@ TEST(BrickFetcher, DuplicatesResidentAndStaleWantsAreNotFetchedTwice) {
 }
 
 TEST(BrickFetcher, RefusedKeysAreReportedAndNotAskedAgain) {
-  SoltexdProcess server;
-  BrickCache cache(64 << 20);
-  net::BrickFetcher fetcher(server.grpc_address(), cache);
-  const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  FetcherAgainstServer setup;
+  auto& [server, cache, fetcher, id] = setup;
   fetcher.want({{{id, 0, {99, 0, 0}}, 1}});
   ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(10)));
   fetcher.want({{{id, 0, {99, 0, 0}}, 1}});
@@ -138,10 +149,8 @@ TEST(BrickFetcher, SurvivesAServerRestart) {
 }
 
 TEST(BrickFetcher, CorruptBricksAreFetchedAgain) {
-  SoltexdProcess server({"--fault-corrupt-every", "5"});
-  BrickCache cache(64 << 20);
-  net::BrickFetcher fetcher(server.grpc_address(), cache);
-  const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  FetcherAgainstServer setup({"--fault-corrupt-every", "5"});
+  auto& [server, cache, fetcher, id] = setup;
   fetcher.want(level(id, 1, 4));
   ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
   const net::SourceStats stats = fetcher.stats();

@@ -1,8 +1,6 @@
 #include "memcached_process.h"
 
-#include <signal.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <boost/asio/ip/tcp.hpp>
 #include <chrono>
@@ -39,18 +37,8 @@ std::string MemcachedProcess::binary() {
 MemcachedProcess::MemcachedProcess() : port_(free_port()) {
   const std::string path = binary();
   if (path.empty()) throw std::runtime_error("memcached is not installed");
-  std::vector<std::string> args = {path, "-l", "127.0.0.1", "-p", std::to_string(port_),
-                                   "-U", "0",  "-m",        "64", "-t",
-                                   "1",  "-u", "nobody"};
-  pid_ = fork();
-  if (pid_ < 0) throw std::runtime_error("fork failed");
-  if (pid_ == 0) {
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
+  pid_ = spawn_process({path, "-l", "127.0.0.1", "-p", std::to_string(port_), "-U", "0", "-m", "64",
+                        "-t", "1", "-u", "nobody"});
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   while (std::chrono::steady_clock::now() < deadline) {
     if (accepts_connections(port_)) return;
@@ -69,10 +57,7 @@ MemcachedProcess::~MemcachedProcess() {
 }
 
 void MemcachedProcess::kill() {
-  if (pid_ <= 0) return;
-  ::kill(pid_, SIGKILL);
-  waitpid(pid_, nullptr, 0);
-  pid_ = -1;
+  kill_and_reap(pid_);
 }
 
 }  // namespace soltex::testing

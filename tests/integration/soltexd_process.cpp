@@ -45,17 +45,7 @@ SoltexdProcess::SoltexdProcess(std::vector<std::string> extra_args, int port)
                                    "--shutdown-grace",
                                    "2"};
   args.insert(args.end(), extra_args.begin(), extra_args.end());
-  pid_ = fork();
-  if (pid_ < 0) throw std::runtime_error("fork failed");
-  if (pid_ == 0) {
-    FILE* log = std::freopen(log_path.c_str(), "w", stdout);
-    if (log != nullptr) dup2(fileno(stdout), STDERR_FILENO);
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
+  pid_ = spawn_process(std::move(args), log_path);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   while (std::chrono::steady_clock::now() < deadline) {
     std::ifstream in(ready);
@@ -76,10 +66,7 @@ SoltexdProcess::SoltexdProcess(std::vector<std::string> extra_args, int port)
 }
 
 SoltexdProcess::~SoltexdProcess() {
-  if (pid_ > 0) {
-    kill(pid_, SIGKILL);
-    waitpid(pid_, nullptr, 0);
-  }
+  kill_and_reap(pid_);
   std::error_code ignored;
   std::filesystem::remove_all(directory_, ignored);
 }
@@ -100,10 +87,7 @@ int SoltexdProcess::terminate() {
 }
 
 void SoltexdProcess::kill_now() {
-  if (pid_ <= 0) return;
-  kill(pid_, SIGKILL);
-  waitpid(pid_, nullptr, 0);
-  pid_ = -1;
+  kill_and_reap(pid_);
 }
 
 std::string SoltexdProcess::log() const {
@@ -111,6 +95,30 @@ std::string SoltexdProcess::log() const {
   std::stringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+pid_t spawn_process(std::vector<std::string> args, const std::string& log_path) {
+  const pid_t pid = fork();
+  if (pid < 0) throw std::runtime_error("fork failed");
+  if (pid == 0) {
+    if (!log_path.empty()) {
+      FILE* log = std::freopen(log_path.c_str(), "w", stdout);
+      if (log != nullptr) dup2(fileno(stdout), STDERR_FILENO);
+    }
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  return pid;
+}
+
+void kill_and_reap(pid_t& pid) {
+  if (pid <= 0) return;
+  kill(pid, SIGKILL);
+  waitpid(pid, nullptr, 0);
+  pid = -1;
 }
 
 int free_port() {

@@ -38,6 +38,13 @@ class SoltexdProcess {
   std::string directory_;
 };
 
+// Starts args[0] (a path) with the rest of `args` as a child process, its stdout and stderr
+// going to `log_path` when one is given; returns its pid. Throws when fork() fails.
+pid_t spawn_process(std::vector<std::string> args, const std::string& log_path = "");
+
+// SIGKILLs the child `pid` and reaps it, then sets `pid` to -1; nothing when pid <= 0.
+void kill_and_reap(pid_t& pid);
+
 // A loopback port that was free a moment ago (for restarting a server on the same port).
 int free_port();
 

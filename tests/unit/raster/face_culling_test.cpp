@@ -41,11 +41,17 @@ RasterView looking_at(const glm::vec3& eye, std::vector<glm::dvec4> planes = {})
           std::move(planes)};
 }
 
-TEST(FaceCulling, FrontFacesAreDrawnBackFacesAreDropped) {
-  const Mesh mesh = square(1.0f);
+// An open sheet drawn front faces only.
+RasterObject open_front_faces_only(const Mesh& mesh) {
   RasterObject object{mesh.view()};
   object.closed = false;
   object.cull_back_faces = true;
+  return object;
+}
+
+TEST(FaceCulling, FrontFacesAreDrawnBackFacesAreDropped) {
+  const Mesh mesh = square(1.0f);
+  RasterObject object = open_front_faces_only(mesh);
   GBuffer g;
   const RasterStats front = render(looking_at({0, 0, 3}), object, g);
   EXPECT_EQ(front.triangles_back_face_culled, 0u);
@@ -61,9 +67,7 @@ TEST(FaceCulling, BackFacesCutByTheNearPlaneAreDroppedToo) {
   // The eye close behind a large square: both triangles cross the near plane and are clipped
   // first; the pieces face away.
   const Mesh mesh = square(100.0f);
-  RasterObject object{mesh.view()};
-  object.closed = false;
-  object.cull_back_faces = true;
+  RasterObject object = open_front_faces_only(mesh);
   GBuffer g;
   const RasterView view{
       kWidth,
