@@ -133,8 +133,12 @@ OctavePlan plan_octaves(const FractalParams& params, double filter_width) {
   const double width = std::isfinite(filter_width) ? std::max(filter_width, 0.0) : 0.0;
   for (int k = params.octave_min;
        k <= params.octave_max && plan.count < SpecLimits::kMaxOctaveCount; ++k) {
-    const double frequency = std::ldexp(params.scale, k);
-    const float weight = std::ldexp(1.0f, -k);
+    // Exact powers of two, as ldexp gives them, without a libm call per octave: a per-pixel
+    // reference plans the octaves at every pixel.
+    const bool small = k >= 0 && k <= SpecLimits::kMaxOctave;
+    const double frequency =
+        small ? params.scale * static_cast<double>(uint32_t{1} << k) : std::ldexp(params.scale, k);
+    const float weight = small ? 1.0f / static_cast<float>(uint32_t{1} << k) : std::ldexp(1.0f, -k);
     const float alpha = 1.0f - smoothstep(0.25f, 0.5f, static_cast<float>(frequency * width));
     plan.octaves[plan.count++] = {frequency, weight * alpha, weight * (1.0f - alpha) * mean};
     plan.total_weight += weight;

@@ -126,54 +126,8 @@ EyeRelative eye_relative(const PreparedScene& scene, const Camera& camera, int w
   return r;
 }
 
-// The lighting inputs of pixel i: world position (unprojected from depth), normal facing the
-// viewer, direction to the viewer.
-struct Surface {
-  glm::dvec3 position;
-  glm::vec3 normal;
-  glm::vec3 to_viewer;
-};
-
-// `inverse_vp` maps to eye-relative world space; the eye is added back in double.
-Surface surface_at(const GBuffer& g, std::size_t i, int x, int y, const glm::dmat4& inverse_vp,
-                   const glm::dvec3& eye) {
-  const double ndc_x = (x + 0.5) / g.width * 2.0 - 1.0;
-  const double ndc_y = 1.0 - (y + 0.5) / g.height * 2.0;
-  const double ndc_z = static_cast<double>(g.depth[i]) * 2.0 - 1.0;
-  const glm::dvec4 h = inverse_vp * glm::dvec4(ndc_x, ndc_y, ndc_z, 1.0);
-  const glm::dvec3 relative = glm::dvec3(h) / h.w;
-  Surface s;
-  s.position = eye + relative;
-  const glm::vec3 view(-relative);
-  const float length = glm::length(view);
-  s.to_viewer = length > 0.0f ? view / length : glm::vec3(0.0f, 0.0f, 1.0f);
-  glm::vec3 n = g.normal[i];
-  const float n_length = glm::length(n);
-  n = n_length > 0.0f ? n / n_length : s.to_viewer;
-  if (g.back_face(i) || glm::dot(n, s.to_viewer) < 0.0f) n = -n;  // seen from inside
-  s.normal = n;
-  return s;
-}
-
-// Texture channel values -> shaded colour, the same for the cached and the reference path.
-glm::vec3 shade_pixel(const PreparedLights& lights, const PreparedObject& object,
-                      const float* values, const Surface& surface) {
-  const ChannelSet& channels = object.texture.channels;
-  const Material& material = object.object->material;
-  const glm::vec3 albedo =
-      channels.colour ? glm::vec3(values[0], values[1], values[2]) : glm::vec3(values[0]);
-  int next = channels.colour ? 3 : 0;
-  const float opacity = channels.opacity ? values[next++] : 1.0f;
-  const float specular = channels.specular ? values[next++] : material.specular;
-  glm::vec3 colour = material.unlit ? albedo
-                                    : shade(lights, albedo, specular, material.shininess,
-                                            surface.position, surface.normal, surface.to_viewer);
-  if (opacity < 1.0f) colour = kBackground + opacity * (colour - kBackground);
-  return colour;
-}
-
 // Where a texture's sampled channels go: albedo (three channels, or one grey), opacity and
-// specular (their index in the samples, or -1 for none), as shade_pixel() reads them.
+// specular (their index in the samples, or -1 for none).
 struct MaterialInputs {
   bool colour = true;
   int opacity = -1;
@@ -200,10 +154,14 @@ MaterialInputs material_inputs(const PreparedObject& object) {
   return m;
 }
 
-// shade_pixel()'s last step: blend towards the background by the opacity, and store.
-void set_pixel(Image& image, int x, int y, glm::vec3 colour, float opacity) {
-  if (opacity < 1.0f) colour = kBackground + opacity * (colour - kBackground);
-  image.set(x, y, colour.r, colour.g, colour.b);
+// A shaded colour seen through the texture's opacity: blended towards the background.
+glm::vec3 over_background(const glm::vec3& colour, float opacity) {
+  return opacity < 1.0f ? kBackground + opacity * (colour - kBackground) : colour;
+}
+
+void set_pixel(Image& image, int x, int y, const glm::vec3& colour, float opacity) {
+  const glm::vec3 seen = over_background(colour, opacity);
+  image.set(x, y, seen.r, seen.g, seen.b);
 }
 
 // The lit pixels of a tile waiting to be shaded together: where they are, their texture
@@ -274,8 +232,9 @@ struct LitPixels {
   }
 };
 
-// surface_at() across a batch, with the same operations in the same order: the lanes get
-// exactly the position, normal and direction to the viewer surface_at() gives.
+// The lighting inputs of a batch's pixels: the world position unprojected from depth (relative
+// to the eye through `inverse_vp`, the eye added back in double), the direction to the viewer,
+// and the unit normal turned to face the viewer (seen from inside: flipped).
 struct SurfaceUnprojection {
   glm::dmat4 inverse_vp;
   glm::dvec3 eye;
@@ -547,15 +506,32 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
   view.height = h;
   view.view_projection = glm::mat4(vp);
   view.clip_planes = relative.clip_planes;
-  GBuffer g;
+  GBuffer& g = reference_gbuffer_;
   rasterizer_.render(view, relative.objects, g);
   std::vector<TextureEvaluator> evaluators;
   for (const PreparedObject& o : scene.objects) evaluators.emplace_back(o.texture);
   const glm::dmat4 inverse_vp = glm::inverse(vp);
   const PreparedLights lights = prepare_lights(*scene.scene);
-  std::vector<glm::vec3> colours(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
+  std::vector<glm::vec3>& colours = reference_colours_;
+  colours.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
   const int row_blocks = (h + kReferenceRows - 1) / kReferenceRows;
+  std::vector<MaterialInputs> materials;
+  materials.reserve(scene.objects.size());
+  for (const PreparedObject& o : scene.objects) materials.push_back(material_inputs(o));
+  const SurfaceUnprojection unprojection{inverse_vp, camera.position, w, h};
   rasterizer_.parallel_for(static_cast<std::size_t>(row_blocks), [&](std::size_t block, int) {
+    // Lit the way render() lights, in batches (the same lighting, bit for bit, as per pixel):
+    // the comparison is then between evaluating and looking up, not between two lighting loops.
+    LitPixels lit;
+    const auto flush = [&] {
+      unprojection.fill(g, lit);
+      shade_batch(lights, lit.batch);
+      for (std::size_t l = 0; l < static_cast<std::size_t>(lit.batch.count); ++l) {
+        colours[lit.index[l]] = over_background(
+            {lit.batch.colour_r[l], lit.batch.colour_g[l], lit.batch.colour_b[l]}, lit.opacity[l]);
+      }
+      lit.batch.count = 0;
+    };
     const int first = static_cast<int>(block) * kReferenceRows;
     const int end = std::min(h, first + kReferenceRows);
     for (int y = first; y < end; ++y) {
@@ -578,22 +554,37 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
         };
         if (c.opacity) values[next++] = scalar(object.texture.opacity);
         if (c.specular) values[next++] = scalar(object.texture.specular);
-        colours[i] = shade_pixel(lights, object, values,
-                                 surface_at(g, i, x, y, inverse_vp, camera.position));
+        const MaterialInputs& m = materials[g.object_id[i]];
+        const glm::vec3 albedo =
+            m.colour ? glm::vec3(values[0], values[1], values[2]) : glm::vec3(values[0]);
+        const float opacity = m.opacity >= 0 ? values[m.opacity] : 1.0f;
+        if (m.unlit) {
+          colours[i] = over_background(albedo, opacity);
+          continue;
+        }
+        lit.add(lit.batch.count++, x, y, i, albedo, opacity,
+                m.specular >= 0 ? values[m.specular] : m.material_specular, m.shininess);
+        if (lit.batch.count == ShadeBatch::kCapacity) flush();
       }
     }
+    if (lit.batch.count > 0) flush();
   });
   Image image(width, height);
   const float weight = 1.0f / static_cast<float>(k * k);
-  for (int y = 0; y < height; ++y) {
-    for (int x = 0; x < width; ++x) {
-      glm::vec3 sum(0.0f);
-      for (int sy = 0; sy < k; ++sy)
-        for (int sx = 0; sx < k; ++sx) sum += colours[g.index(x * k + sx, y * k + sy)];
-      sum *= weight;
-      image.set(x, y, sum.r, sum.g, sum.b);
+  const int image_blocks = (height + kReferenceRows - 1) / kReferenceRows;
+  rasterizer_.parallel_for(static_cast<std::size_t>(image_blocks), [&](std::size_t block, int) {
+    const int first = static_cast<int>(block) * kReferenceRows;
+    const int end = std::min(height, first + kReferenceRows);
+    for (int y = first; y < end; ++y) {
+      for (int x = 0; x < width; ++x) {
+        glm::vec3 sum(0.0f);
+        for (int sy = 0; sy < k; ++sy)
+          for (int sx = 0; sx < k; ++sx) sum += colours[g.index(x * k + sx, y * k + sy)];
+        sum *= weight;
+        image.set(x, y, sum.r, sum.g, sum.b);
+      }
     }
-  }
+  });
   return image;
 }
 
