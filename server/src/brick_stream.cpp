@@ -193,12 +193,23 @@ void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick) {
   std::lock_guard lock(mutex_);
   in_production_.fetch_sub(1, std::memory_order_relaxed);
   if (brick) {
-    outbox_.push_back({brick, std::nullopt, std::nullopt, item.enqueued});
+    outbox_.push_back(
+        {brick, std::nullopt, std::nullopt, item.enqueued, std::chrono::steady_clock::now()});
   } else {
     add_error(to_proto(item.key), grpc::StatusCode::INTERNAL,
               "evaluating " + describe(to_proto(item.key)) + " failed (see the server log)");
   }
   pump();
+}
+
+bool BrickStream::hold_back() const {
+  const StreamLimits& limits = context_.limits;
+  // More bricks are coming only if one is queued or in production: its delivery calls pump()
+  // again, so a message held back here is never stranded.
+  // (An item between the queue and production is missed: its message just goes out short.)
+  const bool more_coming = queue_.size() > 0 || in_production_.load(std::memory_order_relaxed) > 0;
+  return more_coming && outbox_.size() < limits.coalesce_bricks && !shutting_down_ &&
+         std::chrono::steady_clock::now() - outbox_.front().ready < limits.coalesce_wait;
 }
 
 std::size_t BrickStream::owed() const {
@@ -212,7 +223,8 @@ void BrickStream::add_error(const v1::BrickKey& key, grpc::StatusCode code, std:
   error.set_code(static_cast<int32_t>(code));
   error.set_message(std::move(message));
   context_.metrics.count_error(static_cast<int>(code));
-  outbox_.push_back({nullptr, std::move(error), std::nullopt, std::chrono::steady_clock::now()});
+  const auto now = std::chrono::steady_clock::now();
+  outbox_.push_back({nullptr, std::move(error), std::nullopt, now, now});
 }
 
 void BrickStream::add_request_error(grpc::StatusCode code, std::string message) {
@@ -220,14 +232,15 @@ void BrickStream::add_request_error(grpc::StatusCode code, std::string message) 
   error.set_code(static_cast<int32_t>(code));
   error.set_message(std::move(message));
   context_.metrics.count_error(static_cast<int>(code));
-  outbox_.push_back({nullptr, std::nullopt, std::move(error), std::chrono::steady_clock::now()});
+  const auto now = std::chrono::steady_clock::now();
+  outbox_.push_back({nullptr, std::nullopt, std::move(error), now, now});
 }
 
 void BrickStream::pump() {
   if (finished_ || reactor_ == nullptr) return;
   const StreamLimits& limits = context_.limits;
 
-  if (!writing_ && !outbox_.empty() && !cancelled_) {
+  if (!writing_ && !outbox_.empty() && !cancelled_ && !hold_back()) {
     batch_.Clear();
     batch_enqueued_.clear();
     std::size_t bytes = 0;
@@ -255,6 +268,7 @@ void BrickStream::pump() {
       outbox_.pop_front();
     }
     writing_ = true;
+    ++batches_sent_;
     bricks_sent_ += static_cast<uint64_t>(batch_.bricks_size());
     bytes_sent_ += bytes;
     errors_sent_ += static_cast<uint64_t>(batch_.errors_size() + batch_.request_errors_size());
@@ -294,9 +308,9 @@ void BrickStream::pump() {
   }
   if (finish) {
     finished_ = true;
-    spdlog::info("stream {} closed ({}): {} bricks, {} bytes, {} errors in {:.1f} s", id_,
-                 status.ok() ? "OK" : status.error_message(), bricks_sent_, bytes_sent_,
-                 errors_sent_,
+    spdlog::info("stream {} closed ({}): {} bricks in {} messages, {} bytes, {} errors in {:.1f} s",
+                 id_, status.ok() ? "OK" : status.error_message(), bricks_sent_, batches_sent_,
+                 bytes_sent_, errors_sent_,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - opened_).count());
     reactor_->Finish(status);
   }

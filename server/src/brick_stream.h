@@ -27,6 +27,13 @@ struct StreamLimits {
   uint32_t max_batch_bricks = 32;
   uint32_t max_batch_bytes = 1 << 20;
   uint32_t max_queued_per_client = 65536;  // over all of one client's streams
+  // A message is held back while it has fewer bricks than this, more of the stream's bricks are
+  // queued or being made (each one's delivery looks again) and its oldest brick has waited
+  // less than coalesce_wait: on a fast link a write completes before the next brick is made,
+  // and without this most messages would carry one or two bricks, each costing both ends a
+  // wake-up.
+  uint32_t coalesce_bricks = 8;
+  std::chrono::microseconds coalesce_wait{2000};
 };
 
 // Everything one StreamBricks call needs, shared between the gRPC reactor (gRPC threads) and
@@ -66,7 +73,8 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
     EncodedBrickPtr brick;                // or
     std::optional<v1::BrickError> error;  // or
     std::optional<v1::RequestError> request_error;
-    std::chrono::steady_clock::time_point enqueued;
+    std::chrono::steady_clock::time_point enqueued;  // when its request was queued
+    std::chrono::steady_clock::time_point ready;     // when it entered the outbox
   };
 
   // Reactor callbacks (gRPC threads).
@@ -87,6 +95,7 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   void add_request_error(grpc::StatusCode code, std::string message);
   void pump();               // start the next read, write or finish, whichever is due
   std::size_t owed() const;  // bricks queued, in production or waiting to be written
+  bool hold_back() const;    // whether the outbox should wait for more bricks (coalescing)
 
   Context context_;
   const uint64_t id_;
@@ -113,6 +122,7 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   std::atomic<int64_t> in_production_{0};
 
   // Totals for the close log line.
+  uint64_t batches_sent_ = 0;
   uint64_t bricks_sent_ = 0;
   uint64_t bytes_sent_ = 0;
   uint64_t errors_sent_ = 0;

@@ -104,7 +104,8 @@ Daemon::Daemon(const ServerConfig& config)
       metrics_state_,
       faults_,
       StreamLimits{config.max_keys_per_request, config.max_queued_per_stream, 32, 1u << 20,
-                   config.max_queued_per_client}};
+                   config.max_queued_per_client, config.coalesce_bricks,
+                   std::chrono::microseconds(config.coalesce_wait_us)}};
   service_ =
       std::make_unique<BrickServiceImpl>(context, access_, make_info(config, scheduler_.threads()));
 

@@ -65,6 +65,15 @@ int main(int argc, char** argv) {
                  "largest request message accepted")
       ->check(CLI::Range(1024u, 1u << 30))
       ->capture_default_str();
+  app.add_option("--coalesce-bricks", config.coalesce_bricks,
+                 "bricks a message waits for while more of its stream's bricks are being made "
+                 "(1: send each as soon as the previous message is written)")
+      ->check(CLI::Range(1u, 32u))
+      ->capture_default_str();
+  app.add_option("--coalesce-wait-us", config.coalesce_wait_us,
+                 "longest a made brick waits for others to share its message, microseconds")
+      ->check(CLI::Range(0u, 1000000u))
+      ->capture_default_str();
   app.add_option("--shutdown-grace", config.shutdown_grace_seconds,
                  "seconds open calls get to finish on SIGINT/SIGTERM")
       ->check(CLI::Range(0.0, 600.0))

@@ -72,6 +72,7 @@ StreamResult stream_once(v1::BrickService::Stub& stub, const v1::BrickRequest& r
   stream->WritesDone();
   v1::BrickBatch batch;
   while (stream->Read(&batch)) {
+    result.bricks_per_message.push_back(batch.bricks_size());
     for (auto& b : *batch.mutable_bricks()) result.bricks.push_back(std::move(b));
     for (auto& e : *batch.mutable_errors()) result.errors.push_back(std::move(e));
     for (auto& e : *batch.mutable_request_errors()) result.request_errors.push_back(std::move(e));

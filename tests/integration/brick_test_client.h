@@ -32,6 +32,7 @@ struct StreamResult {
   std::vector<v1::Brick> bricks;
   std::vector<v1::BrickError> errors;
   std::vector<v1::RequestError> request_errors;
+  std::vector<int> bricks_per_message;  // one entry per BrickBatch read
   grpc::Status status;
 };
 

@@ -109,6 +109,38 @@ TEST(Soltexd, CoarseLevelsAreServedFirst) {
   EXPECT_LT(position, 8u);
 }
 
+TEST(Soltexd, BricksMadeTogetherShareMessages) {
+  // A wait no brick reaches: only "nothing more is coming" sends a message short.
+  SoltexdProcess server(
+      {"--threads", "2", "--coalesce-bricks", "8", "--coalesce-wait-us", "1000000"});
+  auto stub = connect(server);
+  // Bricks of 16 take longer to make than a message takes to write, as in a real frame.
+  const v1::TextureHandle handle = register_texture(*stub, marble_request(8, 16));
+  const std::vector<v1::BrickKey> keys = level_keys(handle.id(), 0, 4);  // 64 bricks
+  const StreamResult result = stream_once(*stub, want(keys));
+  ASSERT_TRUE(result.status.ok()) << result.status.error_message();
+  ASSERT_EQ(result.bricks.size(), keys.size());
+  // Short: the last message, and one sent while the only brick left was between the queue and
+  // a worker (a window of a few instructions).
+  int short_messages = 0;
+  for (const int bricks : result.bricks_per_message) {
+    EXPECT_LE(bricks, 32);
+    short_messages += bricks < 8 ? 1 : 0;
+  }
+  EXPECT_LE(short_messages, 2) << result.bricks_per_message.size() << " messages";
+}
+
+// A lone brick is not held back waiting for company.
+TEST(Soltexd, ALoneBrickIsSentAtOnce) {
+  SoltexdProcess server;
+  auto stub = connect(server);
+  const v1::TextureHandle handle = register_texture(*stub, marble_request());
+  const StreamResult result = stream_once(*stub, want({key_of(handle.id(), 3, 0, 0, 0)}));
+  ASSERT_TRUE(result.status.ok()) << result.status.error_message();
+  ASSERT_EQ(result.bricks.size(), 1u);
+  EXPECT_EQ(result.bricks_per_message, std::vector<int>{1});
+}
+
 TEST(Soltexd, ManyConcurrentStreamsAndSingleFlight) {
   SoltexdProcess server;
   auto stub = connect(server);
