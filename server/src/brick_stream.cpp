@@ -182,7 +182,6 @@ std::function<void()> BrickStream::take() {
   std::optional<WorkItem> item = queue_.pop();
   if (!item) return {};
   count_queued(-1);
-  in_production_.fetch_add(1, std::memory_order_relaxed);
   return [self = shared_from_this(), item = std::move(*item)] {
     self->context_.producer.produce(
         item, [self, item](const EncodedBrickPtr& brick) { self->deliver(item, brick); });
@@ -191,7 +190,7 @@ std::function<void()> BrickStream::take() {
 
 void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick) {
   std::lock_guard lock(mutex_);
-  in_production_.fetch_sub(1, std::memory_order_relaxed);
+  queue_.finished();
   if (brick) {
     outbox_.push_back(
         {brick, std::nullopt, std::nullopt, item.enqueued, std::chrono::steady_clock::now()});
@@ -204,17 +203,15 @@ void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick) {
 
 bool BrickStream::hold_back() const {
   const StreamLimits& limits = context_.limits;
-  // More bricks are coming only if one is queued or in production: its delivery calls pump()
-  // again, so a message held back here is never stranded.
-  // (An item between the queue and production is missed: its message just goes out short.)
-  const bool more_coming = queue_.size() > 0 || in_production_.load(std::memory_order_relaxed) > 0;
+  // More bricks are coming only if one is queued or taken: its delivery calls pump() again, so
+  // a message held back here is never stranded.
+  const bool more_coming = !queue_.drained();
   return more_coming && outbox_.size() < limits.coalesce_bricks && !shutting_down_ &&
          std::chrono::steady_clock::now() - outbox_.front().ready < limits.coalesce_wait;
 }
 
 std::size_t BrickStream::owed() const {
-  return queue_.size() + outbox_.size() +
-         static_cast<std::size_t>(in_production_.load(std::memory_order_relaxed));
+  return queue_.size() + queue_.taken() + outbox_.size();
 }
 
 void BrickStream::add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message) {
@@ -293,8 +290,7 @@ void BrickStream::pump() {
     reactor_->StartRead(&request_);
   }
 
-  const bool idle = !writing_ && outbox_.empty() && queue_.size() == 0 &&
-                    in_production_.load(std::memory_order_relaxed) == 0;
+  const bool idle = !writing_ && outbox_.empty() && queue_.drained();
   grpc::Status status;
   bool finish = false;
   if (cancelled_) {

@@ -118,8 +118,7 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   bool shutting_down_ = false;
   bool cancelled_ = false;
 
-  WorkQueue queue_;
-  std::atomic<int64_t> in_production_{0};
+  WorkQueue queue_;  // queued bricks, and those taken by a worker and not yet delivered
 
   // Totals for the close log line.
   uint64_t batches_sent_ = 0;

@@ -32,12 +32,28 @@ std::optional<WorkItem> WorkQueue::pop() {
   if (items_.empty()) return std::nullopt;
   auto node = items_.extract(items_.begin());
   by_key_.erase(node.value().key);
+  ++taken_;
   return std::move(node.value());
+}
+
+void WorkQueue::finished() {
+  std::lock_guard lock(mutex_);
+  if (taken_ > 0) --taken_;
 }
 
 std::size_t WorkQueue::size() const {
   std::lock_guard lock(mutex_);
   return items_.size();
+}
+
+std::size_t WorkQueue::taken() const {
+  std::lock_guard lock(mutex_);
+  return taken_;
+}
+
+bool WorkQueue::drained() const {
+  std::lock_guard lock(mutex_);
+  return items_.empty() && taken_ == 0;
 }
 
 std::size_t WorkQueue::clear() {

@@ -25,14 +25,24 @@ struct WorkItem {
 // One stream's pending bricks, best first: coarser levels first (a coarse brick is a fallback
 // for many fine ones), then higher client priority, then arrival order. A key is queued at
 // most once; asking again raises its priority. Thread-safe.
+//
+// It also counts the items taken and not yet finished, under the same lock as the queue: an
+// item is always either queued or taken until finished(), so drained() cannot see it in
+// neither (a stream that looked at two separate counters could finish between a worker's pop
+// and its count, and drop the brick).
 class WorkQueue {
  public:
   enum class Push { added, updated };
   Push push(WorkItem item);
   bool cancel(const BrickKey& key);
+  // The best item, now counted as taken; nullopt when none is queued.
   std::optional<WorkItem> pop();
-  std::size_t size() const;
-  std::size_t clear();
+  // A taken item is done with (its brick made, or its failure reported).
+  void finished();
+  std::size_t size() const;   // queued
+  std::size_t taken() const;  // taken and not finished
+  bool drained() const;       // nothing queued and nothing taken
+  std::size_t clear();        // drops the queued items (not the taken ones); returns how many
 
  private:
   struct Order {
@@ -48,6 +58,7 @@ class WorkQueue {
   Set items_;
   std::unordered_map<BrickKey, Set::iterator, BrickKeyHash> by_key_;
   uint64_t next_sequence_ = 0;
+  std::size_t taken_ = 0;
 };
 
 }  // namespace soltex::server
