@@ -96,6 +96,19 @@ BrickKey TextureSampler::brick_key(const glm::dvec3& p, int level) const {
 
 int TextureSampler::sample_level(const glm::dvec3& p, int level, bool nearest, float* out,
                                  bool& missing, MissedBricks* missed) {
+  if (accessor_.insertions() == 0) {
+    // Nothing was ever inserted (a client's first frame): every level misses, so skip the
+    // walk, which would locate the point at each level only to find that out, and report what
+    // the walk would.
+    for (int l = level; l <= coarsest_level_; ++l) accessor_.count_miss();
+    missing = true;
+    if (missed != nullptr) {
+      missed->add(BrickKey{texture_, level, locate(p, level).brick});
+      missed->add(BrickKey{texture_, coarsest_level_, glm::ivec3(0)});
+    }
+    std::fill(out, out + CachedBrick::kMaxChannels, 0.0f);
+    return -1;
+  }
   for (int l = level; l <= coarsest_level_; ++l) {
     const Location location = locate(p, l);
     if (const Current* brick = resident(l, location.brick)) {

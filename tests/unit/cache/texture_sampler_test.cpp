@@ -252,6 +252,42 @@ TEST(TextureSampler, NothingResidentReportsTheWantedAndTheCoarsestBricks) {
   EXPECT_EQ(after.hits, 0u);
 }
 
+// A cache that never held a brick skips the walk over the coarser levels (a client's first
+// frame): it must answer exactly as a cache whose bricks are all of another texture, which
+// walks.
+TEST(TextureSampler, ANeverFilledCacheAnswersAsTheWalkDoes) {
+  const RealTexture texture(spec_of(MarbleParams{}), test_volume(5), 8);
+  const RealTexture other(spec_of(WoodParams{}), test_volume(5), 8);
+  BrickCache never_filled(kBigBudget);
+  BrickCache filled_elsewhere(kBigBudget);
+  ASSERT_TRUE(other.insert(filled_elsewhere, other.layout.coarsest_level(), {0, 0, 0}));
+  ASSERT_GT(filled_elsewhere.stats().insertions, 0u);
+  TextureSampler skipping(never_filled, texture.id, texture.layout, texture.channels);
+  TextureSampler walking(filled_elsewhere, texture.id, texture.layout, texture.channels);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> coordinate(-1.0, 2.5);  // inside and outside
+  std::uniform_real_distribution<double> lod(-0.5, 3.5);
+  for (int n = 0; n < 3000; ++n) {
+    const glm::dvec3 p(coordinate(rng), coordinate(rng), coordinate(rng));
+    const double l = lod(rng);
+    const auto filter = static_cast<SampleFilter>(n % 3);
+    MissedBricks skipped, walked;
+    const SampleResult a = skipping.sample(p, l, filter, &skipped);
+    const SampleResult b = walking.sample(p, l, filter, &walked);
+    ASSERT_EQ(a.level, b.level) << n;
+    ASSERT_EQ(a.complete, b.complete) << n;
+    ASSERT_EQ(a.values, b.values) << n;
+    ASSERT_EQ(skipped.count, walked.count) << n;
+    for (int k = 0; k < skipped.count; ++k) {
+      ASSERT_EQ(skipped.keys[static_cast<std::size_t>(k)], walked.keys[static_cast<std::size_t>(k)])
+          << n;
+    }
+  }
+  skipping.flush_statistics();
+  walking.flush_statistics();
+  EXPECT_EQ(never_filled.stats().misses, filled_elsewhere.stats().misses);
+}
+
 TEST(TextureSampler, LevelOfDetailFromFootprint) {
   const BrickLayout layout(test_volume(6), 8);  // levels 0..3
   const double h0 = layout.filter_width(0);
