@@ -14,7 +14,7 @@
 // speed ratio at PSNR >= 40 dB is read from the second; 2 for the bunny alone drawn with both
 // faces (the scene draws front faces only), to show what back-face culling saves; 3 for the
 // built-in default scene instead (four objects; a clip plane cuts the marble sphere open, so
-// the frame has caps). Times are
+// the frame has caps); 4 for the bunny alone in bricks of 8 instead of 16. Times are
 // wall-clock per frame; the CPU column is the whole process's CPU time (all render threads) per
 // frame. Counters: the warm frame's raster and shade wall times (ms) as FrameRenderer reports them,
 // and its PSNR against the per-pixel reference (dB).
@@ -48,7 +48,8 @@ struct WarmScene {
       : scene(load(variant)),
         cache(std::make_unique<soltex::BrickCache>(512u << 20)),
         source(std::make_unique<soltex::net::LocalBrickSource>(*cache)),
-        prepared(soltex::prepare_scene(scene, soltex::TextureResolution{8, 16, {}}, *source)),
+        prepared(soltex::prepare_scene(
+            scene, soltex::TextureResolution{8, variant == 4 ? 8 : 16, {}}, *source)),
         renderer(std::make_unique<soltex::FrameRenderer>(
             *cache, soltex::RenderOptions{.threads = threads})) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
@@ -67,7 +68,7 @@ struct WarmScene {
   }
 
   static soltex::Scene load(int variant) {
-    if (variant == 3) return soltex::default_scene();
+    if (variant == 3) return soltex::default_scene();  // 4: the bunny alone, bricks of 8
     soltex::Scene scene = soltex::load_scene(SOLTEX_SOURCE_DIR "/deploy/scenes/bunny-marble.json");
     if (variant >= 1) {
       std::erase_if(scene.objects, [](const soltex::SceneObject& o) { return o.name == "floor"; });
@@ -87,9 +88,13 @@ struct WarmScene {
 };
 
 WarmScene& warm_scene(const benchmark::State& state) {
-  static std::unique_ptr<WarmScene> scenes[3][4];
+  constexpr int kThreadCounts = 3, kVariants = 5;  // threads 0..2, variants 0..4
+  static std::unique_ptr<WarmScene> scenes[kThreadCounts][kVariants];
   const auto threads = static_cast<int>(state.range(0));
   const auto variant = static_cast<int>(state.range(1));
+  if (threads < 0 || threads >= kThreadCounts || variant < 0 || variant >= kVariants) {
+    throw std::out_of_range("frame_bench: no scene slot for these arguments");
+  }
   auto& s = scenes[threads][variant];
   if (!s) s = std::make_unique<WarmScene>(threads, variant);
   return *s;
@@ -184,9 +189,10 @@ BENCHMARK(BM_WarmFrame)
     ->Args({2, 1})
     ->Args({2, 2})
     ->Args({2, 3})
+    ->Args({2, 4})
     ->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_Raster)->Args({1, 0})->Args({2, 0})->Args({2, 1})->Apply(wall_and_process_cpu_ms);
-BENCHMARK(BM_ColdFrame)->Args({2, 0})->Args({2, 1})->Apply(wall_and_process_cpu_ms);
+BENCHMARK(BM_ColdFrame)->Args({2, 0})->Args({2, 1})->Args({2, 4})->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_ReferenceFrame)
     ->Args({2, 0})
     ->Args({2, 1})
