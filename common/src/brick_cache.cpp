@@ -233,7 +233,19 @@ BrickCacheStats BrickCache::stats() const {
 
 // ---- Accessor -----------------------------------------------------------------------------
 
-BrickCache::Accessor::Accessor(BrickCache& cache) : cache_(&cache), last_(&table_[0]) {}
+BrickCache::Accessor::Accessor(BrickCache& cache, int set_bits)
+    : cache_(&cache),
+      set_shift_(32 - std::clamp(set_bits, kMinSetBits, kMaxSetBits)),
+      table_(kWays << (32 - set_shift_)),
+      next_way_(std::size_t{1} << (32 - set_shift_), 0),
+      last_(&table_[0]) {}
+
+int BrickCache::Accessor::set_bits_for(int brick_size, int channels) {
+  const std::size_t bricks = kRetainedBytes / charged_bytes(brick_size, channels);
+  int bits = kMinSetBits;
+  while (bits < kMaxSetBits && (kWays << (bits + 1)) <= bricks) ++bits;
+  return bits;
+}
 
 void BrickCache::Accessor::let_go_of_evicted() {
   for (Slot& slot : table_) {

@@ -76,7 +76,10 @@ TextureSampler::TextureSampler(BrickCache& cache, uint64_t texture, const BrickL
       finest_spacing_(layout.spacing(0)),
       level_scale_{},
       cells_{},
-      accessor_(cache) {
+      // Clamped: the channel count is checked below, after the members are built.
+      accessor_(cache,
+                BrickCache::Accessor::set_bits_for(
+                    layout.brick_size(), std::clamp(channels, 1, CachedBrick::kMaxChannels))) {
   if (channels < 1 || channels > CachedBrick::kMaxChannels) {
     throw std::invalid_argument("TextureSampler: channels = " + std::to_string(channels) +
                                 " must be in [1, " + std::to_string(CachedBrick::kMaxChannels) +

@@ -2,7 +2,8 @@
 
 namespace soltex::raster_internal {
 
-WorkerPool::WorkerPool(int thread_count) {
+WorkerPool::WorkerPool(int thread_count)
+    : shares_(std::make_unique<Share[]>(static_cast<std::size_t>(thread_count))) {
   for (int worker = 1; worker < thread_count; ++worker) {
     threads_.emplace_back([this, worker](std::stop_token stop) { worker_loop(stop, worker); });
   }
@@ -20,8 +21,11 @@ void WorkerPool::parallel_for(std::size_t count,
   {
     std::lock_guard lock(mutex_);
     task_ = &task;
-    count_ = count;
-    next_.store(0, std::memory_order_relaxed);
+    const auto threads = static_cast<std::size_t>(thread_count());
+    for (std::size_t w = 0; w < threads; ++w) {
+      shares_[w].next.store(count * w / threads, std::memory_order_relaxed);
+      shares_[w].end = count * (w + 1) / threads;
+    }
     error_ = nullptr;
     busy_workers_ = static_cast<int>(threads_.size());
     ++generation_;
@@ -49,15 +53,22 @@ void WorkerPool::worker_loop(const std::stop_token& stop, int worker) {
 }
 
 void WorkerPool::run_tasks(int worker) {
-  while (true) {
-    const std::size_t index = next_.fetch_add(1, std::memory_order_relaxed);
-    if (index >= count_) return;
-    try {
-      (*task_)(index, worker);
-    } catch (...) {
-      std::lock_guard lock(mutex_);
-      if (!error_) error_ = std::current_exception();
-      next_.store(count_, std::memory_order_relaxed);  // the others stop at their next index
+  const auto threads = static_cast<std::size_t>(thread_count());
+  for (std::size_t k = 0; k < threads; ++k) {
+    Share& share = shares_[(static_cast<std::size_t>(worker) + k) % threads];
+    while (true) {
+      const std::size_t index = share.next.fetch_add(1, std::memory_order_relaxed);
+      if (index >= share.end) break;
+      try {
+        (*task_)(index, worker);
+      } catch (...) {
+        std::lock_guard lock(mutex_);
+        if (!error_) error_ = std::current_exception();
+        // The others stop at their next index.
+        for (std::size_t w = 0; w < threads; ++w) {
+          shares_[w].next.store(shares_[w].end, std::memory_order_relaxed);
+        }
+      }
     }
   }
 }

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <exception>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <stop_token>
 #include <thread>
@@ -12,8 +13,11 @@
 #include <vector>
 
 // A fixed set of threads that run one parallel loop at a time. The calling thread works too,
-// so a pool of one thread starts none. Indices are handed out one at a time from an atomic
-// counter: the loops here are over tiles and triangle chunks whose costs differ a lot.
+// so a pool of one thread starts none. Indices are handed out one at a time (the loops here
+// are over tiles and triangle chunks whose costs differ a lot), each thread first from its own
+// contiguous share of the range and then from the others' shares: so a frame's tile i goes to
+// the same thread as the last frame's, unless it was taken to even the load, and per-thread
+// caches (the samplers' brick tables) find again what they held.
 namespace soltex::raster_internal {
 
 class WorkerPool {
@@ -39,8 +43,13 @@ class WorkerPool {
   std::condition_variable_any wake_;
   std::condition_variable done_;
   const std::function<void(std::size_t, int)>* task_ = nullptr;
-  std::size_t count_ = 0;
-  std::atomic<std::size_t> next_{0};
+  // One per thread: [next, end) of its share not yet handed out. Own cache lines: each
+  // thread's counter is written by it on every index.
+  struct alignas(64) Share {
+    std::atomic<std::size_t> next{0};
+    std::size_t end = 0;
+  };
+  std::unique_ptr<Share[]> shares_;
   unsigned long long generation_ = 0;
   int busy_workers_ = 0;
   std::exception_ptr error_;

@@ -282,6 +282,34 @@ TEST(BrickCache, AccessorRemembersManyBricks) {
   EXPECT_EQ(s.microcache_hits, 2u * kBricks);
 }
 
+// Small bricks get a larger table (a frame touches more of them), within a bound on the
+// evicted bytes an accessor may keep alive.
+TEST(BrickCache, AccessorTableGrowsForSmallBricks) {
+  EXPECT_EQ(BrickCache::Accessor::set_bits_for(16, 3), BrickCache::Accessor::kMinSetBits);
+  EXPECT_EQ(BrickCache::Accessor::set_bits_for(8, 3), BrickCache::Accessor::kMaxSetBits);
+  for (const int size : {8, 16}) {
+    for (int channels = 1; channels <= CachedBrick::kMaxChannels; ++channels) {
+      const int bits = BrickCache::Accessor::set_bits_for(size, channels);
+      const std::size_t slots = BrickCache::Accessor::kWays << bits;
+      if (bits > BrickCache::Accessor::kMinSetBits) {
+        EXPECT_LE(slots * BrickCache::charged_bytes(size, channels),
+                  BrickCache::Accessor::kRetainedBytes);
+      }
+    }
+  }
+  // A 2,048-slot table remembers more bricks from one round to the next than 512 slots could.
+  BrickCache cache(std::size_t{256} << 20);
+  constexpr int kBricks = 1024;
+  for (int n = 0; n < kBricks; ++n) ASSERT_TRUE(insert_synthetic(cache, key_of(n)));
+  BrickCache::Accessor accessor(cache, BrickCache::Accessor::kMaxSetBits);
+  EXPECT_EQ(accessor.sets(), std::size_t{1} << BrickCache::Accessor::kMaxSetBits);
+  for (int round = 0; round < 2; ++round) {
+    for (int n = 0; n < kBricks; ++n) ASSERT_NE(accessor.find(key_of(n)), nullptr);
+  }
+  accessor.flush_statistics();
+  EXPECT_GT(cache.stats().microcache_hits, 512u);
+}
+
 TEST(BrickCache, AccessorMicrocacheHoldsTwoBricks) {
   BrickCache cache(1 << 20);
   for (int n = 0; n < 3; ++n) ASSERT_TRUE(insert_synthetic(cache, key_of(n)));

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -475,6 +476,37 @@ struct SphereAndCubeCut {
     view = {201, 133, raster_test::perspective_look_at({0.5f, 1, 3}, {0, 0, 0}, 201, 133), planes};
   }
 };
+
+// Each thread starts on its own share of the range and then helps with the others': every
+// index still runs exactly once, for ranges shorter and longer than the thread count, and a
+// thrown exception reaches the caller after the others stop.
+TEST(RasterizerThreads, ParallelForRunsEachIndexOnce) {
+  for (const int threads : {1, 2, 3, 5}) {
+    Rasterizer rasterizer(RasterOptions{threads, false});
+    for (const std::size_t count :
+         {std::size_t{1}, std::size_t{2}, std::size_t{7}, std::size_t{1000}}) {
+      std::vector<std::atomic<int>> runs(count);
+      std::vector<std::atomic<int>> worker_of(count);
+      rasterizer.parallel_for(count, [&](std::size_t i, int worker) {
+        runs[i].fetch_add(1);
+        worker_of[i].store(worker);
+      });
+      for (std::size_t i = 0; i < count; ++i) {
+        ASSERT_EQ(runs[i].load(), 1) << threads << " threads, index " << i << " of " << count;
+        ASSERT_GE(worker_of[i].load(), 0);
+        ASSERT_LT(worker_of[i].load(), threads);
+      }
+    }
+    EXPECT_THROW(rasterizer.parallel_for(100,
+                                         [](std::size_t i, int) {
+                                           if (i == 42) throw std::runtime_error("index 42");
+                                         }),
+                 std::runtime_error);
+    std::atomic<int> after{0};  // the pool still works after an exception
+    rasterizer.parallel_for(10, [&](std::size_t, int) { after.fetch_add(1); });
+    EXPECT_EQ(after.load(), 10);
+  }
+}
 
 TEST(RasterizerThreads, EveryThreadCountGivesTheSameBuffer) {
   const SphereAndCubeCut scene;

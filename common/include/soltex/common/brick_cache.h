@@ -149,7 +149,7 @@ class BrickCache {
 // in front of the shared map. Make one per render thread (per texture, for locality) and do
 // not share it; it must not outlive its cache.
 //
-// The microcache is a four-way set-associative table of kSets * kWays bricks (like a TLB;
+// The microcache is a four-way set-associative table of sets() * kWays bricks (like a TLB;
 // OpenImageIO keeps two tiles, but a pixel's neighbours on the next scanline are often in
 // other bricks than the last one or two), with the brick found last checked first; both
 // checks are inline. A hit compares a key and the cache's generation number: no lock, no
@@ -160,7 +160,9 @@ class BrickCache {
 // The table holds references (std::shared_ptr) to its bricks, so a brick evicted while a
 // thread reads it stays valid. Evicted bricks are let go when their slot is reused or
 // checked, and at the latest on the first lookup of the next frame: an accessor keeps at
-// most kSets * kWays evicted bricks alive for at most a frame, outside the cache's budget.
+// most sets() * kWays evicted bricks alive for at most a frame, outside the cache's budget.
+// for_bricks() sizes the table so that this stays under about kRetainedBytes however small
+// the bricks: small bricks get more slots, since a frame touches more of them.
 //
 // An object rather than a thread_local: a thread_local would be shared by every cache and
 // texture the thread touches (so it would need the cache's identity in its key) and could
@@ -171,11 +173,18 @@ class BrickCache {
 // on a new frame, when the accessor is destroyed, and on flush_statistics().
 class BrickCache::Accessor {
  public:
-  static constexpr int kSetBits = 7;
-  static constexpr std::size_t kSets = std::size_t{1} << kSetBits;
   static constexpr std::size_t kWays = 4;
+  static constexpr int kMinSetBits = 7;  // 512 bricks
+  static constexpr int kMaxSetBits = 9;  // 2,048 bricks
+  static constexpr std::size_t kRetainedBytes = std::size_t{8} << 20;
 
-  explicit Accessor(BrickCache& cache);
+  // A table of 2^set_bits sets, set_bits in [kMinSetBits, kMaxSetBits].
+  explicit Accessor(BrickCache& cache, int set_bits = kMinSetBits);
+  // The set bits for bricks of this shape: as many slots as kRetainedBytes of such bricks,
+  // within the bounds.
+  static int set_bits_for(int brick_size, int channels);
+
+  std::size_t sets() const { return next_way_.size(); }
   ~Accessor() { flush_statistics(); }
   Accessor(const Accessor&) = delete;
   Accessor& operator=(const Accessor&) = delete;
@@ -238,13 +247,13 @@ class BrickCache::Accessor {
   }
   // A multiplicative hash of the key, cheap enough for the inline path; neighbouring bricks
   // land in different sets.
-  static std::size_t set_of(const BrickKey& key) {
+  std::size_t set_of(const BrickKey& key) const {
     const uint32_t h = static_cast<uint32_t>(key.brick.x) * 0x9E3779B1u +
                        static_cast<uint32_t>(key.brick.y) * 0x85EBCA77u +
                        static_cast<uint32_t>(key.brick.z) * 0xC2B2AE3Du +
                        static_cast<uint32_t>(key.level) * 0x27D4EB2Fu +
                        static_cast<uint32_t>(key.texture ^ (key.texture >> 32)) * 0x165667B1u;
-    return h >> (32 - kSetBits);
+    return h >> set_shift_;
   }
 
   const CachedBrick* find_slow(const BrickKey& key, std::size_t set);
@@ -252,9 +261,10 @@ class BrickCache::Accessor {
 
   BrickCache* cache_;
   uint64_t frame_seen_ = 0;
-  std::array<Slot, kSets * kWays> table_;  // set s: slots kWays * s ...
-  std::array<uint8_t, kSets> next_way_{};  // per set, the way filled next (round robin)
-  const Slot* last_;                       // the slot found last
+  int set_shift_;                  // 32 - set bits: set_of() keeps the hash's top bits
+  std::vector<Slot> table_;        // set s: slots kWays * s ...
+  std::vector<uint8_t> next_way_;  // per set, the way filled next (round robin)
+  const Slot* last_;               // the slot found last
   // Not yet flushed.
   uint64_t microcache_hits_ = 0;
   uint64_t map_hits_ = 0;
