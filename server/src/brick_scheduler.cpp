@@ -45,6 +45,7 @@ void BrickScheduler::run_next() {
 
 void BrickScheduler::stop() {
   pool_.join();
+  timers_.join();  // a timer armed by a last delivery fires within its wait
   std::lock_guard lock(mutex_);
   for (auto& source : ready_) source->in_ready_list_ = false;
   ready_.clear();

@@ -37,12 +37,16 @@ class BrickScheduler {
   // Lets queued jobs finish and joins the workers.
   void stop();
   int threads() const { return threads_; }
+  // An executor for short handlers such as timers, on a thread of its own: the workers may all
+  // be busy with bricks for longer than a timer should wait.
+  boost::asio::thread_pool::executor_type timer_executor() { return timers_.get_executor(); }
 
  private:
   void run_next();
 
   const int threads_;
   boost::asio::thread_pool pool_;
+  boost::asio::thread_pool timers_{1};
   std::mutex mutex_;
   std::deque<std::shared_ptr<WorkSource>> ready_;
 };

@@ -41,7 +41,8 @@ BrickStream::BrickStream(Context context, uint64_t id, std::string peer,
       id_(id),
       peer_(std::move(peer)),
       opened_(std::chrono::steady_clock::now()),
-      lease_(std::move(lease)) {
+      lease_(std::move(lease)),
+      coalesce_timer_(context_.scheduler.timer_executor()) {
   context_.metrics.streams_opened.fetch_add(1, std::memory_order_relaxed);
   context_.metrics.streams_open.fetch_add(1, std::memory_order_relaxed);
 }
@@ -203,15 +204,25 @@ void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick) {
 
 bool BrickStream::hold_back() const {
   const StreamLimits& limits = context_.limits;
-  // More bricks are coming only if one is queued or taken: its delivery calls pump() again, so
-  // a message held back here is never stranded.
+  // Only while more of the stream's bricks are coming; pump_when_wait_ends() bounds the wait.
   const bool more_coming = !queue_.drained();
   return more_coming && outbox_.size() < limits.coalesce_bricks && !shutting_down_ &&
          std::chrono::steady_clock::now() - outbox_.front().ready < limits.coalesce_wait;
 }
 
+void BrickStream::pump_when_wait_ends() {
+  if (coalesce_timer_armed_) return;
+  coalesce_timer_armed_ = true;
+  coalesce_timer_.expires_at(outbox_.front().ready + context_.limits.coalesce_wait);
+  coalesce_timer_.async_wait([self = shared_from_this()](const boost::system::error_code&) {
+    std::lock_guard lock(self->mutex_);
+    self->coalesce_timer_armed_ = false;
+    self->pump();
+  });
+}
+
 std::size_t BrickStream::owed() const {
-  return queue_.size() + queue_.taken() + outbox_.size();
+  return queue_.outstanding() + outbox_.size();
 }
 
 void BrickStream::add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message) {
@@ -237,7 +248,9 @@ void BrickStream::pump() {
   if (finished_ || reactor_ == nullptr) return;
   const StreamLimits& limits = context_.limits;
 
-  if (!writing_ && !outbox_.empty() && !cancelled_ && !hold_back()) {
+  const bool held = !writing_ && !outbox_.empty() && !cancelled_ && hold_back();
+  if (held) pump_when_wait_ends();
+  if (!writing_ && !outbox_.empty() && !cancelled_ && !held) {
     batch_.Clear();
     batch_enqueued_.clear();
     std::size_t bytes = 0;

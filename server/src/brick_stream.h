@@ -3,6 +3,7 @@
 #include <grpcpp/grpcpp.h>
 
 #include <atomic>
+#include <boost/asio/steady_timer.hpp>
 #include <chrono>
 #include <deque>
 #include <memory>
@@ -27,11 +28,10 @@ struct StreamLimits {
   uint32_t max_batch_bricks = 32;
   uint32_t max_batch_bytes = 1 << 20;
   uint32_t max_queued_per_client = 65536;  // over all of one client's streams
-  // A message is held back while it has fewer bricks than this, more of the stream's bricks are
-  // queued or being made (each one's delivery looks again) and its oldest brick has waited
-  // less than coalesce_wait: on a fast link a write completes before the next brick is made,
-  // and without this most messages would carry one or two bricks, each costing both ends a
-  // wake-up.
+  // A message is held back while it has fewer bricks than this, a worker is making another of
+  // the stream's bricks (whose delivery looks again) and its oldest brick has waited less than
+  // coalesce_wait: on a fast link a write completes before the next brick is made, and without
+  // this most messages would carry one or two bricks, each costing both ends a wake-up.
   uint32_t coalesce_bricks = 8;
   std::chrono::microseconds coalesce_wait{2000};
 };
@@ -93,9 +93,10 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   void drop_queue();                 // empties the queue, counted
   void add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message);
   void add_request_error(grpc::StatusCode code, std::string message);
-  void pump();               // start the next read, write or finish, whichever is due
-  std::size_t owed() const;  // bricks queued, in production or waiting to be written
-  bool hold_back() const;    // whether the outbox should wait for more bricks (coalescing)
+  void pump();                 // start the next read, write or finish, whichever is due
+  std::size_t owed() const;    // bricks queued, in production or waiting to be written
+  bool hold_back() const;      // whether the outbox should wait for more bricks (coalescing)
+  void pump_when_wait_ends();  // arms coalesce_timer_ for the outbox's oldest brick
 
   Context context_;
   const uint64_t id_;
@@ -119,6 +120,9 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   bool cancelled_ = false;
 
   WorkQueue queue_;  // queued bricks, and those taken by a worker and not yet delivered
+  // Sends a held-back message when its wait ends, should no delivery come first to do it.
+  boost::asio::steady_timer coalesce_timer_;
+  bool coalesce_timer_armed_ = false;
 
   // Totals for the close log line.
   uint64_t batches_sent_ = 0;

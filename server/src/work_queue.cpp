@@ -1,5 +1,7 @@
 #include "work_queue.h"
 
+#include <cassert>
+
 namespace soltex::server {
 
 WorkQueue::Push WorkQueue::push(WorkItem item) {
@@ -38,6 +40,7 @@ std::optional<WorkItem> WorkQueue::pop() {
 
 void WorkQueue::finished() {
   std::lock_guard lock(mutex_);
+  assert(taken_ > 0 && "finished() without a pop()");
   if (taken_ > 0) --taken_;
 }
 
@@ -49,6 +52,11 @@ std::size_t WorkQueue::size() const {
 std::size_t WorkQueue::taken() const {
   std::lock_guard lock(mutex_);
   return taken_;
+}
+
+std::size_t WorkQueue::outstanding() const {
+  std::lock_guard lock(mutex_);
+  return items_.size() + taken_;
 }
 
 bool WorkQueue::drained() const {

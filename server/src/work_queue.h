@@ -39,10 +39,11 @@ class WorkQueue {
   std::optional<WorkItem> pop();
   // A taken item is done with (its brick made, or its failure reported).
   void finished();
-  std::size_t size() const;   // queued
-  std::size_t taken() const;  // taken and not finished
-  bool drained() const;       // nothing queued and nothing taken
-  std::size_t clear();        // drops the queued items (not the taken ones); returns how many
+  std::size_t size() const;         // queued
+  std::size_t taken() const;        // taken and not finished
+  std::size_t outstanding() const;  // queued + taken, read together
+  bool drained() const;             // nothing queued and nothing taken
+  std::size_t clear();              // drops the queued items (not the taken ones); returns how many
 
  private:
   struct Order {

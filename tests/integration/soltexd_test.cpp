@@ -120,12 +120,26 @@ TEST(Soltexd, BricksMadeTogetherShareMessages) {
   const StreamResult result = stream_once(*stub, want(keys));
   ASSERT_TRUE(result.status.ok()) << result.status.error_message();
   ASSERT_EQ(result.bricks.size(), keys.size());
-  int short_messages = 0;  // the last message, when the bricks left were fewer than 8
+  int short_messages = 0;
   for (const int bricks : result.bricks_per_message) {
     EXPECT_LE(bricks, 32);
     short_messages += bricks < 8 ? 1 : 0;
   }
   EXPECT_LE(short_messages, 1) << result.bricks_per_message.size() << " messages";
+}
+
+// A held-back brick goes out when its wait ends, even if the stream's next brick is slow.
+TEST(Soltexd, AHeldBrickWaitsNoLongerThanTheCoalesceWait) {
+  SoltexdProcess server({"--threads", "1", "--fault-delay-ms", "300", "--coalesce-bricks", "8",
+                         "--coalesce-wait-us", "20000"});
+  auto stub = connect(server);
+  const v1::TextureHandle handle = register_texture(*stub, marble_request());
+  const StreamResult result =
+      stream_once(*stub, want({key_of(handle.id(), 3, 0, 0, 0), key_of(handle.id(), 2, 0, 0, 0)}));
+  ASSERT_TRUE(result.status.ok()) << result.status.error_message();
+  ASSERT_EQ(result.bricks.size(), 2u);
+  // The first brick waited 20 ms for the second, which came 300 ms later: alone.
+  EXPECT_EQ(result.bricks_per_message, (std::vector<int>{1, 1}));
 }
 
 // A lone brick is not held back waiting for company.

@@ -1,9 +1,11 @@
 #include "worker_pool.h"
 
+#include <algorithm>
+
 namespace soltex::raster_internal {
 
 WorkerPool::WorkerPool(int thread_count)
-    : shares_(std::make_unique<Share[]>(static_cast<std::size_t>(thread_count))) {
+    : shares_(std::make_unique<Share[]>(static_cast<std::size_t>(std::max(thread_count, 1)))) {
   for (int worker = 1; worker < thread_count; ++worker) {
     threads_.emplace_back([this, worker](std::stop_token stop) { worker_loop(stop, worker); });
   }

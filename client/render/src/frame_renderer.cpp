@@ -585,6 +585,11 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
       }
     }
   });
+  if (k > 1) {
+    // Kept only at 1x: a supersampled reference is k^2 frames of memory, and a one-off.
+    reference_gbuffer_ = GBuffer{};
+    std::vector<glm::vec3>().swap(reference_colours_);
+  }
   return image;
 }
 

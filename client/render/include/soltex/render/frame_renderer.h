@@ -74,8 +74,8 @@ class FrameRenderer {
   RenderOptions options_;
   Rasterizer rasterizer_;
   GBuffer gbuffer_;
-  // render_reference()'s buffers, kept so that repeated references (benchmarks, comparisons)
-  // measure the per-pixel evaluation and not the page faults of fresh buffers.
+  // render_reference()'s buffers, kept (at 1x) so that repeated references (benchmarks,
+  // comparisons) measure the per-pixel evaluation and not the page faults of fresh buffers.
   GBuffer reference_gbuffer_;
   std::vector<glm::vec3> reference_colours_;
   std::vector<std::vector<std::unique_ptr<TextureSampler>>> samplers_;  // [band][object]
