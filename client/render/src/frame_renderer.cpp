@@ -135,9 +135,9 @@ struct MaterialInputs {
   float material_specular = 0.0f;
   float shininess = 0.0f;
   bool unlit = false;
-  // Lit, three channels (colour only), drawn with a trilinear lookup at a tabled level: the
-  // shading pass's fast path (TextureSampler::locate_rgb()).
-  bool rgb_trilinear = false;
+  // Lit, three channels (colour only), drawn with a nearest or trilinear lookup at a tabled
+  // level: the shading pass's fast path (TextureSampler::locate_rgb()).
+  bool rgb_fast_path = false;
 };
 
 MaterialInputs material_inputs(const PreparedObject& object) {
@@ -212,12 +212,16 @@ struct LitPixels {
     __builtin_prefetch(first_sample + y_stride + z_stride);
   }
 
-  // The located cells' trilinear lookups, by now (one batch after their prefetch) in cache.
-  void read_cells() {
+  // The located cells' lookups, by now (one batch after their prefetch) in cache.
+  void read_cells(bool nearest) {
     for (std::size_t l = 0; l < static_cast<std::size_t>(batch.count); ++l) {
       if (cell[l] == nullptr) continue;
       alignas(16) float rgb[4];
-      sampler[l]->trilinear_rgb(cell[l], fraction[l], rgb);
+      if (nearest) {
+        sampler[l]->nearest_rgb(cell[l], fraction[l], rgb);
+      } else {
+        sampler[l]->trilinear_rgb(cell[l], fraction[l], rgb);
+      }
       batch.albedo_r[l] = rgb[0];
       batch.albedo_g[l] = rgb[1];
       batch.albedo_b[l] = rgb[2];
@@ -356,8 +360,7 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
   materials.reserve(scene.objects.size());
   for (const PreparedObject& o : scene.objects) {
     MaterialInputs m = material_inputs(o);
-    m.rgb_trilinear = by_table && options_.filter == SampleFilter::trilinear &&
-                      !options_.false_colour_levels && !m.unlit && o.channels == 3;
+    m.rgb_fast_path = by_table && !options_.false_colour_levels && !m.unlit && o.channels == 3;
     materials.push_back(m);
   }
   struct Worker {
@@ -376,7 +379,7 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
     auto& samplers = samplers_[static_cast<std::size_t>(worker_index)];
     LitPixels lit;  // about 40 KB of stack, uninitialised but for the count
     const auto flush = [&] {
-      lit.read_cells();
+      lit.read_cells(options_.filter == SampleFilter::nearest);
       unprojection.fill(g, lit);
       shade_batch(lights, lit.batch);
       lit.write(frame.image);
@@ -398,7 +401,7 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
         TextureSampler& sampler = *samplers[id];
         const MaterialInputs& m = materials[id];
         SampleResult result;
-        if (m.rgb_trilinear) {
+        if (m.rgb_fast_path) {
           // The common case in two steps: locate and prefetch now, read at the flush.
           const int level = level_tables[id].level(g.footprint[i]);
           glm::vec3 frac;
@@ -409,7 +412,8 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
             if (lit.batch.count == ShadeBatch::kCapacity) flush();
             continue;
           }
-          result = sampler.sample_after_miss(g.texture_position[i], level, &missed);
+          result =
+              sampler.sample_after_miss(g.texture_position[i], level, options_.filter, &missed);
         } else {
           const double lod = by_table
                                  ? static_cast<double>(level_tables[id].level(g.footprint[i]))

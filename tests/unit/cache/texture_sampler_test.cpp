@@ -288,6 +288,44 @@ TEST(TextureSampler, ANeverFilledCacheAnswersAsTheWalkDoes) {
   EXPECT_EQ(never_filled.stats().misses, filled_elsewhere.stats().misses);
 }
 
+// The shading pass's two-step path (locate and prefetch, read later) gives what sample() gives,
+// bit for bit, for nearest and trilinear; a brick not resident is left to sample_after_miss().
+TEST(TextureSampler, LocateThenReadEqualsSample) {
+  const RealTexture texture(spec_of(MarbleParams{}), test_volume(5), 8);
+  BrickCache cache(kBigBudget);
+  texture.insert_all_levels(cache);
+  TextureSampler sampler(cache, texture.id, texture.layout, texture.channels);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> coordinate(-1.0, 2.5);
+  std::uniform_int_distribution<int> level_of(0, texture.layout.coarsest_level());
+  for (int n = 0; n < 2000; ++n) {
+    const glm::dvec3 p(coordinate(rng), coordinate(rng), coordinate(rng));
+    const int level = level_of(rng);
+    glm::vec3 frac(0.0f);
+    const uint8_t* cell = sampler.locate_rgb(p, level, frac);
+    ASSERT_NE(cell, nullptr);
+    alignas(16) float rgb[4];
+    sampler.nearest_rgb(cell, frac, rgb);
+    const SampleResult nearest = sampler.sample(p, level, SampleFilter::nearest);
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(rgb[c], nearest.values[static_cast<std::size_t>(c)]) << n;
+    sampler.trilinear_rgb(cell, frac, rgb);
+    const SampleResult trilinear = sampler.sample(p, level, SampleFilter::trilinear);
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(rgb[c], trilinear.values[static_cast<std::size_t>(c)]) << n;
+    }
+  }
+  BrickCache empty(kBigBudget);
+  TextureSampler missing(empty, texture.id, texture.layout, texture.channels);
+  glm::vec3 frac(0.0f);
+  const glm::dvec3 p = texture.layout.volume().min + glm::dvec3(0.4);
+  EXPECT_EQ(missing.locate_rgb(p, 0, frac), nullptr);
+  MissedBricks missed;
+  const SampleResult after = missing.sample_after_miss(p, 0, SampleFilter::nearest, &missed);
+  EXPECT_EQ(after.level, -1);
+  ASSERT_EQ(missed.count, 2);
+  EXPECT_EQ(missed.keys[0], missing.brick_key(p, 0));
+}
+
 TEST(TextureSampler, LevelOfDetailFromFootprint) {
   const BrickLayout layout(test_volume(6), 8);  // levels 0..3
   const double h0 = layout.filter_width(0);

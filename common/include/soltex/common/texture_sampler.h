@@ -161,8 +161,8 @@ class TextureSampler {
     return result;
   }
 
-  // sample()'s trilinear fast path in two steps, for callers that look many points up and
-  // prefetch in between. For a three-channel texture and a level in [0, coarsest]: the
+  // sample()'s nearest and trilinear fast path in two steps, for callers that look many points
+  // up and prefetch in between. For a three-channel texture and a level in [0, coarsest]: the
   // address of the cell's first sample in its resident brick (bricks found in this frame stay
   // resident until the next BrickCache::begin_frame()), and the fraction; nullptr when the
   // brick is not resident, and then sample_after_miss() gives what sample() would have.
@@ -178,14 +178,21 @@ class TextureSampler {
   void trilinear_rgb(const uint8_t* cell, const glm::vec3& frac, float* out) const {
     trilinear_u8<3>(cell, y_stride_, z_stride_, frac.x, frac.y, frac.z, out);
   }
+  // The nearest sample of locate_rgb()'s cell: writes R, G, B as sample() gives them.
+  void nearest_rgb(const uint8_t* cell, const glm::vec3& frac, float* out) const {
+    const uint8_t* s = cell + (frac.x >= 0.5f ? 3 : 0) + (frac.y >= 0.5f ? y_stride_ : 0) +
+                       (frac.z >= 0.5f ? z_stride_ : 0);
+    for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(s[c]) * (1.0f / 255.0f);
+  }
   // The strides of a cell's four sample rows from its first sample, for prefetching.
   int y_stride() const { return y_stride_; }
   int z_stride() const { return z_stride_; }
-  // sample(p, level, trilinear, missed) after locate_rgb(p, level) returned nullptr, without
-  // looking the missing brick up a second time.
-  SampleResult sample_after_miss(const glm::dvec3& p, int level, MissedBricks* missed) {
+  // sample(p, level, filter, missed), filter nearest or trilinear, after locate_rgb(p, level)
+  // returned nullptr, without looking the missing brick up a second time.
+  SampleResult sample_after_miss(const glm::dvec3& p, int level, SampleFilter filter,
+                                 MissedBricks* missed) {
     SampleResult result{};
-    sample_general(p, static_cast<double>(level), SampleFilter::trilinear, missed, result);
+    sample_general(p, static_cast<double>(level), filter, missed, result);
     return result;
   }
 
