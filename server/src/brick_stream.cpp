@@ -317,6 +317,7 @@ void BrickStream::pump() {
   }
   if (finish) {
     finished_ = true;
+    coalesce_timer_.cancel();  // nothing more to send: let go of the stream now, not at the wait
     spdlog::info("stream {} closed ({}): {} bricks in {} messages, {} bytes, {} errors in {:.1f} s",
                  id_, status.ok() ? "OK" : status.error_message(), bricks_sent_, batches_sent_,
                  bytes_sent_, errors_sent_,
@@ -349,6 +350,7 @@ void BrickStream::shut_down() {
 void BrickStream::on_done() {
   std::lock_guard lock(mutex_);
   reactor_ = nullptr;
+  coalesce_timer_.cancel();
   lease_->release();
 }
 

@@ -28,9 +28,9 @@ struct StreamLimits {
   uint32_t max_batch_bricks = 32;
   uint32_t max_batch_bytes = 1 << 20;
   uint32_t max_queued_per_client = 65536;  // over all of one client's streams
-  // A message is held back while it has fewer bricks than this, a worker is making another of
-  // the stream's bricks (whose delivery looks again) and its oldest brick has waited less than
-  // coalesce_wait: on a fast link a write completes before the next brick is made, and without
+  // A message is held back while it has fewer bricks than this, more of the stream's bricks
+  // are queued or being made, and its oldest brick has waited less than coalesce_wait (a timer
+  // sends it then): on a fast link a write completes before the next brick is made, and without
   // this most messages would carry one or two bricks, each costing both ends a wake-up.
   uint32_t coalesce_bricks = 8;
   std::chrono::microseconds coalesce_wait{2000};
