@@ -103,7 +103,7 @@ int TextureSampler::sample_level(const glm::dvec3& p, int level, bool nearest, f
     // Nothing was ever inserted (a client's first frame): every level misses, so skip the
     // walk, which would locate the point at each level only to find that out, and report what
     // the walk would.
-    for (int l = level; l <= coarsest_level_; ++l) accessor_.count_miss();
+    accessor_.count_miss(static_cast<uint64_t>(std::max(0, coarsest_level_ - level + 1)));
     missing = true;
     if (missed != nullptr) {
       missed->add(BrickKey{texture_, level, locate(p, level).brick});

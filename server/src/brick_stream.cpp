@@ -248,9 +248,10 @@ void BrickStream::pump() {
   if (finished_ || reactor_ == nullptr) return;
   const StreamLimits& limits = context_.limits;
 
-  const bool held = !writing_ && !outbox_.empty() && !cancelled_ && hold_back();
+  const bool can_write = !writing_ && !outbox_.empty() && !cancelled_;
+  const bool held = can_write && hold_back();
   if (held) pump_when_wait_ends();
-  if (!writing_ && !outbox_.empty() && !cancelled_ && !held) {
+  if (can_write && !held) {
     batch_.Clear();
     batch_enqueued_.clear();
     std::size_t bytes = 0;

@@ -126,6 +126,13 @@ EyeRelative eye_relative(const PreparedScene& scene, const Camera& camera, int w
   return r;
 }
 
+// What a pixel's texture values give its lighting.
+struct SurfaceInputs {
+  glm::vec3 albedo;
+  float opacity;
+  float specular;
+};
+
 // Where a texture's sampled channels go: albedo (three channels, or one grey), opacity and
 // specular (their index in the samples, or -1 for none).
 struct MaterialInputs {
@@ -138,6 +145,13 @@ struct MaterialInputs {
   // Lit, three channels (colour only), drawn with a nearest or trilinear lookup at a tabled
   // level: the shading pass's fast path (TextureSampler::locate_rgb()).
   bool rgb_fast_path = false;
+
+  // `values`: the texture's channels in order, as sampled or evaluated.
+  SurfaceInputs read(const float* values) const {
+    return {colour ? glm::vec3(values[0], values[1], values[2]) : glm::vec3(values[0]),
+            opacity >= 0 ? values[opacity] : 1.0f,
+            specular >= 0 ? values[specular] : material_specular};
+  }
 };
 
 MaterialInputs material_inputs(const PreparedObject& object) {
@@ -172,17 +186,16 @@ struct LitPixels {
   ShadeBatch::Lanes<std::size_t> index;  // in the G-buffer
   ShadeBatch::Lanes<float> opacity;
 
-  void add(int lane, int px, int py, std::size_t i, const glm::vec3& albedo, float alpha,
-           float specular, float shininess) {
+  void add(int lane, int px, int py, std::size_t i, const SurfaceInputs& surface, float shininess) {
     const auto l = static_cast<std::size_t>(lane);
     x[l] = px;
     y[l] = py;
     index[l] = i;
-    opacity[l] = alpha;
-    batch.albedo_r[l] = albedo.r;
-    batch.albedo_g[l] = albedo.g;
-    batch.albedo_b[l] = albedo.b;
-    batch.specular[l] = specular;
+    opacity[l] = surface.opacity;
+    batch.albedo_r[l] = surface.albedo.r;
+    batch.albedo_g[l] = surface.albedo.g;
+    batch.albedo_b[l] = surface.albedo.b;
+    batch.specular[l] = surface.specular;
     batch.shininess[l] = shininess;
     cell[l] = nullptr;
   }
@@ -428,17 +441,13 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
           frame.image.set(x, y, colour.r, colour.g, colour.b);
           continue;
         }
-        const float* v = result.values.data();
-        const glm::vec3 albedo = m.colour ? glm::vec3(v[0], v[1], v[2]) : glm::vec3(v[0]);
-        const float opacity = m.opacity >= 0 ? v[m.opacity] : 1.0f;
+        const SurfaceInputs surface = m.read(result.values.data());
         if (m.unlit) {
-          set_pixel(frame.image, x, y, albedo, opacity);
+          set_pixel(frame.image, x, y, surface.albedo, surface.opacity);
           continue;
         }
         ++worker.shaded;
-        const int lane = lit.batch.count++;
-        lit.add(lane, x, y, i, albedo, opacity,
-                m.specular >= 0 ? v[m.specular] : m.material_specular, m.shininess);
+        lit.add(lit.batch.count++, x, y, i, surface, m.shininess);
         if (lit.batch.count == ShadeBatch::kCapacity) flush();
       }
     }
@@ -559,15 +568,12 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
         if (c.opacity) values[next++] = scalar(object.texture.opacity);
         if (c.specular) values[next++] = scalar(object.texture.specular);
         const MaterialInputs& m = materials[g.object_id[i]];
-        const glm::vec3 albedo =
-            m.colour ? glm::vec3(values[0], values[1], values[2]) : glm::vec3(values[0]);
-        const float opacity = m.opacity >= 0 ? values[m.opacity] : 1.0f;
+        const SurfaceInputs surface = m.read(values);
         if (m.unlit) {
-          colours[i] = over_background(albedo, opacity);
+          colours[i] = over_background(surface.albedo, surface.opacity);
           continue;
         }
-        lit.add(lit.batch.count++, x, y, i, albedo, opacity,
-                m.specular >= 0 ? values[m.specular] : m.material_specular, m.shininess);
+        lit.add(lit.batch.count++, x, y, i, surface, m.shininess);
         if (lit.batch.count == ShadeBatch::kCapacity) flush();
       }
     }

@@ -161,7 +161,7 @@ class BrickCache {
 // thread reads it stays valid. Evicted bricks are let go when their slot is reused or
 // checked, and at the latest on the first lookup of the next frame: an accessor keeps at
 // most sets() * kWays evicted bricks alive for at most a frame, outside the cache's budget.
-// for_bricks() sizes the table so that this stays under about kRetainedBytes however small
+// set_bits_for() sizes the table so that this stays under about kRetainedBytes however small
 // the bricks: small bricks get more slots, since a frame touches more of them.
 //
 // An object rather than a thread_local: a thread_local would be shared by every cache and
@@ -224,8 +224,8 @@ class BrickCache::Accessor {
   // Bricks inserted so far: while generation() and this are unchanged, a brick found missing
   // is still missing, so a layer may remember the miss.
   uint64_t insertions() const { return cache_->insertions_.load(std::memory_order_acquire); }
-  // Counts a lookup such a layer answered "not resident" from a miss it remembered.
-  void count_miss() { ++misses_; }
+  // Counts lookups such a layer answered "not resident" from what it remembered.
+  void count_miss(uint64_t lookups = 1) { misses_ += lookups; }
 
   void flush_statistics();
 
