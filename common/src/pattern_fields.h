@@ -3,12 +3,17 @@
 // The scalar field of each pattern at one point, and along a row of points. The row forms
 // call the same inline expressions per point (plus the shared fractal row kernel), so the
 // two agree bit for bit.
+//
+// `box` is the per-axis width of the box (in texture units) over which a hard-edged pattern is
+// averaged: a MIP level's spacing on every axis, or a pixel's footprint in the surface's plane.
+// Zero on an axis samples the pattern at the point along it.
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <span>
 
+#include "box_filtered_waves.h"
 #include "soltex/common/fractal.h"
 #include "soltex/common/lattice.h"
 #include "soltex/common/texture_spec.h"
@@ -20,29 +25,48 @@ inline double coordinate(const glm::dvec3& p, Axis axis) {
   return p[static_cast<int>(axis)];
 }
 
-inline float stripes(const StripesParams& s, const glm::dvec3& p) {
-  return static_cast<float>(floor_parity(s.offset + coordinate(p, s.axis) / s.width));
+inline float stripes(const StripesParams& s, const glm::dvec3& p, const glm::dvec3& box) {
+  const int axis = static_cast<int>(s.axis);
+  return static_cast<float>(
+      waves::filtered_parity(s.offset + p[axis] / s.width, box[axis] / s.width));
 }
 
-inline float checker(const CheckerParams& c, const glm::dvec3& p) {
-  int parity = floor_parity(c.offset + p.x / c.size.x) + floor_parity(c.offset + p.y / c.size.y);
-  if (c.three_d) parity += floor_parity(c.offset + p.z / c.size.z);
-  return static_cast<float>(parity & 1);
+// Parity of the cell sum as a product of +-1 square waves, (1 - prod(1 - 2 f_i)) / 2: the box
+// average of a product of functions of one axis each is the product of their averages.
+inline float checker(const CheckerParams& c, const glm::dvec3& p, const glm::dvec3& box) {
+  const int axes = c.three_d ? 3 : 2;
+  double sign = 1.0;
+  for (int a = 0; a < axes; ++a) {
+    sign *= 1.0 - 2.0 * waves::filtered_parity(c.offset + p[a] / c.size[a], box[a] / c.size[a]);
+  }
+  return static_cast<float>(0.5 * (1.0 - sign));
 }
 
-// 1 - |2 fract(u) - 1|: a triangle wave, 0 at integers and 1 halfway.
-inline float triangle(double u) {
-  return static_cast<float>(1.0 - std::fabs(2.0 * fract(u) - 1.0));
+// The width along the gradient g of a box of per-axis widths `box`: how far a linear function
+// with that gradient varies over the box.
+inline double width_along(const glm::dvec3& g, const glm::dvec3& box) {
+  return std::fabs(g.x) * box.x + std::fabs(g.y) * box.y + std::fabs(g.z) * box.z;
 }
 
-inline glm::vec3 colour_cube(const ColourCubeParams& c, const glm::dvec3& p) {
-  return {triangle(p.x / c.period), triangle(p.y / c.period), triangle(p.z / c.period)};
+// 1 - |2 fract(u) - 1| per axis: a triangle wave, 0 at integers and 1 halfway.
+inline glm::vec3 colour_cube(const ColourCubeParams& c, const glm::dvec3& p,
+                             const glm::dvec3& box) {
+  return {static_cast<float>(waves::filtered_triangle(p.x / c.period, box.x / c.period)),
+          static_cast<float>(waves::filtered_triangle(p.y / c.period, box.y / c.period)),
+          static_cast<float>(waves::filtered_triangle(p.z / c.period, box.z / c.period))};
 }
 
-inline float rings(const RingsParams& r, const glm::dvec3& p) {
-  // hypot: no overflow for huge coordinates.
-  const double ring = floor_parity(std::hypot(p.x, p.y) / r.thickness);
-  return static_cast<float>(std::clamp(r.base + r.amplitude * ring, 0.0, 1.0));
+// Filtered along the radius; the two ring values are clamped before they are blended, so the
+// filtered field stays between them.
+inline float rings(const RingsParams& r, const glm::dvec3& p, const glm::dvec3& box) {
+  const double radius = std::hypot(p.x, p.y);  // hypot: no overflow for huge coordinates
+  const double radial_width = radius > 0.0
+                                  ? width_along(glm::dvec3(p.x / radius, p.y / radius, 0.0), box)
+                                  : std::max(box.x, box.y);
+  const double ring = waves::filtered_parity(radius / r.thickness, radial_width / r.thickness);
+  const double inner = std::clamp(r.base, 0.0, 1.0);
+  const double outer = std::clamp(r.base + r.amplitude, 0.0, 1.0);
+  return static_cast<float>(ring >= 1.0 ? outer : inner + (outer - inner) * ring);
 }
 
 struct WoodFrame {
@@ -61,18 +85,29 @@ inline WoodRotation wood_rotation(const WoodParams& w, double y) {
 }
 
 inline float wood(const WoodParams& w, const WoodFrame& frame, const WoodRotation& rotation,
-                  const glm::dvec3& p) {
+                  const glm::dvec3& p, const glm::dvec3& box) {
   const double cy = rotation.cos_y, sy = rotation.sin_y;
+  const double cz = frame.cos_tilt_z, sz = frame.sin_tilt_z;
   const double x1 = cy * p.x + sy * p.z;
   const double z1 = -sy * p.x + cy * p.z;
-  const double x2 = frame.cos_tilt_z * x1 - frame.sin_tilt_z * p.y;
-  const double y2 = frame.sin_tilt_z * x1 + frame.cos_tilt_z * p.y;
+  const double x2 = cz * x1 - sz * p.y;
+  const double y2 = sz * x1 + cz * p.y;
   const NoiseTables& tables = noise_tables();
   const double jitter =
       w.jitter * (value_noise(tables, glm::dvec3(x2, y2, z1) * w.jitter_scale) - tables.value_mean);
-  const double ring = std::hypot(x2, y2) / w.ring_spacing + jitter;
+  const double radius = std::hypot(x2, y2);
+  const double ring = radius / w.ring_spacing + jitter;
+  // The ring's width over the box: the gradient of the radius in the trunk's frame, turned back
+  // into texture space (the twist and the jitter's slope are left out: both vary slowly).
+  double ring_width = 0.0;
+  if (radius > 0.0 && box != glm::dvec3(0.0)) {
+    const double ux = x2 / radius, uy = y2 / radius;
+    const glm::dvec3 gradient((ux * cz + uy * sz) * cy, uy * cz - ux * sz,
+                              (ux * cz + uy * sz) * sy);
+    ring_width = width_along(gradient, box) / w.ring_spacing;
+  }
   // The dark grain is the thin part of each ring.
-  return fract(ring) < w.grain_fraction ? 1.0f : 0.0f;
+  return static_cast<float>(waves::filtered_pulse(ring, w.grain_fraction, ring_width));
 }
 
 inline FractalParams single_octave(const NoiseParams& n) {

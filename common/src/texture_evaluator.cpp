@@ -60,20 +60,26 @@ int TextureEvaluator::evaluated_octaves(double filter_width) const {
 }
 
 Texel TextureEvaluator::sample(const glm::dvec3& p, double filter_width) const {
+  return sample(p, SampleFootprint::isotropic(filter_width));
+}
+
+Texel TextureEvaluator::sample(const glm::dvec3& p, const SampleFootprint& footprint) const {
+  const double filter_width = footprint.width;
+  const glm::dvec3& box = footprint.box;
   const OctavePlan local_plan = filter_width > 0.0 ? plan_for(filter_width) : OctavePlan{};
   const OctavePlan& plan = filter_width > 0.0 ? local_plan : point_plan_;
   Texel texel;
   std::visit(Overloaded{
-                 [&](const StripesParams& s) { texel.field = fields::stripes(s, p); },
-                 [&](const CheckerParams& c) { texel.field = fields::checker(c, p); },
+                 [&](const StripesParams& s) { texel.field = fields::stripes(s, p, box); },
+                 [&](const CheckerParams& c) { texel.field = fields::checker(c, p, box); },
                  [&](const ColourCubeParams& c) {
-                   texel.colour = fields::colour_cube(c, p);
+                   texel.colour = fields::colour_cube(c, p, box);
                    texel.field = cube_field(texel.colour);
                  },
-                 [&](const RingsParams& r) { texel.field = fields::rings(r, p); },
+                 [&](const RingsParams& r) { texel.field = fields::rings(r, p, box); },
                  [&](const WoodParams& w) {
                    texel.field = fields::wood(w, {wood_tilt_z_.x, wood_tilt_z_.y},
-                                              fields::wood_rotation(w, p.y), p);
+                                              fields::wood_rotation(w, p.y), p, box);
                  },
                  [&](const NoiseParams&) {
                    texel.field = fields::normalise_fractal(plan, fractal_sum(plan, p));
@@ -107,6 +113,8 @@ void TextureEvaluator::evaluate_grid(const Grid& grid, double filter_width,
   const OctavePlan local_plan = filter_width > 0.0 ? plan_for(filter_width) : OctavePlan{};
   const OctavePlan& plan = filter_width > 0.0 ? local_plan : point_plan_;
   const fields::WoodFrame frame{wood_tilt_z_.x, wood_tilt_z_.y};
+  // Hard edges are averaged over the sample spacing on every axis, as sample() does.
+  const glm::dvec3 box = SampleFootprint::isotropic(filter_width).box;
   const bool is_cube = std::holds_alternative<ColourCubeParams>(spec_.pattern);
 
   thread_local RowScratch scratch;
@@ -127,47 +135,49 @@ void TextureEvaluator::evaluate_grid(const Grid& grid, double filter_width,
     const auto each_point = [&](auto&& fn) {
       for (std::size_t i = 0; i < nx; ++i) field[i] = fn(glm::dvec3(xs[i], y, z));
     };
-    std::visit(
-        Overloaded{
-            [&](const StripesParams& s) {
-              each_point([&](const glm::dvec3& p) { return fields::stripes(s, p); });
-            },
-            [&](const CheckerParams& c) {
-              each_point([&](const glm::dvec3& p) { return fields::checker(c, p); });
-            },
-            [&](const ColourCubeParams& c) {
-              for (std::size_t i = 0; i < nx; ++i) {
-                colour[i] = fields::colour_cube(c, glm::dvec3(xs[i], y, z));
-                field[i] = cube_field(colour[i]);
-              }
-            },
-            [&](const RingsParams& r) {
-              each_point([&](const glm::dvec3& p) { return fields::rings(r, p); });
-            },
-            [&](const WoodParams& w) {
-              const fields::WoodRotation rotation = fields::wood_rotation(w, y);
-              each_point([&](const glm::dvec3& p) { return fields::wood(w, frame, rotation, p); });
-            },
-            [&](const NoiseParams&) {
-              fractal_rows->sum(y, z, {field, nx});
-              for (std::size_t i = 0; i < nx; ++i) {
-                field[i] = fields::normalise_fractal(plan, field[i]);
-              }
-            },
-            [&](const TurbulenceParams&) {
-              fractal_rows->sum(y, z, {field, nx});
-              for (std::size_t i = 0; i < nx; ++i) {
-                field[i] = fields::normalise_fractal(plan, field[i]);
-              }
-            },
-            [&](const MarbleParams& m) {
-              fractal_rows->sum(y, z, {field, nx});
-              for (std::size_t i = 0; i < nx; ++i) {
-                field[i] = fields::marble(m, fields::ripple(m, glm::dvec3(xs[i], y, z)), field[i]);
-              }
-            },
-        },
-        spec_.pattern);
+    std::visit(Overloaded{
+                   [&](const StripesParams& s) {
+                     each_point([&](const glm::dvec3& p) { return fields::stripes(s, p, box); });
+                   },
+                   [&](const CheckerParams& c) {
+                     each_point([&](const glm::dvec3& p) { return fields::checker(c, p, box); });
+                   },
+                   [&](const ColourCubeParams& c) {
+                     for (std::size_t i = 0; i < nx; ++i) {
+                       colour[i] = fields::colour_cube(c, glm::dvec3(xs[i], y, z), box);
+                       field[i] = cube_field(colour[i]);
+                     }
+                   },
+                   [&](const RingsParams& r) {
+                     each_point([&](const glm::dvec3& p) { return fields::rings(r, p, box); });
+                   },
+                   [&](const WoodParams& w) {
+                     const fields::WoodRotation rotation = fields::wood_rotation(w, y);
+                     each_point([&](const glm::dvec3& p) {
+                       return fields::wood(w, frame, rotation, p, box);
+                     });
+                   },
+                   [&](const NoiseParams&) {
+                     fractal_rows->sum(y, z, {field, nx});
+                     for (std::size_t i = 0; i < nx; ++i) {
+                       field[i] = fields::normalise_fractal(plan, field[i]);
+                     }
+                   },
+                   [&](const TurbulenceParams&) {
+                     fractal_rows->sum(y, z, {field, nx});
+                     for (std::size_t i = 0; i < nx; ++i) {
+                       field[i] = fields::normalise_fractal(plan, field[i]);
+                     }
+                   },
+                   [&](const MarbleParams& m) {
+                     fractal_rows->sum(y, z, {field, nx});
+                     for (std::size_t i = 0; i < nx; ++i) {
+                       field[i] =
+                           fields::marble(m, fields::ripple(m, glm::dvec3(xs[i], y, z)), field[i]);
+                     }
+                   },
+               },
+               spec_.pattern);
   };
 
   const ChannelSet& wanted = spec_.channels;

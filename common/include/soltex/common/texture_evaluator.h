@@ -41,12 +41,29 @@ struct Texel {
   float field = 0.0f;
 };
 
+// How widely a sample is filtered. `width` is the sample spacing in texture units: octaves of
+// noise finer than it are faded to their mean. `box` is the per-axis width of the box over
+// which hard edges (stripes, checkers, rings, wood grain, the colour cube's triangle waves) are
+// averaged in closed form: a MIP level's spacing on every axis, or a pixel's footprint in the
+// plane of the surface it sees, which has no extent along that surface's normal. Zeros sample
+// the function as it is.
+struct SampleFootprint {
+  double width = 0.0;
+  glm::dvec3 box{0.0};
+
+  static SampleFootprint isotropic(double w) {
+    const double finite = w > 0.0 ? w : 0.0;  // NaN and negative widths sample points
+    return {finite, glm::dvec3(finite)};
+  }
+};
+
 // Evaluates one texture at points or over grids. Construction validates the spec (throws
 // SpecError) and precomputes what does not depend on the point. Thread-safe: all methods
 // are const and keep their scratch space per thread.
 //
 // filter_width is the sample spacing in texture units: octaves of noise finer than it can
-// show are faded to their mean (see fractal.h); 0 samples the function as it is.
+// show are faded to their mean (see fractal.h), and hard edges are averaged over a box of that
+// width on every axis (SampleFootprint::isotropic); 0 samples the function as it is.
 // sample() and evaluate_grid() give bit-identical results at the same point.
 class TextureEvaluator {
  public:
@@ -55,6 +72,7 @@ class TextureEvaluator {
   const TextureSpec& spec() const { return spec_; }
 
   Texel sample(const glm::dvec3& p, double filter_width = 0.0) const;
+  Texel sample(const glm::dvec3& p, const SampleFootprint& footprint) const;
 
   // Writes spec().channels.sample_count() planes of grid.size() floats each, channel-planar
   // in the order R, G, B, opacity, specular (those present). out.size() must be at least
