@@ -14,8 +14,30 @@
 #include "soltex/render/prepared_scene.h"
 
 namespace soltex {
+namespace render {
+struct FrameShading;
+struct SurfaceUnprojection;
+class TileShader;
+}  // namespace render
+class TextureEvaluator;
+
+// How a texture is read per pixel.
+enum class TextureAccess : uint8_t {
+  automatic,  // evaluated where that is exact and cheaper than a cached lookup, else cached
+  cached,     // through the brick cache, at the level the footprint asks for
+  evaluated,  // evaluated per pixel, band-limited and box-filtered over the footprint
+};
+
+const char* texture_access_name(TextureAccess access);
+
+// Whether `access` evaluates `texture` per pixel (and so fetches no brick for it). Automatic
+// evaluates the analytic patterns whose filtered form is exact and costs less per pixel than a
+// cached lookup: stripes, checkers, rings and the colour cube (docs/TEXTURES.md, "Cache or
+// evaluate").
+bool evaluated_per_pixel(const TextureSpec& texture, TextureAccess access);
 
 struct RenderOptions {
+  TextureAccess access = TextureAccess::automatic;
   SampleFilter filter = SampleFilter::trilinear;
   double level_bias = 0.0;           // added to every pixel's level of detail (negative: finer)
   bool false_colour_levels = false;  // show the level each pixel drew from instead of shading
@@ -33,9 +55,10 @@ struct FrameStats {
   double raster_ms = 0.0;
   double shade_ms = 0.0;
   std::size_t covered_pixels = 0;
-  std::size_t fallback_pixels = 0;  // drawn from a coarser level than they asked for
-  std::size_t empty_pixels = 0;     // nothing resident at all yet
-  std::size_t shaded_pixels = 0;    // lit (not unlit materials)
+  std::size_t fallback_pixels = 0;   // drawn from a coarser level than they asked for
+  std::size_t empty_pixels = 0;      // nothing resident at all yet
+  std::size_t shaded_pixels = 0;     // lit (not unlit materials)
+  std::size_t evaluated_pixels = 0;  // textures evaluated per pixel, not looked up
   RasterStats raster;
 };
 
@@ -57,9 +80,9 @@ class FrameRenderer {
 
   Frame render(const PreparedScene& scene, const Camera& camera, int width, int height);
 
-  // The same frame with the texture evaluated per pixel (band-limited to the footprint, and
-  // averaged over supersample^2 sub-pixel positions when supersample > 1): the reference the
-  // cached path is compared with.
+  // The same frame with every texture evaluated per pixel (band-limited and box-filtered over
+  // the footprint, as TextureAccess::evaluated does, and averaged over supersample^2 sub-pixels
+  // when supersample > 1): the reference the cached path is compared with.
   Image render_reference(const PreparedScene& scene, const Camera& camera, int width, int height,
                          int supersample = 1);
 
@@ -70,6 +93,13 @@ class FrameRenderer {
   void set_level_bias(double bias) { options_.level_bias = bias; }
 
  private:
+  // Samplers (per render thread and object) and evaluators (per object), kept across frames
+  // while the scene's textures stay the same.
+  void prepare_readers(const PreparedScene& scene);
+  render::FrameShading frame_shading(const PreparedScene& scene,
+                                     const render::SurfaceUnprojection& unprojection) const;
+  void gather(std::vector<std::unique_ptr<render::TileShader>>& shaders, Frame& frame);
+
   BrickCache& cache_;
   RenderOptions options_;
   Rasterizer rasterizer_;
@@ -77,8 +107,9 @@ class FrameRenderer {
   // render_reference()'s buffers, kept (at 1x) so that repeated references (benchmarks,
   // comparisons) measure the per-pixel evaluation and not the page faults of fresh buffers.
   GBuffer reference_gbuffer_;
-  std::vector<glm::vec3> reference_colours_;
-  std::vector<std::vector<std::unique_ptr<TextureSampler>>> samplers_;  // [band][object]
+  Image reference_image_;
+  std::vector<std::vector<std::unique_ptr<TextureSampler>>> samplers_;  // [thread][object]
+  std::vector<std::unique_ptr<TextureEvaluator>> evaluators_;           // [object]
   std::vector<uint64_t> sampler_textures_;  // the textures samplers_ was made for
 };
 

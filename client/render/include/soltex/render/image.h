@@ -18,13 +18,17 @@ struct Image {
   Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0) {}
   // Clamps to [0, 1] (NaN to 0) and rounds to 8 bits. Inline: the renderers call it per pixel.
   void set(int x, int y, float r, float g, float b) {
-    uint8_t* px = &rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
-                        static_cast<std::size_t>(x)) *
-                       3];
+    uint8_t* px = pixel(x, y);
     px[0] = to_byte(r);
     px[1] = to_byte(g);
     px[2] = to_byte(b);
   }
+  uint8_t* pixel(int x, int y) {
+    return &rgb[(static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                 static_cast<std::size_t>(x)) *
+                3];
+  }
+  const uint8_t* pixel(int x, int y) const { return const_cast<Image*>(this)->pixel(x, y); }
   bool operator==(const Image&) const = default;
 
  private:

@@ -1,0 +1,64 @@
+#pragma once
+
+#include <cmath>
+#include <glm/mat3x3.hpp>
+#include <glm/vec3.hpp>
+
+#include "soltex/common/texture_evaluator.h"
+#include "soltex/common/texture_spec.h"
+#include "soltex/render/prepared_scene.h"
+
+// Where on a surface a pixel looks its texture up, and over what box.
+//
+// An object is carved out of its solid texture, so a face that lies on one of the pattern's
+// discontinuities (a box face on a checker boundary, a clip plane's cap on a stripe edge) shows
+// the material just inside the object. Both ways of reading the texture look it up at a point
+// moved inward along the surface's normal (in texture space), by an amount that clears the
+// filter that reads it:
+//  - evaluated per pixel, the box is the pixel's footprint in the surface's plane, which has
+//    no extent along the normal, so a step of a small fraction of the footprint is enough
+//    (kEvaluatedInset) and hardly moves anything else;
+//  - looked up in a brick of level l, trilinear interpolation reads samples up to h_l away,
+//    each averaged over a box of width h_l, so the step must be 1.5 h_l (kCachedInset) for
+//    every sample read to lie inside. Only textures with hard edges need it: for smooth ones
+//    the value just inside is the value on the surface.
+namespace soltex::render {
+
+inline constexpr double kEvaluatedInset = 1.0 / 16.0;  // of the pixel's footprint
+inline constexpr double kCachedInset = 1.5;            // of the level's spacing
+
+// Whether a texture's field jumps somewhere (stripes, checkers, rings, wood grain).
+bool has_hard_edges(const TextureSpec& spec);
+
+// One object's map from world-space normals to unit texture-space normals.
+class TextureSurface {
+ public:
+  TextureSurface() = default;
+  explicit TextureSurface(const PreparedObject& object);
+
+  // The unit texture-space normal of a world-space normal (zero stays zero).
+  glm::dvec3 normal(const glm::vec3& world_normal) const {
+    const glm::dvec3 n = normal_from_world_ * glm::dvec3(world_normal);
+    const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
+    return length > 0.0 ? n / length : glm::dvec3(0.0);
+  }
+
+ private:
+  glm::dmat3 normal_from_world_{1.0};
+};
+
+// The box over which a pixel of texture-space footprint `footprint` (a diameter in the plane
+// with unit normal n) averages hard edges: on each axis the extent of that disc,
+// footprint * sqrt(1 - n_axis^2). The band limit of noise stays the footprint itself.
+inline SampleFootprint surface_footprint(double footprint, const glm::dvec3& n) {
+  const auto extent = [&](double c) { return footprint * std::sqrt(std::fmax(0.0, 1.0 - c * c)); };
+  if (!(footprint > 0.0)) return SampleFootprint::isotropic(footprint);
+  return {footprint, {extent(n.x), extent(n.y), extent(n.z)}};
+}
+
+// p moved inward (against the outward unit normal n) by `distance`.
+inline glm::dvec3 inset(const glm::dvec3& p, const glm::dvec3& n, double distance) {
+  return std::isfinite(distance) ? p - n * distance : p;
+}
+
+}  // namespace soltex::render

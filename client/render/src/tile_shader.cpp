@@ -1,0 +1,140 @@
+#include "tile_shader.h"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <cmath>
+
+#include "soltex/render/shading.h"
+
+namespace soltex::render {
+namespace {
+
+// Distinct colours for levels 0.. in false-colour mode; pixels evaluated per pixel are white.
+glm::vec3 level_colour(int level) {
+  static constexpr glm::vec3 kPalette[] = {
+      {0.90f, 0.10f, 0.10f}, {0.95f, 0.55f, 0.10f}, {0.95f, 0.90f, 0.15f}, {0.30f, 0.80f, 0.20f},
+      {0.15f, 0.70f, 0.85f}, {0.20f, 0.35f, 0.95f}, {0.60f, 0.25f, 0.90f}, {0.85f, 0.85f, 0.85f}};
+  if (level < 0) return glm::vec3(0.0f);
+  return kPalette[std::min<std::size_t>(static_cast<std::size_t>(level), std::size(kPalette) - 1)];
+}
+constexpr glm::vec3 kEvaluatedColour{1.0f, 1.0f, 1.0f};
+
+// A tile's row of background pixels, as Image::set() writes them: each row of a tile is copied
+// from it first, and only covered pixels are written after (most of a frame can be background).
+const std::array<uint8_t, 3 * TileShader::kTile>& background_row() {
+  static const std::array<uint8_t, 3 * TileShader::kTile> row = [] {
+    Image one(1, 1);
+    one.set(0, 0, kBackground.r, kBackground.g, kBackground.b);
+    std::array<uint8_t, 3 * TileShader::kTile> r{};
+    for (std::size_t p = 0; p < r.size(); p += 3) std::copy_n(one.rgb.begin(), 3, r.begin() + p);
+    return r;
+  }();
+  return row;
+}
+
+}  // namespace
+
+void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
+                       Image& image) {
+  assert(x1 - x0 <= kTile);
+  gbuffer_ = &g;
+  const auto& background = background_row();
+  const std::size_t object_count = frame_.objects.size();
+  for (int y = y0; y < y1; ++y) {
+    std::copy_n(background.begin(), 3 * (x1 - x0),
+                image.rgb.begin() + 3 * (static_cast<std::ptrdiff_t>(y) * image.width + x0));
+    for (int x = x0; x < x1; ++x) {
+      const Pixel pixel{x, y, g.index(x - origin_x, y - origin_y)};
+      if (!g.covered(pixel.index)) continue;  // the background is there already
+      const uint32_t id = g.object_id[pixel.index];
+      if (id >= object_count) continue;
+      ++counts_.covered;
+      const ObjectShading& object = frame_.objects[id];
+      if (object.evaluator != nullptr) {
+        shade_evaluated(g, pixel, object, image);
+      } else {
+        shade_cached(g, pixel, object, *samplers_[id], image);
+      }
+    }
+  }
+  if (lit_.batch.count > 0) flush(image);
+}
+
+void TileShader::shade_evaluated(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
+                                 Image& image) {
+  ++counts_.evaluated;
+  if (frame_.options.false_colour_levels) {
+    image.set(pixel.x, pixel.y, kEvaluatedColour.r, kEvaluatedColour.g, kEvaluatedColour.b);
+    return;
+  }
+  const glm::dvec3 n = object.surface.normal(g.normal[pixel.index]);
+  const double footprint = g.footprint[pixel.index];
+  const glm::dvec3 p = inset(g.texture_position[pixel.index], n, kEvaluatedInset * footprint);
+  const Texel texel = object.evaluator->sample(p, surface_footprint(footprint, n));
+  float values[CachedBrick::kMaxChannels];
+  texel_channels(object.evaluator->spec(), texel, values);
+  shade_values(pixel, object.material, values, image);
+}
+
+void TileShader::shade_cached(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
+                              TextureSampler& sampler, Image& image) {
+  const RenderOptions& options = frame_.options;
+  const float footprint = g.footprint[pixel.index];
+  const double lod = frame_.by_table ? static_cast<double>(object.level_table.level(footprint))
+                                     : sampler.level_of_detail(footprint) + options.level_bias;
+  glm::dvec3 p = g.texture_position[pixel.index];
+  if (object.cached_inset > 0.0) {
+    // The coarser of the levels a lookup may read sets the step (quadrilinear reads two).
+    const double spacing = std::ldexp(object.level0_spacing, static_cast<int>(std::ceil(lod)));
+    p = inset(p, object.surface.normal(g.normal[pixel.index]), object.cached_inset * spacing);
+  }
+  MissedBricks missed;
+  SampleResult result;
+  if (object.rgb_fast_path) {
+    // The common case in two steps: locate and prefetch now, read at the flush.
+    const int level = static_cast<int>(lod);
+    glm::vec3 frac;
+    if (const uint8_t* cell = sampler.locate_rgb(p, level, frac)) {
+      ++counts_.shaded;
+      lit_.add_cell(lit_.batch.count++, pixel.x, pixel.y, pixel.index, cell, frac, sampler,
+                    object.material.material_specular, object.material.shininess);
+      if (lit_.batch.count == ShadeBatch::kCapacity) flush(image);
+      return;
+    }
+    result = sampler.sample_after_miss(p, level, options.filter, &missed);
+  } else {
+    result = sampler.sample(p, lod, options.filter, &missed);
+  }
+  for (const BrickKey& key : missed.view()) misses_.add(key);
+  if (!result.complete) ++counts_.fallback;
+  if (result.level < 0) ++counts_.empty;
+  if (options.false_colour_levels) {
+    const glm::vec3 colour = level_colour(result.level);
+    image.set(pixel.x, pixel.y, colour.r, colour.g, colour.b);
+    return;
+  }
+  shade_values(pixel, object.material, result.values.data(), image);
+}
+
+void TileShader::shade_values(const Pixel& pixel, const MaterialInputs& m, const float* values,
+                              Image& image) {
+  const SurfaceInputs surface = m.read(values);
+  if (m.unlit) {
+    set_pixel(image, pixel.x, pixel.y, surface.albedo, surface.opacity);
+    return;
+  }
+  ++counts_.shaded;
+  lit_.add(lit_.batch.count++, pixel.x, pixel.y, pixel.index, surface, m.shininess);
+  if (lit_.batch.count == ShadeBatch::kCapacity) flush(image);
+}
+
+void TileShader::flush(Image& image) {
+  lit_.read_cells(frame_.options.filter == SampleFilter::nearest);
+  frame_.unprojection.fill(*gbuffer_, lit_);
+  shade_batch(frame_.lights, lit_.batch);
+  lit_.write(image);
+  lit_.batch.count = 0;
+}
+
+}  // namespace soltex::render

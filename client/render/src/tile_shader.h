@@ -1,0 +1,89 @@
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "lit_pixels.h"
+#include "material_inputs.h"
+#include "miss_tally.h"
+#include "soltex/common/texture_evaluator.h"
+#include "soltex/common/texture_sampler.h"
+#include "soltex/raster/gbuffer.h"
+#include "soltex/render/frame_renderer.h"
+#include "soltex/render/image.h"
+#include "texture_surface.h"
+
+namespace soltex::render {
+
+// How one object's texture is read in a frame, and how its values light the surface.
+struct ObjectShading {
+  MaterialInputs material;
+  TextureSurface surface;
+  // Set: the texture is evaluated per pixel over the pixel's footprint (TextureAccess::
+  // evaluated), and no brick is read or asked for.
+  const TextureEvaluator* evaluator = nullptr;
+  NearestLevelTable level_table;  // for nearest and trilinear lookups
+  double level0_spacing = 0.0;    // h_0, for the inward step of cached lookups
+  double cached_inset = 0.0;      // in level spacings: kCachedInset for hard edges, else 0
+  // Lit, three channels, a tabled level: the fast path (TextureSampler::locate_rgb()).
+  bool rgb_fast_path = false;
+};
+
+// What every tile of one frame shares, read-only.
+struct FrameShading {
+  std::vector<ObjectShading> objects;
+  PreparedLights lights;
+  SurfaceUnprojection unprojection;
+  RenderOptions options;
+  bool by_table = true;  // nearest and trilinear take their level from a table
+};
+
+struct TileCounts {
+  std::size_t covered = 0, fallback = 0, empty = 0, shaded = 0, evaluated = 0;
+  std::chrono::steady_clock::duration shading{0};
+};
+
+// Shades tiles of a frame on one render thread: per covered pixel, read the texture (a
+// cached lookup at the footprint's level, or an evaluation over the footprint), light it in
+// batches, and write the image. Keeps the thread's samplers (and their microcaches) and
+// tallies the bricks its pixels missed.
+class TileShader {
+ public:
+  // `samplers`: one per object, made for this thread.
+  TileShader(const FrameShading& frame, std::vector<std::unique_ptr<TextureSampler>>& samplers)
+      : frame_(frame), samplers_(samplers) {}
+
+  // Shades the frame's pixels [x0, x1) x [y0, y1) (at most kTile wide) from `g`, which holds
+  // pixel (x, y) at g.index(x - origin_x, y - origin_y), into `image`.
+  void shade(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
+             Image& image);
+
+  MissTally& misses() { return misses_; }
+  const TileCounts& counts() const { return counts_; }
+  TileCounts& counts() { return counts_; }
+
+  static constexpr int kTile = 32;
+
+ private:
+  struct Pixel {
+    int x, y;
+    std::size_t index;  // in the G-buffer
+  };
+  void shade_evaluated(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
+                       Image& image);
+  void shade_cached(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
+                    TextureSampler& sampler, Image& image);
+  void shade_values(const Pixel& pixel, const MaterialInputs& m, const float* values, Image& image);
+  void flush(Image& image);
+
+  const FrameShading& frame_;
+  std::vector<std::unique_ptr<TextureSampler>>& samplers_;
+  MissTally misses_;
+  TileCounts counts_;
+  const GBuffer* gbuffer_ = nullptr;  // the tile being shaded
+  LitPixels lit_;                     // about 40 KB, uninitialised but for the count
+};
+
+}  // namespace soltex::render
