@@ -2,91 +2,108 @@
 
 #include <array>
 #include <bit>
-#include <cstdint>
 #include <glm/geometric.hpp>
 #include <unordered_map>
 
 namespace soltex {
 namespace {
 
-using PositionBits = std::array<uint32_t, 3>;
+// A position's coordinates as integers of the same width: float -> uint32, double -> uint64.
+template <class Position>
+using Bits =
+    std::array<std::conditional_t<sizeof(typename Position::value_type) == 4, uint32_t, uint64_t>,
+               3>;
 
-struct PositionBitsHash {
-  std::size_t operator()(const PositionBits& bits) const {
+template <class Position>
+Bits<Position> bits_of(const Position& p) {
+  using Word = typename Bits<Position>::value_type;
+  using Scalar = typename Position::value_type;
+  // + 0 folds -0 into +0; the two are the same point.
+  return {std::bit_cast<Word>(static_cast<Scalar>(p.x + Scalar(0))),
+          std::bit_cast<Word>(static_cast<Scalar>(p.y + Scalar(0))),
+          std::bit_cast<Word>(static_cast<Scalar>(p.z + Scalar(0)))};
+}
+
+struct BitsHash {
+  template <class Word>
+  std::size_t operator()(const std::array<Word, 3>& bits) const {
     uint64_t h = 0x9E3779B97F4A7C15ull;
-    for (uint32_t b : bits) h = (h ^ b) * 0xBF58476D1CE4E5B9ull;
+    for (Word b : bits) h = (h ^ static_cast<uint64_t>(b)) * 0xBF58476D1CE4E5B9ull;
     return static_cast<std::size_t>(h ^ (h >> 31));
   }
 };
 
-PositionBits bits_of(const glm::vec3& p) {
-  // + 0.0f folds -0 into +0; the two are the same point.
-  return {std::bit_cast<uint32_t>(p.x + 0.0f), std::bit_cast<uint32_t>(p.y + 0.0f),
-          std::bit_cast<uint32_t>(p.z + 0.0f)};
-}
-
 // Moves vertex i to new_index_of[i] (UINT32_MAX: dropped) and renumbers the indices.
-void compact_vertices(Mesh& mesh, const std::vector<uint32_t>& new_index_of,
-                      std::size_t new_count) {
-  std::vector<glm::vec3> positions(new_count);
-  std::vector<glm::vec3> normals(mesh.normals.empty() ? 0 : new_count);
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    const uint32_t to = new_index_of[i];
-    if (to == UINT32_MAX) continue;
-    positions[to] = mesh.positions[i];
-    if (!normals.empty()) normals[to] = mesh.normals[i];
+template <class Position>
+void compact_vertices(std::vector<Position>& positions, std::vector<uint32_t>& indices,
+                      const std::vector<uint32_t>& new_index_of, std::size_t new_count) {
+  std::vector<Position> kept(new_count);
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    if (new_index_of[i] != UINT32_MAX) kept[new_index_of[i]] = positions[i];
   }
-  for (uint32_t& index : mesh.indices) index = new_index_of[index];
-  mesh.positions = std::move(positions);
-  mesh.normals = std::move(normals);
+  for (uint32_t& index : indices) index = new_index_of[index];
+  positions = std::move(kept);
 }
 
 }  // namespace
 
-std::size_t merge_duplicate_vertices(Mesh& mesh) {
-  std::unordered_map<PositionBits, uint32_t, PositionBitsHash> first_with_position;
-  first_with_position.reserve(mesh.positions.size());
-  std::vector<uint32_t> new_index_of(mesh.positions.size());
-  std::vector<uint32_t> kept_index;  // new index -> first old index with that position
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    const auto [it, inserted] = first_with_position.try_emplace(
-        bits_of(mesh.positions[i]), static_cast<uint32_t>(kept_index.size()));
-    if (inserted) kept_index.push_back(static_cast<uint32_t>(i));
+template <class Position>
+std::size_t merge_duplicate_vertices(std::vector<Position>& positions,
+                                     std::vector<uint32_t>& indices) {
+  std::unordered_map<Bits<Position>, uint32_t, BitsHash> first_with_position;
+  first_with_position.reserve(positions.size());
+  std::vector<uint32_t> new_index_of(positions.size());
+  uint32_t kept = 0;
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    const auto [it, inserted] = first_with_position.try_emplace(bits_of(positions[i]), kept);
+    if (inserted) ++kept;
     new_index_of[i] = it->second;
   }
-  const std::size_t merged = mesh.positions.size() - kept_index.size();
-  if (merged > 0) compact_vertices(mesh, new_index_of, kept_index.size());
+  const std::size_t merged = positions.size() - kept;
+  if (merged > 0) compact_vertices(positions, indices, new_index_of, kept);
   return merged;
 }
 
-std::size_t drop_degenerate_triangles(Mesh& mesh) {
+template <class Position>
+std::size_t drop_degenerate_triangles(const std::vector<Position>& positions,
+                                      std::vector<uint32_t>& indices) {
   std::size_t kept = 0;
-  const std::size_t count = mesh.triangle_count();
+  const std::size_t count = indices.size() / 3;
   for (std::size_t t = 0; t < count; ++t) {
-    const uint32_t a = mesh.indices[3 * t], b = mesh.indices[3 * t + 1],
-                   c = mesh.indices[3 * t + 2];
+    const uint32_t a = indices[3 * t], b = indices[3 * t + 1], c = indices[3 * t + 2];
     if (a == b || b == c || a == c) continue;
-    const glm::dvec3 pa(mesh.positions[a]), pb(mesh.positions[b]), pc(mesh.positions[c]);
+    const glm::dvec3 pa(positions[a]), pb(positions[b]), pc(positions[c]);
     if (glm::cross(pb - pa, pc - pa) == glm::dvec3(0.0)) continue;
-    mesh.indices[3 * kept] = a;
-    mesh.indices[3 * kept + 1] = b;
-    mesh.indices[3 * kept + 2] = c;
+    indices[3 * kept] = a;
+    indices[3 * kept + 1] = b;
+    indices[3 * kept + 2] = c;
     ++kept;
   }
-  mesh.indices.resize(3 * kept);
+  indices.resize(3 * kept);
   return count - kept;
 }
 
-std::size_t remove_unreferenced_vertices(Mesh& mesh) {
-  std::vector<uint32_t> new_index_of(mesh.positions.size(), UINT32_MAX);
-  for (uint32_t index : mesh.indices) new_index_of[index] = 0;
+template <class Position>
+std::size_t remove_unreferenced_vertices(std::vector<Position>& positions,
+                                         std::vector<uint32_t>& indices) {
+  std::vector<uint32_t> new_index_of(positions.size(), UINT32_MAX);
+  for (uint32_t index : indices) new_index_of[index] = 0;
   uint32_t next = 0;
   for (uint32_t& to : new_index_of) {
     if (to == 0) to = next++;
   }
-  const std::size_t removed = mesh.positions.size() - next;
-  if (removed > 0) compact_vertices(mesh, new_index_of, next);
+  const std::size_t removed = positions.size() - next;
+  if (removed > 0) compact_vertices(positions, indices, new_index_of, next);
   return removed;
 }
+
+template std::size_t merge_duplicate_vertices(std::vector<glm::vec3>&, std::vector<uint32_t>&);
+template std::size_t merge_duplicate_vertices(std::vector<glm::dvec3>&, std::vector<uint32_t>&);
+template std::size_t drop_degenerate_triangles(const std::vector<glm::vec3>&,
+                                               std::vector<uint32_t>&);
+template std::size_t drop_degenerate_triangles(const std::vector<glm::dvec3>&,
+                                               std::vector<uint32_t>&);
+template std::size_t remove_unreferenced_vertices(std::vector<glm::vec3>&, std::vector<uint32_t>&);
+template std::size_t remove_unreferenced_vertices(std::vector<glm::dvec3>&, std::vector<uint32_t>&);
 
 }  // namespace soltex

@@ -1,26 +1,97 @@
 #include "soltex/scene/obj_loader.h"
 
-#include <tiny_obj_loader.h>
-
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <glm/common.hpp>
 #include <limits>
+#include <span>
 #include <sstream>
 #include <utility>
 
 #include "mesh_cleanup.h"
+#include "obj_reader.h"
 #include "polygon_triangulation.h"
 
 namespace soltex {
 namespace {
 
-std::string trimmed(std::string text) {
-  const std::size_t end = text.find_last_not_of(" \t\r\n.");
-  text.erase(end == std::string::npos ? 0 : end + 1);
-  return text;
+// The OBJ file's vertices, in double until they are normalised.
+struct WideMesh {
+  std::vector<glm::dvec3> positions;
+  std::vector<uint32_t> indices;
+};
+
+// Checks every face's indices against the final vertex count and the vertices it uses for
+// finite coordinates, and triangulates it.
+void triangulate_faces(const ObjText& obj, const std::string& name, WideMesh& mesh,
+                       ObjLoadStats& stats) {
+  const std::size_t vertex_count = obj.positions.size();
+  std::size_t next = 0;
+  for (std::size_t f = 0; f < obj.face_sizes.size(); ++f) {
+    ++stats.faces_read;
+    const std::span<const uint32_t> polygon(obj.corners.data() + next, obj.face_sizes[f]);
+    next += obj.face_sizes[f];
+    for (const uint32_t index : polygon) {
+      const auto face = [&] {
+        return "line " + std::to_string(obj.face_lines[f]) + ": face " + std::to_string(f + 1);
+      };
+      if (index >= vertex_count) {
+        throw ObjError(name, face() + " refers to vertex " + std::to_string(index + 1ull) +
+                                 ", but the file defines only " + std::to_string(vertex_count) +
+                                 " vertices");
+      }
+      if (std::isnan(obj.positions[index].x)) {
+        const auto bad = std::lower_bound(obj.bad_vertices.begin(), obj.bad_vertices.end(), index);
+        const std::size_t k = static_cast<std::size_t>(bad - obj.bad_vertices.begin());
+        throw ObjError(name, face() + " uses vertex " + std::to_string(index + 1ull) +
+                                 ", which is not three finite numbers: line " +
+                                 std::to_string(obj.bad_vertex_lines[k]) + " reads \"" +
+                                 obj.bad_vertex_texts[k] + "\"");
+      }
+    }
+    if (polygon.size() > 3) ++stats.polygons_triangulated;
+    triangulate_polygon(obj.positions, polygon, mesh.indices);
+  }
+}
+
+// normalize_to_unit_box() in double, where the file's coordinates are exact: a model 1e9 from
+// the origin lands on the same float positions as the same model at the origin.
+void normalize_wide(std::vector<glm::dvec3>& positions) {
+  glm::dvec3 lo = positions.front(), hi = positions.front();
+  for (const glm::dvec3& p : positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  // Halves first: hi - lo can overflow a double, hi / 2 - lo / 2 cannot.
+  const glm::dvec3 half = 0.5 * hi - 0.5 * lo;
+  const glm::dvec3 centre = 0.5 * hi + 0.5 * lo;
+  const double longest_half = std::max({half.x, half.y, half.z});
+  const double scale = longest_half > 0.0 ? 1.0 / longest_half : 1.0;
+  for (glm::dvec3& p : positions) p = (p - centre) * scale;
+}
+
+// The float mesh; without normalising, a coordinate beyond float's range is refused.
+Mesh to_float_mesh(WideMesh wide, const std::string& name, bool normalize) {
+  if (normalize) normalize_wide(wide.positions);
+  Mesh mesh;
+  mesh.positions.reserve(wide.positions.size());
+  for (const glm::dvec3& p : wide.positions) {
+    const glm::vec3 narrow(p);
+    if (!std::isfinite(narrow.x) || !std::isfinite(narrow.y) || !std::isfinite(narrow.z)) {
+      char where[96];
+      std::snprintf(where, sizeof where, "(%.9g, %.9g, %.9g)", p.x, p.y, p.z);
+      throw ObjError(name, std::string("a vertex at ") + where +
+                               " is beyond float range (3.4e38); load the mesh with normalize");
+    }
+    mesh.positions.push_back(narrow);
+  }
+  mesh.indices = std::move(wide.indices);
+  return mesh;
 }
 
 }  // namespace
@@ -32,80 +103,43 @@ ObjError::ObjError(std::string file, std::string problem)
 
 LoadedObj parse_obj(std::string_view text, const std::string& name_for_errors,
                     const ObjLoadOptions& options) {
-  // tinyobjloader's own triangulation skips faces with bad indices silently and its ear
-  // clipping can fold non-convex polygons; read raw faces, check them, triangulate here.
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = false;
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(std::string(text), std::string(), config)) {
-    const std::string error = trimmed(reader.Error());
-    throw ObjError(name_for_errors, error.empty() ? "not a valid OBJ file" : error);
-  }
-
+  ObjText obj = read_obj_text(text, name_for_errors);
   LoadedObj result;
   ObjLoadStats& stats = result.stats;
-  Mesh& mesh = result.mesh;
-  const std::vector<tinyobj::real_t>& coordinates = reader.GetAttrib().vertices;
-  const std::size_t vertex_count = coordinates.size() / 3;
+  const std::size_t vertex_count = obj.positions.size();
   if (vertex_count > std::numeric_limits<uint32_t>::max()) {
     throw ObjError(name_for_errors,
                    std::to_string(vertex_count) + " vertices: at most 2^32 - 1 can be indexed");
   }
   stats.vertices_read = vertex_count;
-  mesh.positions.resize(vertex_count);
-  for (std::size_t i = 0; i < vertex_count; ++i) {
-    const glm::vec3 p(coordinates[3 * i], coordinates[3 * i + 1], coordinates[3 * i + 2]);
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-      throw ObjError(name_for_errors,
-                     "vertex " + std::to_string(i + 1) + " has a non-finite coordinate");
-    }
-    mesh.positions[i] = p;
-  }
-
-  std::vector<uint32_t> polygon;
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-    std::size_t next = 0;
-    for (const unsigned int corners : shape.mesh.num_face_vertices) {
-      ++stats.faces_read;
-      polygon.clear();
-      for (unsigned int k = 0; k < corners; ++k) {
-        const int index = shape.mesh.indices[next + k].vertex_index;
-        if (index < 0 || static_cast<std::size_t>(index) >= vertex_count) {
-          // tinyobjloader has made relative (negative) indices absolute; still negative means
-          // the file pointed before its first vertex.
-          throw ObjError(name_for_errors,
-                         "face " + std::to_string(stats.faces_read) +
-                             (index < 0 ? " uses a relative index before the first vertex"
-                                        : " refers to vertex " + std::to_string(index + 1) +
-                                              ", but the file defines only " +
-                                              std::to_string(vertex_count) + " vertices"));
-        }
-        polygon.push_back(static_cast<uint32_t>(index));
-      }
-      next += corners;
-      if (corners > 3) ++stats.polygons_triangulated;
-      triangulate_polygon(mesh.positions, polygon, mesh.indices);
-    }
-  }
-  if (stats.faces_read == 0) {
+  if (obj.face_sizes.empty()) {
     throw ObjError(name_for_errors,
                    "no faces (" + std::to_string(vertex_count) + " vertices): not a surface mesh");
   }
 
-  stats.duplicate_vertices_merged = merge_duplicate_vertices(mesh);
-  stats.degenerate_triangles_dropped = drop_degenerate_triangles(mesh);
-  stats.unreferenced_vertices_removed = remove_unreferenced_vertices(mesh);
-  if (mesh.triangle_count() == 0) {
+  WideMesh wide;
+  triangulate_faces(obj, name_for_errors, wide, stats);
+  wide.positions = std::move(obj.positions);
+  obj = {};
+  // Cleaned in double, then again in float: points apart in the file can meet in float.
+  stats.duplicate_vertices_merged = merge_duplicate_vertices(wide.positions, wide.indices);
+  stats.degenerate_triangles_dropped = drop_degenerate_triangles(wide.positions, wide.indices);
+  stats.unreferenced_vertices_removed = remove_unreferenced_vertices(wide.positions, wide.indices);
+  if (wide.indices.empty()) {
     throw ObjError(name_for_errors,
                    "all " + std::to_string(stats.faces_read) + " faces are degenerate (zero area)");
   }
-  compute_vertex_normals(mesh);
-  if (options.normalize) {
-    normalize_to_unit_box(mesh);
-  } else {
-    mesh.update_bounds();
+  Mesh& mesh = result.mesh;
+  mesh = to_float_mesh(std::move(wide), name_for_errors, options.normalize);
+  stats.duplicate_vertices_merged += merge_duplicate_vertices(mesh.positions, mesh.indices);
+  stats.degenerate_triangles_dropped += drop_degenerate_triangles(mesh.positions, mesh.indices);
+  stats.unreferenced_vertices_removed += remove_unreferenced_vertices(mesh.positions, mesh.indices);
+  if (mesh.triangle_count() == 0) {
+    throw ObjError(name_for_errors, "all " + std::to_string(stats.faces_read) +
+                                        " faces are degenerate (zero area) in float precision");
   }
+  compute_vertex_normals(mesh);
+  mesh.update_bounds();
   return result;
 }
 

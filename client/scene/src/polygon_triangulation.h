@@ -7,16 +7,15 @@
 
 namespace soltex {
 
-// Polygons with more vertices than this are fanned instead of ear-clipped (ear clipping is
-// cubic in the worst case; faces this large are rare and usually convex caps).
-inline constexpr std::size_t kMaxEarClippedPolygon = 64;
-
 // Appends triangles covering the simple polygon `polygon` (indices into `positions`, in
-// order) to `triangles`, each with the polygon's own winding. Non-convex polygons are
+// order) to `triangles`, each with the polygon's own winding. Polygons of any size are
 // ear-clipped in the plane of their Newell normal, so no triangle lies outside the polygon;
-// where no ear can be found (a self-intersecting or collinear polygon) the rest is fanned
-// and any zero-area triangles are left for the degenerate-triangle filter.
-void triangulate_polygon(std::span<const glm::vec3> positions, std::span<const uint32_t> polygon,
+// vertices where the outline runs straight on or doubles back on itself are left out (they
+// would only make zero-area triangles). Where no ear can be found even then (a
+// self-intersecting polygon) the rest is fanned and any zero-area triangles are left for
+// the degenerate-triangle filter. The caller bounds the polygon's size (kMaxFaceVertices for
+// OBJ files): the worst case is quadratic.
+void triangulate_polygon(std::span<const glm::dvec3> positions, std::span<const uint32_t> polygon,
                          std::vector<uint32_t>& triangles);
 
 }  // namespace soltex

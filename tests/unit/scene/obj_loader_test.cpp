@@ -6,9 +6,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <string>
+#include <vector>
+
+#include "soltex/scene/builtin_meshes.h"
 
 namespace soltex {
 namespace {
@@ -206,6 +213,204 @@ TEST(LoadObj, ReadsAFileLikeTheString) {
   const TempFile file("cube.obj", kQuadCube);
   const LoadedObj obj = load_obj(file.path());
   EXPECT_EQ(obj.mesh.triangle_count(), 12u);
+}
+
+// An OBJ file of the built-in sphere moved by `offset`, written with every digit a double has.
+std::string sphere_obj(const glm::dvec3& offset) {
+  const Mesh sphere = make_mesh(SphereShape{});
+  std::string text;
+  char line[128];
+  for (const glm::vec3& p : sphere.positions) {
+    const glm::dvec3 q = glm::dvec3(p) + offset;
+    std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", q.x, q.y, q.z);
+    text += line;
+  }
+  for (std::size_t t = 0; t < sphere.triangle_count(); ++t) {
+    std::snprintf(line, sizeof line, "f %u %u %u\n", sphere.indices[3 * t] + 1,
+                  sphere.indices[3 * t + 1] + 1, sphere.indices[3 * t + 2] + 1);
+    text += line;
+  }
+  return text;
+}
+
+// Coordinates are read and normalised in double, so a model far from the origin lands on the
+// same object-space mesh as the same model at the origin (in float, 1e9 + 0.01 == 1e9).
+TEST(ParseObjFarFromTheOrigin, LoadsTheSameMeshAsAtTheOrigin) {
+  const LoadedObj near = parse_obj(sphere_obj(glm::dvec3(0.0)), "near.obj", {.normalize = true});
+  for (const glm::dvec3 offset :
+       {glm::dvec3(1e6, -1e6, 1e6), glm::dvec3(1e9, 1e9, -1e9), glm::dvec3(-1e9, 0.0, 3e8)}) {
+    SCOPED_TRACE(offset.x);
+    const LoadedObj far = parse_obj(sphere_obj(offset), "far.obj", {.normalize = true});
+    EXPECT_EQ(far.stats.degenerate_triangles_dropped, near.stats.degenerate_triangles_dropped);
+    ASSERT_EQ(far.mesh.vertex_count(), near.mesh.vertex_count());
+    ASSERT_EQ(far.mesh.indices, near.mesh.indices);
+    float worst = 0.0f;
+    for (std::size_t i = 0; i < near.mesh.vertex_count(); ++i) {
+      const glm::vec3 d = glm::abs(far.mesh.positions[i] - near.mesh.positions[i]);
+      worst = std::max({worst, d.x, d.y, d.z});
+    }
+    // A double resolves 1.2e-7 at 1e9: about one float step on the unit sphere.
+    EXPECT_LE(worst, offset.x == 1e6 ? 2.4e-7f : 5e-7f);
+  }
+}
+
+TEST(ParseObjFarFromTheOrigin, WithoutNormalizingFloatRangeIsTheBound) {
+  EXPECT_THAT(obj_error_of("v 1e39 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n").what(),
+              AllOf(HasSubstr("beyond float range"), HasSubstr("normalize")));
+  const LoadedObj obj =
+      parse_obj("v 1e39 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n", "huge.obj", {.normalize = true});
+  EXPECT_EQ(obj.mesh.bounds.max.x, 1.0f);
+}
+
+TEST(ParseObjErrors, AFaceUsingANonFiniteVertexNamesBothLines) {
+  for (const char* vertex : {"v nan 0 0", "v 0 inf 0", "v 0 0 -Infinity", "v 1e400 0 0",
+                             "v 1 abc 0", "v 1.5x 0 0", "v 1 2"}) {
+    SCOPED_TRACE(vertex);
+    const std::string text = std::string("v 0 0 0\n") + vertex + "\nv 0 1 0\n# the face\nf 1 2 3\n";
+    const ObjError error = obj_error_of(text, "nan.obj");
+    EXPECT_THAT(error.what(),
+                AllOf(HasSubstr("nan.obj"), HasSubstr("line 5: face 1"), HasSubstr("vertex 2"),
+                      HasSubstr("line 2 reads"), HasSubstr(vertex)));
+  }
+}
+
+TEST(ParseObj, IgnoresANonFiniteVertexNoFaceUses) {
+  const LoadedObj obj = parse_obj("v 0 0 0\nv nan nan nan\nv 1 0 0\nv 0 1 0\nf 1 3 4\n", "x.obj");
+  EXPECT_EQ(obj.stats.vertices_read, 4u);
+  EXPECT_EQ(obj.stats.unreferenced_vertices_removed, 1u);
+  EXPECT_EQ(obj.mesh.triangle_count(), 1u);
+}
+
+TEST(ParseObj, ReadsCoordinatesCorrectlyRoundedWithSignsAndExponents) {
+  const LoadedObj obj =
+      parse_obj("v +0.1 -2.5e-1 1E2\nv 0.3 0 0\r\nv 0 0.3 0\rf 1 2 3/1/1\n", "x.obj");
+  ASSERT_EQ(obj.mesh.vertex_count(), 3u);
+  EXPECT_EQ(obj.mesh.bounds.min, glm::vec3(0.0f, -0.25f, 0.0f));
+  EXPECT_EQ(obj.mesh.bounds.max, glm::vec3(0.3f, 0.3f, 100.0f));
+}
+
+// A star of `points` tips: every other vertex is reflex, so a fan from vertex 0 covers area
+// outside the polygon with triangles of the wrong winding.
+std::string star_obj(std::size_t points, double inner = 0.3) {
+  std::string text;
+  char line[96];
+  const double pi = std::acos(-1.0);
+  for (std::size_t i = 0; i < 2 * points; ++i) {
+    const double angle = pi * static_cast<double>(i) / static_cast<double>(points);
+    const double r = i % 2 == 0 ? 1.0 : inner;
+    std::snprintf(line, sizeof line, "v %.17g %.17g 0\n", r * std::cos(angle), r * std::sin(angle));
+    text += line;
+  }
+  text += "f";
+  for (std::size_t i = 0; i < 2 * points; ++i) text += " " + std::to_string(i + 1);
+  return text + "\n";
+}
+
+double shoelace(const std::vector<glm::dvec2>& polygon) {
+  double twice = 0.0;
+  for (std::size_t i = 0; i < polygon.size(); ++i) {
+    const glm::dvec2 &a = polygon[i], &b = polygon[(i + 1) % polygon.size()];
+    twice += a.x * b.y - a.y * b.x;
+  }
+  return 0.5 * twice;
+}
+
+void expect_covers_exactly(const LoadedObj& obj, double area, std::size_t corners) {
+  EXPECT_EQ(obj.mesh.triangle_count(), corners - 2);
+  double sum = 0.0;
+  for (std::size_t t = 0; t < obj.mesh.triangle_count(); ++t) {
+    const glm::dvec3 a(obj.mesh.positions[obj.mesh.indices[3 * t]]);
+    const glm::dvec3 b(obj.mesh.positions[obj.mesh.indices[3 * t + 1]]);
+    const glm::dvec3 c(obj.mesh.positions[obj.mesh.indices[3 * t + 2]]);
+    const double z = glm::cross(b - a, c - a).z;
+    ASSERT_GT(z, 0.0) << "triangle " << t << " is flipped: it covers area outside the polygon";
+    sum += 0.5 * z;
+  }
+  // Triangles all of the polygon's winding whose areas add up to the polygon's cover it
+  // without overlap.
+  EXPECT_NEAR(sum, area, 1e-5 * area);
+}
+
+TEST(ParseObjPolygons, EarClipsNonConvexPolygonsOfAnySize) {
+  for (const std::size_t points : {33u, 40u, 150u, 2000u}) {
+    SCOPED_TRACE(points);
+    const std::string text = star_obj(points);
+    const LoadedObj obj = parse_obj(text, "star.obj");
+    std::vector<glm::dvec2> outline;
+    for (const glm::vec3& p : obj.mesh.positions) outline.emplace_back(p.x, p.y);
+    EXPECT_EQ(obj.stats.polygons_triangulated, 1u);
+    expect_covers_exactly(obj, shoelace(outline), 2 * points);
+  }
+}
+
+// A comb: a (2 teeth - 1) x 1 base with teeth of 1 x 9 on it, so half the corners are reflex
+// and ears are few; listed counter-clockwise seen from +z. Integer coordinates keep every
+// triangle exact in float, however many there are.
+std::string comb_obj(int teeth) {
+  std::string text = "v 0 0 0\nv " + std::to_string(2 * teeth - 1) + " 0 0\n";
+  const auto vertex = [&](int x, int y) {
+    text += "v " + std::to_string(x) + " " + std::to_string(y) + " 0\n";
+  };
+  for (int i = teeth - 1; i >= 0; --i) {
+    vertex(2 * i + 1, 10);
+    vertex(2 * i, 10);
+    if (i > 0) {
+      vertex(2 * i, 1);
+      vertex(2 * i - 1, 1);
+    }
+  }
+  text += "f";
+  for (int i = 1; i <= 4 * teeth; ++i) text += " " + std::to_string(i);
+  return text + "\n";
+}
+
+double comb_area(int teeth) {
+  return (2 * teeth - 1) * 1.0 + teeth * 9.0;
+}
+
+TEST(ParseObjPolygons, EarClipsACombOfManyTeeth) {
+  const LoadedObj obj = parse_obj(comb_obj(100), "comb.obj");
+  expect_covers_exactly(obj, comb_area(100), 400);
+}
+
+// More than 255 vertices in one face: a library that counts them in a byte would hand the
+// rest to the next face.
+TEST(ParseObjPolygons, AFaceOfThousandsOfVerticesLeavesTheNextFaceIntact) {
+  std::string text = star_obj(300);
+  text += "v 5 5 1\nv 6 5 1\nv 5 6 1\nf -3 -2 -1\n";
+  const LoadedObj obj = parse_obj(text, "two.obj");
+  EXPECT_EQ(obj.stats.faces_read, 2u);
+  EXPECT_EQ(obj.mesh.triangle_count(), 598u + 1u);
+}
+
+TEST(ParseObjPolygons, LargestFaceLoadsAndOneMoreIsRefusedWithTheBound) {
+  const int teeth = static_cast<int>(kMaxFaceVertices / 4);
+  expect_covers_exactly(parse_obj(comb_obj(teeth), "largest.obj"), comb_area(teeth),
+                        kMaxFaceVertices);
+  std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf";
+  for (std::size_t i = 0; i <= kMaxFaceVertices; ++i) text += " " + std::to_string(1 + i % 3);
+  EXPECT_THAT(
+      obj_error_of(text + "\n", "huge.obj").what(),
+      AllOf(HasSubstr("huge.obj"), HasSubstr("line 4: face 1"), HasSubstr("more than 16384")));
+}
+
+TEST(ParseObjPolygons, StraightAndDoubledBackCornersAddNoTriangles) {
+  // A square with a midpoint on each side and a repeated corner.
+  const LoadedObj obj = parse_obj(R"(
+v 0 0 0
+v 1 0 0
+v 2 0 0
+v 2 1 0
+v 2 2 0
+v 1 2 0
+v 0 2 0
+v 0 1 0
+f 1 2 3 3 4 5 6 7 8
+)",
+                                  "square.obj");
+  float area = 0.0f;
+  for (std::size_t t = 0; t < obj.mesh.triangle_count(); ++t) area += triangle_area(obj.mesh, t);
+  EXPECT_FLOAT_EQ(area, 4.0f);
 }
 
 // The real test meshes beside the checkout (../shared/models). A clone without them skips

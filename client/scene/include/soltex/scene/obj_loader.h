@@ -8,7 +8,10 @@
 
 #include "soltex/scene/mesh.h"
 
-// Wavefront OBJ files as they come: polygons are triangulated, exact duplicate vertices are
+// Wavefront OBJ files as they come: coordinates are read in double and stay double until the
+// mesh is normalised, so a model far from the origin keeps its shape; a face using a vertex
+// that is not three finite numbers is an error naming both lines; polygons of any size up to
+// kMaxFaceVertices are ear-clipped, exact duplicate vertices are
 // merged, degenerate triangles (a repeated vertex or zero area) are dropped, unreferenced
 // vertices are removed, and smooth normals are computed from the positions (any normals in
 // the file are ignored: many real files have none or wrong ones). Materials, texture
@@ -27,6 +30,11 @@ class ObjError : public std::runtime_error {
   std::string file_;
   std::string problem_;
 };
+
+// More vertices than this in one face is refused: ear clipping costs O(n^2) in the worst case
+// (a comb of this many vertices takes about 0.15 s), and no real model has faces anywhere
+// near this large.
+inline constexpr std::size_t kMaxFaceVertices = 16384;
 
 struct ObjLoadOptions {
   bool normalize = false;  // see normalize_to_unit_box()
