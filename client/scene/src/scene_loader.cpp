@@ -34,8 +34,11 @@ glm::dvec3 read_direction(const JsonValue& value) {
 ImageSize read_image(const JsonValue& value) {
   JsonObject object(value);
   ImageSize image;
-  image.width = object.integer("width", image.width, 1, SceneLimits::kMaxImageSide);
-  image.height = object.integer("height", image.height, 1, SceneLimits::kMaxImageSide);
+  // Refused outside the bounds, never quietly replaced: the output is the size asked for.
+  image.width =
+      object.integer("width", image.width, SceneLimits::kMinImageSide, SceneLimits::kMaxImageSide);
+  image.height = object.integer("height", image.height, SceneLimits::kMinImageSide,
+                                SceneLimits::kMaxImageSide);
   object.reject_unknown_keys();
   return image;
 }
@@ -399,6 +402,36 @@ std::shared_ptr<const Mesh> build_mesh(const MeshRequest& request, const std::st
   }
 }
 
+std::string format_box(const glm::dvec3& min, const glm::dvec3& max) {
+  const auto point = [](const glm::dvec3& p) {
+    return "[" + format_number(p.x) + ", " + format_number(p.y) + ", " + format_number(p.z) + "]";
+  };
+  return point(min) + " to " + point(max);
+}
+
+// A scene that loads is ready to draw: every object's texture volume must be valid (size,
+// scale and translation can each be in bounds and still put it beyond the volume bound), and
+// an explicit one must contain its object.
+void check_volume(const SceneObject& object, std::size_t index, const std::string& file) {
+  const std::string field = "objects[" + std::to_string(index) + "]";
+  try {
+    (void)texture_volume(object, object.material.volume.finest_level_log2.value_or(8));
+  } catch (const SpecError& e) {
+    throw SceneError::from_spec_error(file, field, e);
+  }
+  if (!explicit_volume_contains_object(object)) {
+    const BoundingBox bounds = texture_space_bounds(object);
+    const VolumeRequest::Box& box = *object.material.volume.box;
+    const bool world = object.material.space == TextureSpace::world;
+    throw SceneError(file, field + ".material.volume",
+                     "does not contain object \"" + object.name + "\": in " +
+                         (world ? "world" : "object") + " space the object spans " +
+                         format_box(glm::dvec3(bounds.min), glm::dvec3(bounds.max)) +
+                         ", the volume " + format_box(box.min, box.max) +
+                         " (leave out min and max for a volume fitted to the object)");
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view json_text, const std::string& name_for_errors,
@@ -473,16 +506,7 @@ Scene parse_scene(std::string_view json_text, const std::string& name_for_errors
     }
     scene.objects[i].mesh = mesh;
   }
-  // A scene that loads is ready to draw: every object's texture volume must be valid (size,
-  // scale and translation can each be in bounds and still put it beyond the volume bound).
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    try {
-      (void)texture_volume(scene.objects[i],
-                           scene.objects[i].material.volume.finest_level_log2.value_or(8));
-    } catch (const SpecError& e) {
-      throw SceneError::from_spec_error(file, "objects[" + std::to_string(i) + "]", e);
-    }
-  }
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) check_volume(scene.objects[i], i, file);
   return scene;
 }
 

@@ -4,7 +4,9 @@
 #include <glm/common.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
+#include <glm/vector_relational.hpp>
 #include <limits>
+#include <optional>
 
 namespace soltex {
 namespace {
@@ -70,6 +72,16 @@ Volume padded_cube(const BoundingBox& bounds, int finest_level_log2) {
     wide.extend(glm::dvec3(bounds.max));
   }
   return padded_cube(wide, finest_level_log2);
+}
+
+bool explicit_volume_contains_object(const SceneObject& object) {
+  const std::optional<VolumeRequest::Box>& box = object.material.volume.box;
+  if (!box) return true;
+  const WideBounds bounds = wide_texture_space_bounds(object);
+  if (bounds.empty()) return true;
+  const glm::dvec3 slack = 1e-6 * (box->max - box->min);
+  return glm::all(glm::greaterThanEqual(bounds.min, box->min - slack)) &&
+         glm::all(glm::lessThanEqual(bounds.max, box->max + slack));
 }
 
 Volume texture_volume(const SceneObject& object, int client_finest_level_log2) {

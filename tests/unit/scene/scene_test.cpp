@@ -133,7 +133,7 @@ TEST(ParseScene, ReadsEveryField) {
        "material": {"texture": {"wood": {"ring_spacing": 0.2}, "channels": ["colour", "specular"],
                                 "specular": {"low": 0.1, "high": 0.9}},
                     "space": "world",
-                    "volume": {"min": [-1, -1, -1], "max": [1, 1, 1], "finest_level_log2": 7},
+                    "volume": {"min": [-10, -10, -10], "max": [10, 10, 10], "finest_level_log2": 7},
                     "specular": 0.6, "shininess": 64, "unlit": true}},
       {"name": "b", "mesh": {"box": {"size": [1, 2, 3], "subdivisions": 2}}, "transform": {"scale": 2},
        "double_sided": false,
@@ -176,13 +176,13 @@ TEST(ParseScene, ReadsEveryField) {
   EXPECT_FLOAT_EQ(a.material.texture.specular.high, 0.9f);
   EXPECT_EQ(std::get<WoodParams>(a.material.texture.pattern).ring_spacing, 0.2);
   ASSERT_TRUE(a.material.volume.box.has_value());
-  EXPECT_EQ(a.material.volume.box->max, glm::dvec3(1.0));
+  EXPECT_EQ(a.material.volume.box->max, glm::dvec3(10.0));
   EXPECT_EQ(a.material.volume.finest_level_log2, 7);
   EXPECT_FLOAT_EQ(a.material.specular, 0.6f);
   EXPECT_FLOAT_EQ(a.material.shininess, 64.0f);
   EXPECT_TRUE(a.material.unlit);
   const Volume explicit_volume = texture_volume(a, 10);
-  EXPECT_EQ(explicit_volume.min, glm::dvec3(-1.0));
+  EXPECT_EQ(explicit_volume.min, glm::dvec3(-10.0));
   EXPECT_EQ(explicit_volume.finest_level_log2, 7) << "the scene's level wins";
 
   const SceneObject& b = scene.objects[1];
@@ -289,9 +289,14 @@ INSTANTIATE_TEST_SUITE_P(
                  "objects[0].transform.rotate[1]", "400 is out of range: must be in [-360, 360]"},
         BadScene{"TranslateOutOfRange",
                  [](json& s) {
-                   first_object(s)["transform"] = {{"translate", {0, 0, 1e9}}};
+                   first_object(s)["transform"] = {{"translate", {0, 0, 2e9}}};
                  },
-                 "objects[0].transform.translate[2]", "must be in [-1e+06, 1e+06]"},
+                 "objects[0].transform.translate[2]", "must be in [-1e+09, 1e+09]"},
+        BadScene{"CameraBeyondTheCoordinateBound",
+                 [](json& s) {
+                   s["camera"] = {{"position", {0, -1.5e9, 0}}};
+                 },
+                 "camera.position[1]", "must be in [-1e+09, 1e+09]"},
         BadScene{"NotAnInteger",
                  [](json& s) {
                    first_object(s)["mesh"] = {{"sphere", {{"segments", 3.5}}}};
@@ -359,7 +364,30 @@ INSTANTIATE_TEST_SUITE_P(
                  [](json& s) {
                    s["image"] = {{"width", 100000}};
                  },
-                 "image.width", "must be in [1, 16384]"},
+                 "image.width", "must be in [16, 8192]"},
+        BadScene{"ImageLargerThanTheBound",
+                 [](json& s) {
+                   s["image"] = {{"width", 1024}, {"height", 16384}};
+                 },
+                 "image.height", "16384 is out of range: must be in [16, 8192]"},
+        BadScene{"ImageSmallerThanTheBound",
+                 [](json& s) {
+                   s["image"] = {{"width", 1}, {"height", 1}};
+                 },
+                 "image.width", "1 is out of range: must be in [16, 8192]"},
+        BadScene{"VolumeBesideItsObject",
+                 [](json& s) {
+                   first_object(s)["name"] = "ball";
+                   first_object(s)["material"]["volume"] = {{"min", {5, 5, 5}}, {"max", {6, 6, 6}}};
+                 },
+                 "objects[0].material.volume",
+                 "does not contain object \"ball\": in object space the object spans"},
+        BadScene{
+            "VolumeCuttingItsObject",
+            [](json& s) {
+              first_object(s)["material"]["volume"] = {{"min", {-1, -1, -1}}, {"max", {1, 1, 0.5}}};
+            },
+            "objects[0].material.volume", "does not contain object \"object 0\""},
         BadScene{"OrbitWithoutRate",
                  [](json& s) {
                    s["camera"] = {{"orbit", {{"frames", 10}}}};
@@ -658,6 +686,36 @@ TEST(SceneBounds, TextureVolumeBeyondItsBoundIsRefusedAtLoad) {
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("volume.min.x"), std::string::npos) << e.what();
   }
+}
+
+// Translations and the camera reach 1e9, where a double still resolves a float's step on a
+// unit object; an explicit volume there must contain the object like anywhere else.
+TEST(SceneBounds, ObjectsAndCameraAsFarAsABillionLoad) {
+  const Scene scene = parse_scene(R"({
+    "camera": {"position": [1e9, 1e9, -999999996], "target": [1e9, 1e9, -1e9]},
+    "lights": [{"point": {"position": [-1e9, 1e9, 1e9]}}],
+    "objects": [
+      {"mesh": "sphere", "transform": {"translate": [1e9, 1e9, -1e9]},
+       "material": {"texture": {"marble": {}}, "space": "world",
+                    "volume": {"min": [999999998, 999999998, -1000000002],
+                               "max": [1000000002, 1000000002, -999999998]}}},
+      {"mesh": "box", "transform": {"translate": [-1e9, 0, 0]},
+       "material": {"texture": {"marble": {}}, "space": "world"}}],
+    "clip_planes": [{"normal": [1, 0, 0], "offset": -1e9}]
+  })",
+                                  "far.json");
+  EXPECT_EQ(scene.objects[0].transform.translate, glm::dvec3(1e9, 1e9, -1e9));
+  const Volume fitted = texture_volume(scene.objects[1], 8);
+  EXPECT_NEAR(0.5 * (fitted.min.x + fitted.max.x), -1e9, 1e-6);
+  EXPECT_GT(fitted.max.x - fitted.min.x, 1.0);
+
+  json shifted = json::parse(R"({"objects": [{"mesh": "sphere",
+    "transform": {"translate": [1e9, 0, 0]},
+    "material": {"texture": {"marble": {}}, "space": "world",
+                 "volume": {"min": [-1, -1, -1], "max": [1, 1, 1]}}}]})");
+  EXPECT_THAT(scene_error_of_json(shifted).what(),
+              AllOf(HasSubstr("objects[0].material.volume"), HasSubstr("in world space"),
+                    HasSubstr("object 0")));
 }
 
 TEST(SceneBounds, ObjPathsMustBeRegularFiles) {

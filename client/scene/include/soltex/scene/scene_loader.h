@@ -22,12 +22,16 @@ Scene parse_scene(std::string_view json_text, const std::string& name_for_errors
 
 // Bounds on the size of a scene.
 struct SceneLimits {
-  static constexpr int kMaxImageSide = 16384;
+  // An image side below 16 pixels shows nothing; above 8192 one frame's colour, depth and
+  // coverage buffers pass 1 GiB.
+  static constexpr int kMinImageSide = 16;
+  static constexpr int kMaxImageSide = 8192;
   static constexpr int kMaxObjects = 1024;
   static constexpr int kMaxLights = 64;
   static constexpr int kMaxClipPlanes = 16;
   static constexpr int kMaxOrbitFrames = 100000;
-  static constexpr double kMaxCoordinate = 1e6;  // camera, lights, clip planes
+  // Camera, lights and clip planes; as wide as TransformLimits::kMaxTranslate (see there).
+  static constexpr double kMaxCoordinate = 1e9;
   // All distinct meshes together: each shape is bounded, but a thousand of them need not be.
   static constexpr std::size_t kMaxTotalTriangles = 16u << 20;
 };

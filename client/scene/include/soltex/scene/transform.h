@@ -21,7 +21,10 @@ struct Transform {
 
 // Bounds a scene file's transform must keep.
 struct TransformLimits {
-  static constexpr double kMaxTranslate = 1e6;
+  // Positions are doubles until they are made relative to the camera: at 1e9 a double still
+  // resolves 1.2e-7, a float's resolution on a unit-sized object, so an object there draws as
+  // it does at the origin. Further out it would visibly quantize.
+  static constexpr double kMaxTranslate = 1e9;
   static constexpr double kMaxRotateDegrees = 360.0;
   static constexpr double kMinScale = 1e-6;
   static constexpr double kMaxScale = 1e6;
