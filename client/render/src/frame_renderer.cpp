@@ -117,33 +117,49 @@ void FrameRenderer::prepare_readers(const PreparedScene& scene) {
   sampler_textures_ = std::move(texture_ids);
 }
 
-render::FrameShading FrameRenderer::frame_shading(
-    const PreparedScene& scene, const render::SurfaceUnprojection& unprojection) const {
-  render::FrameShading shading{{}, prepare_lights(*scene.scene), unprojection, options_, true};
+render::FrameShading FrameRenderer::frame_shading(const PreparedScene& scene,
+                                                  const render::SurfaceUnprojection& unprojection,
+                                                  const RenderOptions& options) const {
+  render::FrameShading shading{{}, prepare_lights(*scene.scene), unprojection, options, true};
   // Quadrilinear needs the fraction and keeps the continuous level of detail.
-  shading.by_table = options_.filter != SampleFilter::quadrilinear;
+  shading.by_table = options.filter != SampleFilter::quadrilinear;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const PreparedObject& o = scene.objects[i];
     render::ObjectShading object;
     object.material = render::material_inputs(o);
     object.surface = render::TextureSurface(o);
-    if (evaluated_per_pixel(o.texture, options_.access)) object.evaluator = evaluators_[i].get();
-    if (shading.by_table) object.level_table = NearestLevelTable(o.layout, options_.level_bias);
+    if (evaluated_per_pixel(o.texture, options.access)) object.evaluator = evaluators_[i].get();
+    if (shading.by_table) object.level_table = NearestLevelTable(o.layout, options.level_bias);
     object.level0_spacing = o.layout.filter_width(0);
-    object.cached_inset = render::has_hard_edges(o.texture) ? render::kCachedInset : 0.0;
-    object.rgb_fast_path = shading.by_table && !options_.false_colour_levels &&
+    object.cached_inset = render::has_planar_edges(o.texture) ? render::kCachedInset : 0.0;
+    object.rgb_fast_path = shading.by_table && !options.false_colour_levels &&
                            !object.material.unlit && o.channels == 3;
     shading.objects.push_back(object);
   }
   return shading;
 }
 
+Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, int width,
+                            int height) {
+  const int k = options_.antialias;
+  if (k <= 1) return render_pixels(scene, camera, width, height, options_);
+  // k x k sub-pixels per pixel, averaged: silhouettes and clip edges get their coverage.
+  // Cached textures keep the pixel's level (each sub-pixel's footprint times k), so they read
+  // the bricks a frame without anti-aliasing reads; evaluated ones filter over the sub-pixel,
+  // as the supersampled reference does.
+  RenderOptions sub_pixels = options_;
+  sub_pixels.cached_footprint_scale = static_cast<float>(k);
+  Frame frame = render_pixels(scene, camera, width * k, height * k, sub_pixels);
+  frame.image = box_downsample(frame.image, k);
+  return frame;
+}
+
 // A frame's one way through: each raster tile is shaded by the thread that rasterized it, right
 // after, while its G-buffer is still in that core's cache (a tile no triangle reached comes as
 // the shared empty buffer), in square pieces whose pixels read few bricks; then the threads'
 // misses and counts are gathered.
-Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, int width,
-                            int height) {
+Frame FrameRenderer::render_pixels(const PreparedScene& scene, const Camera& camera, int width,
+                                   int height, const RenderOptions& options) {
   Frame frame;
   frame.image = Image(width, height);
   const auto start = Clock::now();
@@ -153,7 +169,8 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
   cache_.begin_frame();
   prepare_readers(scene);
   const render::FrameShading shading = frame_shading(
-      scene, render::SurfaceUnprojection{glm::inverse(vp), camera.position, width, height});
+      scene, render::SurfaceUnprojection{glm::inverse(vp), camera.position, width, height},
+      options);
   std::vector<std::unique_ptr<render::TileShader>> shaders;
   for (auto& worker_samplers : samplers_) {
     shaders.push_back(std::make_unique<render::TileShader>(shading, worker_samplers));
@@ -171,7 +188,7 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
     }
     shader.counts().shading += Clock::now() - shade_start;
   };
-  if (options_.keep_gbuffer) {
+  if (options.keep_gbuffer) {
     frame.stats.raster = rasterizer_.render(
         view, relative.objects, gbuffer_, [&](int x0, int y0, int x1, int y1, int worker_index) {
           shade_raster_tile(gbuffer_, 0, 0, x0, y0, x1, y1, worker_index);
@@ -234,10 +251,8 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
   RenderOptions evaluated = options_;
   evaluated.access = TextureAccess::evaluated;
   evaluated.false_colour_levels = false;
-  std::swap(options_, evaluated);
-  const render::FrameShading shading =
-      frame_shading(scene, render::SurfaceUnprojection{glm::inverse(vp), camera.position, w, h});
-  std::swap(options_, evaluated);
+  const render::FrameShading shading = frame_shading(
+      scene, render::SurfaceUnprojection{glm::inverse(vp), camera.position, w, h}, evaluated);
   Image& sub_pixels = reference_image_;
   sub_pixels = Image(w, h);
   const int row_blocks = (h + kReferenceRows - 1) / kReferenceRows;
@@ -254,28 +269,7 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
       shader.shade(g, 0, 0, x, first, std::min(w, x + render::TileShader::kTile), end, sub_pixels);
     }
   });
-  // The average of the k x k sub-pixels' bytes: their 8-bit rounding, averaged, is within
-  // half a step of the average of the unrounded colours.
-  Image image(width, height);
-  const float weight = 1.0f / (255.0f * static_cast<float>(k * k));
-  const int image_blocks = (height + kReferenceRows - 1) / kReferenceRows;
-  rasterizer_.parallel_for(static_cast<std::size_t>(image_blocks), [&](std::size_t block, int) {
-    const int first = static_cast<int>(block) * kReferenceRows;
-    const int end = std::min(height, first + kReferenceRows);
-    for (int y = first; y < end; ++y) {
-      for (int x = 0; x < width; ++x) {
-        std::array<unsigned, 3> sum{};
-        for (int sy = 0; sy < k; ++sy) {
-          for (int sx = 0; sx < k; ++sx) {
-            const uint8_t* rgb = sub_pixels.pixel(x * k + sx, y * k + sy);
-            for (int c = 0; c < 3; ++c) sum[c] += rgb[c];
-          }
-        }
-        image.set(x, y, static_cast<float>(sum[0]) * weight, static_cast<float>(sum[1]) * weight,
-                  static_cast<float>(sum[2]) * weight);
-      }
-    }
-  });
+  Image image = box_downsample(sub_pixels, k);
   if (k > 1) {
     // Kept only at 1x: a supersampled reference is k^2 frames of memory, and a one-off.
     reference_gbuffer_ = GBuffer{};

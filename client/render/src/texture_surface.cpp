@@ -5,11 +5,9 @@
 
 namespace soltex::render {
 
-bool has_hard_edges(const TextureSpec& spec) {
+bool has_planar_edges(const TextureSpec& spec) {
   return std::holds_alternative<StripesParams>(spec.pattern) ||
-         std::holds_alternative<CheckerParams>(spec.pattern) ||
-         std::holds_alternative<RingsParams>(spec.pattern) ||
-         std::holds_alternative<WoodParams>(spec.pattern);
+         std::holds_alternative<CheckerParams>(spec.pattern);
 }
 
 TextureSurface::TextureSurface(const PreparedObject& object) {

@@ -20,15 +20,16 @@
 //    (kEvaluatedInset) and hardly moves anything else;
 //  - looked up in a brick of level l, trilinear interpolation reads samples up to h_l away,
 //    each averaged over a box of width h_l, so the step must be 1.5 h_l (kCachedInset) for
-//    every sample read to lie inside. Only textures with hard edges need it: for smooth ones
-//    the value just inside is the value on the surface.
+//    every sample read to lie inside. Only textures whose edges are planes need it (stripes,
+//    checkers): a face or a cap can lie on a plane, but not all over a ring's cylinder, and on
+//    a curved surface the step would move a ring's edge by a good part of a pixel.
 namespace soltex::render {
 
 inline constexpr double kEvaluatedInset = 1.0 / 16.0;  // of the pixel's footprint
 inline constexpr double kCachedInset = 1.5;            // of the level's spacing
 
-// Whether a texture's field jumps somewhere (stripes, checkers, rings, wood grain).
-bool has_hard_edges(const TextureSpec& spec);
+// Whether a texture's field jumps across planes (stripes, checkers).
+bool has_planar_edges(const TextureSpec& spec);
 
 // One object's map from world-space normals to unit texture-space normals.
 class TextureSurface {

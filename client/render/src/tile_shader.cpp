@@ -80,7 +80,7 @@ void TileShader::shade_evaluated(const GBuffer& g, const Pixel& pixel, const Obj
 void TileShader::shade_cached(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
                               TextureSampler& sampler, Image& image) {
   const RenderOptions& options = frame_.options;
-  const float footprint = g.footprint[pixel.index];
+  const float footprint = g.footprint[pixel.index] * options.cached_footprint_scale;
   const double lod = frame_.by_table ? static_cast<double>(object.level_table.level(footprint))
                                      : sampler.level_of_detail(footprint) + options.level_bias;
   glm::dvec3 p = g.texture_position[pixel.index];

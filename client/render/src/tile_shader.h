@@ -26,7 +26,7 @@ struct ObjectShading {
   const TextureEvaluator* evaluator = nullptr;
   NearestLevelTable level_table;  // for nearest and trilinear lookups
   double level0_spacing = 0.0;    // h_0, for the inward step of cached lookups
-  double cached_inset = 0.0;      // in level spacings: kCachedInset for hard edges, else 0
+  double cached_inset = 0.0;      // in level spacings: kCachedInset for planar edges, else 0
   // Lit, three channels, a tabled level: the fast path (TextureSampler::locate_rgb()).
   bool rgb_fast_path = false;
 };

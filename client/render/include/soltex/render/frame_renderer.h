@@ -42,6 +42,12 @@ struct RenderOptions {
   double level_bias = 0.0;           // added to every pixel's level of detail (negative: finer)
   bool false_colour_levels = false;  // show the level each pixel drew from instead of shading
   int threads = 0;                   // 0: one per core
+  // Sub-pixels per axis (1..4) whose colours each pixel averages: silhouettes and clip edges
+  // anti-aliased by supersampling, at antialias^2 times the frame's raster and shading work.
+  int antialias = 1;
+  // Cached lookups choose their level for the pixel's footprint times this (anti-aliasing's
+  // sub-pixels read the level of the whole pixel).
+  float cached_footprint_scale = 1.0f;
   // Keep the whole frame's G-buffer for last_gbuffer() (tests, tools). Off, each tile is
   // shaded from a tile-sized G-buffer as soon as it is rasterized, and no frame-sized one is
   // written, read back, or (on the first frame) faulted in.
@@ -97,7 +103,10 @@ class FrameRenderer {
   // while the scene's textures stay the same.
   void prepare_readers(const PreparedScene& scene);
   render::FrameShading frame_shading(const PreparedScene& scene,
-                                     const render::SurfaceUnprojection& unprojection) const;
+                                     const render::SurfaceUnprojection& unprojection,
+                                     const RenderOptions& options) const;
+  Frame render_pixels(const PreparedScene& scene, const Camera& camera, int width, int height,
+                      const RenderOptions& options);
   void gather(std::vector<std::unique_ptr<render::TileShader>>& shaders, Frame& frame);
 
   BrickCache& cache_;

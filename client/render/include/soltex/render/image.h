@@ -38,6 +38,10 @@ struct Image {
   }
 };
 
+// Each k x k block of `image` averaged into one pixel (the 8-bit values averaged, rounded half
+// up); `image`'s sizes must be multiples of k.
+Image box_downsample(const Image& image, int k);
+
 // Writes `image` as PNG; throws std::runtime_error naming the path on failure.
 void write_png(const std::filesystem::path& path, const Image& image);
 
