@@ -1,8 +1,33 @@
 #include "headless_session.h"
 
 #include <algorithm>
+#include <climits>
+
+#include "level_cap.h"
 
 namespace soltex::view {
+namespace {
+
+// A frame's misses as the cap lets them be fetched, and whether the frame is final at that
+// cap. Without a cap (or with one no texture reaches) that is the frame's own verdict.
+struct FrameNeeds {
+  std::vector<net::BrickWant> wants;
+  bool complete = false;
+};
+
+FrameNeeds needs_of(const Frame& frame, const LevelCap* cap, const BrickCache* cache,
+                    bool arrived_while_drawing) {
+  if (cap == nullptr) return {frame.misses, frame.complete()};
+  FrameNeeds needs;
+  needs.wants = not_resident(cap->apply(frame.misses), *cache);
+  // Every brick the cap allows is resident and none arrived during the frame: each pixel
+  // drew from the brick it draws from at this cap (a pixel asking for a finer level falls
+  // back to its ancestor at the cap).
+  needs.complete = needs.wants.empty() && !arrived_while_drawing;
+  return needs;
+}
+
+}  // namespace
 
 HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedScene& scene,
                                       const Camera& camera, int width, int height,
@@ -13,29 +38,55 @@ HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedSce
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
   };
   HeadlessResult result;
+  LevelCap levels(scene);
+  result.refined_level_log2 = levels.finest_log2();
+  levels.set_cap_log2(options.start_level_log2);
+  // Null once nothing is capped: from then on the run is a run without a start level.
+  LevelCap* cap = options.start_level_log2 > 0 && options.cache != nullptr && levels.active()
+                      ? &levels
+                      : nullptr;
+  result.start_level_log2 = cap != nullptr ? cap->cap_log2() : result.refined_level_log2;
   uint64_t received = source.stats().received;
   int stalled = 0;  // frames in a row that missed bricks while nothing was on its way
   for (;;) {
+    const uint64_t received_before_frame = source.stats().received;
     Frame frame = renderer.render(scene, camera, width, height);
     ++result.frames;
     if (result.frames == 1) result.first_frame_ms = elapsed_ms();
     result.last_frame_ms = frame.stats.raster_ms + frame.stats.shade_ms;
     result.last_stats = frame.stats;
-    const bool complete = frame.complete();
-    if (options.on_misses && !frame.misses.empty())
-      options.on_misses(elapsed_ms() / 1e3, frame.misses);
-    source.want(std::move(frame.misses));
+    const FrameNeeds needs =
+        needs_of(frame, cap, options.cache, source.stats().received != received_before_frame);
+    if (options.on_misses && !needs.wants.empty())
+      options.on_misses(elapsed_ms() / 1e3, needs.wants);
+    source.want(needs.wants);
     result.image = std::move(frame.image);
-    if (complete && source.idle()) {
-      result.converged_ms = elapsed_ms();
-      return result;
+    if (needs.complete && source.idle()) {
+      if (cap == nullptr) {
+        result.converged_ms = elapsed_ms();
+        if (result.start_converged_ms < 0.0) result.start_converged_ms = result.converged_ms;
+        return result;
+      }
+      // Idle at the cap: lift it as far as the cache holds what the finer levels need.
+      if (result.start_converged_ms < 0.0) result.start_converged_ms = elapsed_ms();
+      const int next = next_cap(*cap, frame.misses, *options.cache, INT_MAX);
+      if (next == cap->cap_log2()) {
+        result.refined_level_log2 = next;  // the budget stops it here: converged as it is
+        result.converged_ms = elapsed_ms();
+        return result;
+      }
+      cap->set_cap_log2(next);
+      if (!cap->active()) cap = nullptr;
+      received = source.stats().received;
+      stalled = 0;
+      continue;  // draw at once: the new cap's misses go out with the next frame
     }
     if (elapsed_ms() > static_cast<double>(options.max_time.count())) return result;
     // Bricks missing, none on its way and none arrived since the last frame: they failed (a
     // failed brick is not asked for again), and drawing on would change nothing. Two frames
     // in a row, because bricks that land during a frame leave it incomplete once.
     const uint64_t now_received = source.stats().received;
-    stalled = !complete && source.idle() && now_received == received ? stalled + 1 : 0;
+    stalled = !needs.complete && source.idle() && now_received == received ? stalled + 1 : 0;
     received = now_received;
     if (stalled >= 2) {
       result.bricks_failed = true;

@@ -16,6 +16,11 @@ namespace soltex::view {
 struct HeadlessOptions {
   std::chrono::milliseconds max_time{30000};  // give up converging after this
   bool exact = false;                         // fail unless every brick arrived
+  // Converge first with no texture finer than 2^start_level_log2 samples per axis (the
+  // capability's start), then refine to the prepared levels as far as `cache` holds them
+  // (level_cap.h). 0, or no cache: draw at the prepared levels from the start.
+  int start_level_log2 = 0;
+  const BrickCache* cache = nullptr;
   // Called with each frame's misses before they go to the source (e.g. to record them).
   std::function<void(double seconds, const std::vector<net::BrickWant>& misses)> on_misses;
 };
@@ -25,6 +30,12 @@ struct HeadlessResult {
   int frames = 0;
   double first_frame_ms = 0.0;
   double converged_ms = -1.0;  // -1: did not converge
+  // With a start level: when the picture at the start level converged (-1: it did not), and
+  // the finest resolution (log2) the run refined to; below the prepared levels when the
+  // cache budget stopped it there.
+  double start_converged_ms = -1.0;
+  int start_level_log2 = 0;
+  int refined_level_log2 = 0;
   // Did not converge because bricks failed for good (refused, or corrupt after every
   // refetch): nothing was on its way any more, so it stopped before max_time.
   bool bricks_failed = false;
@@ -35,6 +46,8 @@ struct HeadlessResult {
 // Draws frames until nothing is missing and nothing is pending (converged), handing each
 // frame's misses to the source; every frame is drawn at once from what the cache holds. Stops
 // early, not converged, when the frame still misses bricks that nobody is fetching any more.
+// With a start level it converges at that cap first, then lifts the cap in one step (the
+// output is the final picture only, so the levels in between would be wasted fetches).
 HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedScene& scene,
                                       const Camera& camera, int width, int height,
                                       net::BrickSource& source, const HeadlessOptions& options);

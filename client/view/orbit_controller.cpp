@@ -57,6 +57,13 @@ void OrbitController::rotate(double yaw_degrees, double pitch_degrees) {
   update_position();
 }
 
+void OrbitController::set_turn(double degrees) {
+  if (!std::isfinite(degrees)) return;
+  // Yaw is measured from the built-with camera about up_, in the sense orbited() turns.
+  yaw_degrees_ = std::remainder(degrees, 360.0);
+  update_position();
+}
+
 void OrbitController::zoom(double steps) {
   if (!std::isfinite(steps)) return;
   distance_ = std::clamp(distance_ * std::pow(kZoomPerStep, steps), min_distance_, max_distance_);

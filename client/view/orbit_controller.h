@@ -18,6 +18,9 @@ class OrbitController {
   void zoom(double steps);
   // Back to the camera it was built with.
   void reset();
+  // The camera it was built with, turned by `degrees` about the axis through its target along
+  // its up vector (soltex::orbited()), at the current distance: a turntable's frame.
+  void set_turn(double degrees);
 
   const Camera& camera() const { return camera_; }
   double distance() const { return distance_; }

@@ -29,10 +29,23 @@ namespace {
 
 using namespace soltex;
 
+// soltex-view's exit codes (README.md, "Exit codes").
+constexpr int kExitConverged = 0;     // the picture converged (a window: closed normally)
+constexpr int kExitFailure = 1;       // a runtime failure: the server, a file, the network
+constexpr int kExitBadInput = 2;      // a bad command line or scene, or no display for a window
+constexpr int kExitNotConverged = 3;  // written, but not converged: --max-seconds ran out or
+                                      // bricks failed for good (refused, or corrupt each time)
+
 SampleFilter filter_from(const std::string& name) {
   if (name == "nearest") return SampleFilter::nearest;
   if (name == "quadrilinear") return SampleFilter::quadrilinear;
   return SampleFilter::trilinear;
+}
+
+TextureAccess access_from(const std::string& name) {
+  if (name == "cache") return TextureAccess::cached;
+  if (name == "evaluate") return TextureAccess::evaluated;
+  return TextureAccess::automatic;
 }
 
 MipMode mip_from(const std::string& name) {
@@ -50,6 +63,7 @@ int run_window(const Scene& scene, const TextureResolution& resolution, BrickCac
   view::ViewerSettings settings;
   settings.width = choice.width;
   settings.height = choice.height;
+  settings.start_level_log2 = choice.start_level_log2;
   settings.max_frames = max_frames;
   settings.screenshot = screenshot;
   std::unique_ptr<view::ViewerWindow> window;
@@ -59,7 +73,7 @@ int run_window(const Scene& scene, const TextureResolution& resolution, BrickCac
   } catch (const view::WindowUnavailable& e) {
     std::fprintf(stderr, "soltex-view: %s; use --headless --out IMAGE.png without a display\n",
                  e.what());
-    return 2;
+    return kExitBadInput;
   }
   spdlog::info(
       "window {}x{}: left drag orbits, wheel zooms, 1..9/Tab switch textures (0: the scene's), "
@@ -77,7 +91,7 @@ int run_window(const Scene& scene, const TextureResolution& resolution, BrickCac
               static_cast<unsigned long long>(cached.resident_bricks), cached.resident_bytes / 1e6,
               100.0 * cached.hit_rate());
   if (!screenshot.empty()) std::printf("wrote:      %s\n", screenshot.c_str());
-  return 0;
+  return kExitConverged;
 }
 #endif
 
@@ -96,6 +110,7 @@ int main(int argc, char** argv) {
   std::string capability_text;
   std::string filter_name = "trilinear";
   std::string mip_name = "band-limited";
+  std::string access_name = "auto";
   double level_bias = 0.0;
   bool false_colour = false;
   double max_seconds = 30.0;
@@ -114,8 +129,8 @@ int main(int argc, char** argv) {
   app.add_option("--out", out, "PNG to write (headless)")->capture_default_str();
   app.add_flag("--headless", headless, "render until converged, write --out, print statistics");
   app.add_flag("--exact", exact,
-               "wait for every brick (fail if one does not come), so the image depends on the "
-               "settings alone");
+               "wait for every brick, so the image depends on the settings alone (every "
+               "headless run now does: one that does not converge exits 3)");
   app.add_flag("--reference", reference,
                "also render by evaluating the texture per pixel; print PSNR and speed ratio");
   app.add_option("--supersample", supersample, "reference sub-pixels per axis")
@@ -129,25 +144,34 @@ int main(int argc, char** argv) {
   app.add_option("--mip", mip_name, "MIP construction")
       ->check(CLI::IsMember({"point", "band-limited", "supersampled"}))
       ->capture_default_str();
+  app.add_option("--texture-access", access_name,
+                 "how pixels read textures: auto evaluates the cheap analytic patterns (stripes, "
+                 "checkers, rings, colour cube) per pixel and caches the rest; cache or evaluate "
+                 "force one way for every texture")
+      ->check(CLI::IsMember({"auto", "cache", "evaluate"}))
+      ->capture_default_str();
   app.add_option("--level-bias", level_bias, "added to every pixel's level (negative: finer)")
       ->check(CLI::Range(-8.0, 8.0));
   app.add_flag("--false-colour", false_colour, "show each pixel's level in false colour");
-  app.add_option("--max-seconds", max_seconds, "give up converging after this long")
+  app.add_option("--max-seconds", max_seconds, "give up converging after this long (exit 3)")
       ->check(CLI::Range(0.1, 3600.0))
       ->capture_default_str();
   app.add_option("--threads", threads, "render threads (0: one per core)")
       ->check(CLI::Range(0, 256));
   app.add_option("--finest-level", finest_level,
-                 "finest texture level log2 (0: chosen from this machine's capability)")
+                 "finest texture level log2 the picture refines to (0: from the scene's size on "
+                 "screen and this machine's memory; the link only sets where it starts)")
       ->check(CLI::Range(0, 14));
   app.add_option("--brick-size", brick_size,
                  "cells per brick side: 16 draws warm frames faster, 8 fetches fewer bytes and "
                  "converges sooner from a cold start (docs/PERFORMANCE.md)")
       ->check(CLI::IsMember({8, 16}))
       ->capture_default_str();
-  app.add_option("--width", width, "frame width (0: the scene's, scaled to this machine)")
+  app.add_option("--width", width,
+                 "frame width (0: the scene's; a window scales the scene's to this machine)")
       ->check(CLI::Range(0, 16384));
-  app.add_option("--height", height, "frame height (0: the scene's, scaled to this machine)")
+  app.add_option("--height", height,
+                 "frame height (0: the scene's; a window scales the scene's to this machine)")
       ->check(CLI::Range(0, 16384));
   auto* headless_flag = app.get_option("--headless");
   app.add_option("--frames", window_frames,
@@ -162,18 +186,24 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   net::ChannelSecurityOptions security_options;
   net::add_channel_security_options(app, security_options);
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11's own codes (105, 106, ...) would say nothing to a script: every bad command
+    // line is 2; --help and --version are 0.
+    return app.exit(e) == 0 ? kExitConverged : kExitBadInput;
+  }
   spdlog::set_level(spdlog::level::from_str(log_level));
   spdlog::set_pattern("%^%l%$ soltex-view: %v");
   if (!local && server.empty()) {
     std::fprintf(stderr, "soltex-view: give --server HOST:PORT, or --local to run without one\n");
-    return 2;
+    return kExitBadInput;
   }
 #ifndef SOLTEX_HAVE_SDL2
   if (!headless) {
     std::fprintf(stderr,
                  "soltex-view: this build has no window support; use --headless --out IMAGE.png\n");
-    return 2;
+    return kExitBadInput;
   }
 #endif
 
@@ -200,15 +230,22 @@ int main(int argc, char** argv) {
       capability::measure_link(*source, scene.objects.front().material.texture, measured);
     }
     const capability::Capability effective = capability::apply(measured, override);
+    // Headless output, and a window given a size, keep the size asked for exactly; a window
+    // showing the scene's size shrinks it to what this machine draws in time.
+    capability::ChoiceLimits limits;
+    limits.scale_frame = !headless && width == 0 && height == 0;
     capability::Choice choice =
-        capability::choose(effective, scene, scene.image.width, scene.image.height);
-    if (finest_level > 0) choice.finest_level_log2 = finest_level;
-    if (width > 0) choice.width = width;
-    if (height > 0) choice.height = height;
+        capability::choose(effective, scene, width > 0 ? width : scene.image.width,
+                           height > 0 ? height : scene.image.height, limits);
+    if (finest_level > 0) {
+      choice.finest_level_log2 = finest_level;
+      choice.start_level_log2 = std::min(choice.start_level_log2, finest_level);
+    }
     spdlog::info(
-        "capability: {:.1f} Mpixel/s, {} MiB available, round trip {:.2f} ms, link {:.1f} MB/s{}",
+        "capability: {:.1f} Mpixel/s, {} MiB available, round trip {:.2f} ms, brick latency "
+        "{:.1f} ms, link {:.1f} MB/s{}",
         effective.pixels_per_second / 1e6, effective.available_memory_mb, measured.round_trip_ms,
-        effective.bandwidth_mb_per_s,
+        effective.brick_latency_ms, effective.bandwidth_mb_per_s,
         capability_text.empty() ? "" : " (simulated: " + capability_text + ")");
     for (std::size_t begin = 0; begin < choice.reason.size();) {
       const std::size_t end = choice.reason.find('\n', begin);
@@ -228,6 +265,7 @@ int main(int argc, char** argv) {
                                        MipSettings{mip_from(mip_name), 2}};
     RenderOptions render_options;
     render_options.filter = filter_from(filter_name);
+    render_options.access = access_from(access_name);
     render_options.level_bias = level_bias;
     render_options.false_colour_levels = false_colour;
     render_options.threads = threads;
@@ -247,6 +285,8 @@ int main(int argc, char** argv) {
     view::HeadlessOptions options;
     options.max_time = std::chrono::milliseconds(static_cast<long>(max_seconds * 1000));
     options.exact = exact;
+    options.start_level_log2 = choice.start_level_log2;
+    options.cache = cache.get();
     std::ofstream record_file;
     std::optional<load::RequestLogWriter> recorder;
     if (!record_path.empty()) {
@@ -267,6 +307,14 @@ int main(int argc, char** argv) {
     std::printf("scene:      %s, %zu objects, %dx%d, finest level 2^%d, %s filter\n",
                 scene.name.c_str(), scene.objects.size(), choice.width, choice.height,
                 choice.finest_level_log2, filter_name.c_str());
+    if (result.start_level_log2 < choice.finest_level_log2) {
+      std::printf(
+          "levels:     started at 2^%d (converged there after %.1f ms), refined to 2^%d%s\n",
+          result.start_level_log2, result.start_converged_ms, result.refined_level_log2,
+          result.refined_level_log2 < choice.finest_level_log2
+              ? " (the cache budget holds no finer)"
+              : "");
+    }
     std::printf("frames:     %d; first frame after %.1f ms; ", result.frames,
                 result.first_frame_ms);
     if (result.converged_ms >= 0.0) {
@@ -329,13 +377,16 @@ int main(int argc, char** argv) {
           ref_ms, supersample, warm_ms, ref_ms / warm_ms, psnr(result.image, ref),
           ref_path.c_str());
     }
-    if (exact && result.converged_ms < 0.0) return 1;
-    return 0;
+    return result.converged_ms >= 0.0 ? kExitConverged : kExitNotConverged;
   } catch (const SceneError& e) {
     std::fprintf(stderr, "soltex-view: %s\n", e.what());
-    return 2;
+    return kExitBadInput;
+  } catch (const std::invalid_argument& e) {
+    // A bad --capability item or a refused texture spec: the input, named in the message.
+    std::fprintf(stderr, "soltex-view: %s\n", e.what());
+    return kExitBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "soltex-view: %s\n", e.what());
-    return 1;
+    return kExitFailure;
   }
 }

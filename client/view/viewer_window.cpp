@@ -6,6 +6,7 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
+#include <climits>
 #include <cstdlib>
 #include <exception>
 #include <optional>
@@ -15,8 +16,10 @@
 #include <vector>
 
 #include "lecture_textures.h"
+#include "level_cap.h"
 #include "object_picker.h"
 #include "orbit_controller.h"
+#include "turntable.h"
 #include "window_title.h"
 
 namespace soltex::view {
@@ -103,7 +106,11 @@ struct ViewerWindow::Impl {
   void handle(const SDL_Event& event);
   void handle_key(const SDL_KeyboardEvent& key);
   void mark_interaction();
+  void take_camera();  // the user moves the camera: the scene's orbit stops
   bool interacting(Clock::time_point now) const;
+  // Busy (the user interacting, the turntable turning): fetch no finer than the start.
+  // Idle, converged at the cap: lift it one level if the cache holds what that needs.
+  void update_cap(bool busy);
 
   // The objects a texture key applies to: the one under the cursor, else all.
   std::vector<std::size_t> texture_targets(bool all);
@@ -113,6 +120,7 @@ struct ViewerWindow::Impl {
   void switch_textures(bool all, Choose chosen);
   void move_clip_planes(double distance);
   void rebuild_renderer();
+  void prepare();  // prepare_scene() and a cap for its textures, at the current cap
 
   double level_bias() const;
   void draw_frame(ViewerResult& result, Clock::time_point run_start);
@@ -136,6 +144,10 @@ struct ViewerWindow::Impl {
   PreparedScene prepared;
   std::unique_ptr<FrameRenderer> renderer;
   OrbitController orbit;
+  Turntable turntable;
+  LevelCap cap;
+  std::vector<net::BrickWant> last_misses;  // the last frame's, before the cap
+  bool complete_at_cap = false;             // the last frame drew all it draws at the cap
   LevelBiasController bias_controller;
   bool adaptive_bias;
   ObjectPicker picker;
@@ -167,6 +179,7 @@ ViewerWindow::Impl::Impl(Scene scene_to_show, const TextureResolution& texture_r
       options(render_options),
       settings(viewer_settings),
       orbit(scene.camera),
+      turntable(scene.orbit),
       bias_controller(viewer_settings.level_bias),
       adaptive_bias(viewer_settings.adaptive_level_bias) {
   if (settings.width <= 0 || settings.height <= 0) {
@@ -190,8 +203,39 @@ ViewerWindow::Impl::Impl(Scene scene_to_show, const TextureResolution& texture_r
 
   for (const SceneObject& object : scene.objects) scene_textures.push_back(object.material.texture);
   texture_choice.assign(scene.objects.size(), -1);
-  prepared = prepare_scene(scene, resolution, source);
+  cap.set_cap_log2(settings.start_level_log2 > 0 ? settings.start_level_log2 : INT_MAX);
+  prepare();
   rebuild_renderer();
+}
+
+void ViewerWindow::Impl::prepare() {
+  prepared = prepare_scene(scene, resolution, source);
+  LevelCap fresh(prepared);
+  fresh.set_cap_log2(cap.cap_log2());
+  cap = std::move(fresh);
+  complete_at_cap = false;
+}
+
+void ViewerWindow::Impl::update_cap(bool busy) {
+  const int start = settings.start_level_log2 > 0 ? settings.start_level_log2 : INT_MAX;
+  if (busy) {
+    // Bricks finer than the start would take the link from what the moving view needs;
+    // those already resident still draw (the renderer uses the finest level it holds).
+    if (cap.cap_log2() > start) cap.set_cap_log2(start);
+    return;
+  }
+  // The last frame is final at this cap: all it wanted was resident, nothing is on its way,
+  // and nothing arrived since (which would call for another frame first).
+  if (!complete_at_cap || !cap.active() || !source.idle() ||
+      source.stats().received != received_at_last_frame) {
+    return;
+  }
+  const int next = next_cap(cap, last_misses, cache, 1);
+  if (next == cap.cap_log2()) return;
+  cap.set_cap_log2(next);
+  complete_at_cap = false;
+  dirty = true;
+  spdlog::debug("still: refining to level 2^{}", next);
 }
 
 void ViewerWindow::Impl::rebuild_renderer() {
@@ -206,6 +250,11 @@ double ViewerWindow::Impl::level_bias() const {
 void ViewerWindow::Impl::mark_interaction() {
   last_interaction = Clock::now();
   dirty = true;
+}
+
+void ViewerWindow::Impl::take_camera() {
+  turntable.stop();
+  mark_interaction();
 }
 
 bool ViewerWindow::Impl::interacting(Clock::time_point now) const {
@@ -234,7 +283,7 @@ void ViewerWindow::Impl::handle(const SDL_Event& event) {
         // Dragging right turns the scene to the right: the camera goes the other way.
         orbit.rotate(-kOrbitDegreesPerPixel * event.motion.xrel,
                      kOrbitDegreesPerPixel * event.motion.yrel);
-        mark_interaction();
+        take_camera();
       }
       break;
     case SDL_MOUSEWHEEL: {
@@ -246,7 +295,7 @@ void ViewerWindow::Impl::handle(const SDL_Event& event) {
       if (event.wheel.direction == SDL_MOUSEWHEEL_FLIPPED) steps = -steps;
       if (steps != 0.0) {
         orbit.zoom(steps);
-        mark_interaction();
+        take_camera();
       }
       break;
     }
@@ -320,6 +369,7 @@ void ViewerWindow::Impl::handle_key(const SDL_KeyboardEvent& key) {
       break;
     case SDLK_r:
       orbit.reset();
+      turntable.restart();
       mark_interaction();
       break;
     default:
@@ -355,7 +405,7 @@ void ViewerWindow::Impl::switch_textures(bool all, Choose chosen) {
   for (std::size_t i : targets) texture_choice[i] = chosen(texture_choice[i]);
   set_textures();
   try {
-    prepared = prepare_scene(scene, resolution, source);
+    prepare();
   } catch (const std::exception& e) {
     // `prepared` is untouched and still matches the old textures.
     spdlog::error("cannot switch textures: {}", e.what());
@@ -395,11 +445,23 @@ void ViewerWindow::Impl::present(const Image& image) {
 void ViewerWindow::Impl::draw_frame(ViewerResult& result, Clock::time_point run_start) {
   const auto start = Clock::now();
   const bool interacting_now = interacting(start);
+  if (const std::optional<double> turn = turntable.next_angle(start)) {
+    orbit.set_turn(*turn);
+    last_interaction = start;  // a moving view: hold the frame time, fetch coarse
+  }
   // Bricks arriving from here on are not in this frame, and call for the next one.
   received_at_last_frame = source.stats().received;
   renderer->set_level_bias(level_bias());
   Frame frame = renderer->render(prepared, orbit.camera(), settings.width, settings.height);
-  source.want(std::move(frame.misses));
+  if (cap.active()) {
+    std::vector<net::BrickWant> wants = not_resident(cap.apply(frame.misses), cache);
+    complete_at_cap = wants.empty() && source.stats().received == received_at_last_frame;
+    source.want(std::move(wants));
+  } else {
+    complete_at_cap = frame.complete();
+    source.want(frame.misses);
+  }
+  last_misses = std::move(frame.misses);
   present(frame.image);
   const auto end = Clock::now();
 
@@ -467,6 +529,8 @@ ViewerResult ViewerWindow::Impl::run() {
     // The interaction just ended: one more frame, which drops the adaptive bias.
     if (was_interacting && !interacting_now) dirty = true;
     was_interacting = interacting_now;
+    if (turntable.playing()) dirty = true;
+    update_cap(interacting_now || turntable.playing());
 
     const bool bricks_arrived = source.stats().received != received_at_last_frame;
     if (dirty || bricks_arrived || draw_always) {

@@ -27,6 +27,10 @@ struct ViewerSettings {
   std::filesystem::path screenshot;  // the last frame is written here on close; empty: not
   bool adaptive_level_bias = true;
   LevelBiasSettings level_bias;
+  // The capability's start (level_cap.h): while the view moves, no texture is fetched finer
+  // than 2^start_level_log2; a still view refines one level at a time to the prepared levels,
+  // as far as the cache budget holds them. 0: no cap.
+  int start_level_log2 = 0;
 };
 
 struct ViewerResult {
@@ -38,7 +42,8 @@ struct ViewerResult {
 // The interactive window of soltex-view. Every frame is drawn at once from what the brick
 // cache holds and its misses go to the brick source, which fills the cache in the background;
 // later frames refine. Frames are drawn only while something changes (input, arriving
-// bricks), so a converged, untouched view costs nothing.
+// bricks, the scene's camera.orbit turntable, refining), so a converged, untouched view
+// costs nothing. A scene with camera.orbit turns for its frames at the start (turntable.h).
 //
 //   left drag        orbit the camera around its target
 //   wheel            zoom
@@ -49,7 +54,7 @@ struct ViewerResult {
 //   L                false-colour levels
 //   F                texture filter: nearest, trilinear, quadrilinear
 //   A                adaptive level bias on/off
-//   R                camera back to the scene's
+//   R                camera back to the scene's (and the scene's orbit plays again)
 //   Esc, Q           quit
 class ViewerWindow {
  public:

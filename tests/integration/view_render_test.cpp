@@ -190,6 +190,39 @@ TEST(ViewRender, ASlowServerLeavesTheClientDrawing) {
   EXPECT_TRUE(converged.image == render_with(local, local_cache, scene, 6).image);
 }
 
+// The capability's start is a cap, not the end: converged at 2^5 first, the run refines to the
+// prepared levels and ends with the picture a run without a start draws, bit for bit; a cache
+// too small for the finest level stops it where the budget holds, converged.
+TEST(ViewRender, StartingCoarseRefinesToTheSamePicture) {
+  const Scene scene = default_scene();
+  const auto run = [&](std::size_t budget, int start_level) {
+    BrickCache cache(budget);
+    net::LocalBrickSource source(cache);
+    const PreparedScene prepared = prepare_scene(scene, TextureResolution{8, 16, {}}, source);
+    FrameRenderer renderer(cache, RenderOptions{});
+    view::HeadlessOptions headless;
+    headless.max_time = std::chrono::seconds(60);
+    headless.start_level_log2 = start_level;
+    headless.cache = &cache;
+    return view::render_until_converged(renderer, prepared, scene.camera, kWidth, kHeight, source,
+                                        headless);
+  };
+  const view::HeadlessResult direct = run(256u << 20, 0);
+  const view::HeadlessResult refined = run(256u << 20, 5);
+  ASSERT_GE(direct.converged_ms, 0.0);
+  ASSERT_GE(refined.converged_ms, 0.0);
+  EXPECT_EQ(refined.start_level_log2, 5);
+  EXPECT_GE(refined.start_converged_ms, 0.0);
+  EXPECT_LE(refined.start_converged_ms, refined.converged_ms);
+  EXPECT_EQ(refined.refined_level_log2, 8);
+  EXPECT_TRUE(refined.image == direct.image);
+
+  const view::HeadlessResult tight = run(2u << 20, 5);
+  ASSERT_GE(tight.converged_ms, 0.0);
+  EXPECT_GE(tight.refined_level_log2, 5);
+  EXPECT_LT(tight.refined_level_log2, 8);
+}
+
 // Every brick arrives corrupt, so every brick fails after its refetches. The headless loop
 // notices that nothing is on its way any more and stops, not converged, without waiting for
 // its time limit, with the picture drawn from what it has.

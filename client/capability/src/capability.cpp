@@ -8,6 +8,7 @@
 #include <glm/trigonometric.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "soltex/common/brick_cache.h"
 #include "soltex/net/local_brick_source.h"
@@ -117,37 +118,74 @@ Capability measure_machine() {
   return c;
 }
 
-void measure_link(net::BrickSource& source, const TextureSpec& texture, Capability& capability) {
-  Volume probe;
-  probe.min = glm::dvec3(-1.0);
-  probe.max = glm::dvec3(1.0);
-  probe.finest_level_log2 = 7;  // 16^3-cell bricks: level 1 holds 4^3 = 64 of them
-  const uint64_t id = source.register_texture(texture, probe, 16, {});
-  std::vector<net::BrickWant> wants;
-  for (int z = 0; z < 4; ++z)
-    for (int y = 0; y < 4; ++y)
-      for (int x = 0; x < 4; ++x) wants.push_back({{id, 1, {x, y, z}}, 1});
+void fit_link(const LinkTiming& small, const LinkTiming& large, Capability& capability) {
+  if (large.bricks <= 0.0 || large.bytes <= 0.0) return;  // nothing moved: in-process
+  capability.bytes_per_brick = large.bytes / large.bricks;
+  const double extra_bytes = large.bytes - small.bytes;
+  const double extra_seconds = large.seconds - small.seconds;
+  if (extra_bytes <= 0.0 || extra_seconds <= 0.0) {
+    // The larger burst came as fast as the small one: the bandwidth did not limit either.
+    capability.bandwidth_mb_per_s = 0.0;
+    capability.brick_latency_ms = std::max(0.0, small.seconds) * 1e3;
+    return;
+  }
+  const double bytes_per_second = extra_bytes / extra_seconds;
+  capability.bandwidth_mb_per_s = bytes_per_second / 1e6;
+  capability.brick_latency_ms = std::max(0.0, small.seconds - small.bytes / bytes_per_second) * 1e3;
+}
+
+namespace {
+
+// Asks for `keys` at once and waits until all are in.
+LinkTiming burst(net::BrickSource& source, std::vector<net::BrickWant> wants) {
   const net::SourceStats before = source.stats();
   const auto start = std::chrono::steady_clock::now();
   source.want(std::move(wants));
   source.wait_idle(std::chrono::seconds(20));
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  LinkTiming timing;
+  timing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const net::SourceStats after = source.stats();
-  const double bytes = static_cast<double>(after.bytes - before.bytes);
-  const double bricks = static_cast<double>(after.received - before.received);
-  if (bytes > 0.0 && bricks > 0.0 && seconds > 0.0) {
-    capability.bandwidth_mb_per_s = bytes / seconds / 1e6;
-    capability.bytes_per_brick = bytes / bricks;
-  }
+  timing.bytes = static_cast<double>(after.bytes - before.bytes);
+  timing.bricks = static_cast<double>(after.received - before.received);
+  return timing;
 }
 
-Choice choose(const Capability& capability, const Scene& scene, int width, int height,
-              const ChoiceLimits& limits) {
-  Choice choice;
-  std::ostringstream why;
+// Every brick of one level of the probe volume: 8^(3 - level) of them.
+std::vector<net::BrickWant> probe_level(uint64_t id, int level) {
+  const int per_axis = 1 << (3 - level);
+  std::vector<net::BrickWant> wants;
+  for (int z = 0; z < per_axis; ++z)
+    for (int y = 0; y < per_axis; ++y)
+      for (int x = 0; x < per_axis; ++x) wants.push_back({{id, level, {x, y, z}}, 1});
+  return wants;
+}
 
-  // Frame size: shrink (keeping the aspect) until a frame fits the time target.
+}  // namespace
+
+void measure_link(net::BrickSource& source, const TextureSpec& texture, Capability& capability) {
+  Volume probe;
+  probe.min = glm::dvec3(-1.0);
+  probe.max = glm::dvec3(1.0);
+  probe.finest_level_log2 = 7;  // 16^3-cell bricks: levels 3, 2, 1 hold 1, 8 and 64 of them
+  const uint64_t id = source.register_texture(texture, probe, 16, {});
+  burst(source, probe_level(id, 3));  // opens the stream: its set-up is no part of the link
+  const LinkTiming small = burst(source, probe_level(id, 2));
+  const LinkTiming large = burst(source, probe_level(id, 1));
+  fit_link(small, large, capability);
+}
+
+namespace {
+
+// Shrinks the frame (keeping the aspect) until one fits the time target; a headless frame
+// keeps the size asked for.
+void choose_frame(const Capability& capability, int width, int height, const ChoiceLimits& limits,
+                  Choice& choice, std::ostringstream& why) {
+  choice.width = width;
+  choice.height = height;
+  if (!limits.scale_frame) {
+    why << "frame " << width << "x" << height << ": the size asked for\n";
+    return;
+  }
   const double pixels = static_cast<double>(width) * height;
   const double affordable = capability.pixels_per_second * limits.target_frame_seconds;
   double scale = 1.0;
@@ -158,6 +196,29 @@ Choice choose(const Capability& capability, const Scene& scene, int width, int h
   why << "frame " << choice.width << "x" << choice.height << ": this machine draws "
       << static_cast<long>(capability.pixels_per_second / 1e6 * 10) / 10.0
       << " Mpixel/s, a frame must fit " << limits.target_frame_seconds * 1000 << " ms\n";
+}
+
+// The largest object's size on screen, in pixels (at least 64).
+double largest_object_pixels(const Scene& scene, int frame_height) {
+  double largest = 64.0;
+  const double tan_half = std::tan(glm::radians(scene.camera.fov_y_degrees) * 0.5);
+  for (const SceneObject& object : scene.objects) {
+    const glm::dvec3 size = glm::dvec3(object.mesh->bounds.size()) * object.transform.scale;
+    const double radius = 0.5 * glm::length(size);
+    const double distance =
+        std::max(glm::length(object.transform.translate - scene.camera.position), 1e-6);
+    largest = std::max(largest, radius / (distance * tan_half) * frame_height);
+  }
+  return largest;
+}
+
+}  // namespace
+
+Choice choose(const Capability& capability, const Scene& scene, int width, int height,
+              const ChoiceLimits& limits) {
+  Choice choice;
+  std::ostringstream why;
+  choose_frame(capability, width, height, limits, choice, why);
 
   // Cache: an eighth of the available memory, within [32 MiB, 1 GiB].
   const std::size_t budget_mb =
@@ -167,16 +228,8 @@ Choice choose(const Capability& capability, const Scene& scene, int width, int h
       << " MiB available\n";
 
   // Finest level: fine enough for the largest object on screen (one texel per pixel), no
-  // finer than the link can deliver in fetch_seconds or the cache can hold.
-  double largest_pixels = 64.0;
-  const double tan_half = std::tan(glm::radians(scene.camera.fov_y_degrees) * 0.5);
-  for (const SceneObject& object : scene.objects) {
-    const glm::dvec3 size = glm::dvec3(object.mesh->bounds.size()) * object.transform.scale;
-    const double radius = 0.5 * glm::length(size);
-    const double distance =
-        std::max(glm::length(object.transform.translate - scene.camera.position), 1e-6);
-    largest_pixels = std::max(largest_pixels, radius / (distance * tan_half) * choice.height);
-  }
+  // finer than the cache can hold. The link does not enter: it only sets where to start.
+  const double largest_pixels = largest_object_pixels(scene, choice.height);
   const int screen_level =
       std::clamp(static_cast<int>(std::ceil(std::log2(largest_pixels))), 4, limits.max_level_log2);
   const double objects = static_cast<double>(std::max<std::size_t>(scene.objects.size(), 1));
@@ -186,23 +239,35 @@ Choice choose(const Capability& capability, const Scene& scene, int width, int h
     const double per_axis = std::ldexp(1.0, level - 4);
     return objects * 3.0 * per_axis * per_axis;
   };
-  const double byte_budget = capability.bandwidth_mb_per_s * 1e6 * limits.fetch_seconds;
-  int level = screen_level;
-  while (level > 4 && capability.bandwidth_mb_per_s > 0.0 &&
-         surface_bricks(level) * capability.bytes_per_brick > byte_budget) {
-    --level;
-  }
   const double decoded_brick_bytes = 17.0 * 17.0 * 17.0 * 3.0 + 64.0;
+  int level = screen_level;
   while (level > 4 &&
          surface_bricks(level) * decoded_brick_bytes > 0.5 * choice.cache_budget_bytes) {
     --level;
   }
   choice.finest_level_log2 = level;
   why << "finest level 2^" << level << ": objects span up to " << static_cast<int>(largest_pixels)
-      << " pixels (2^" << screen_level << "); about "
-      << static_cast<long>(surface_bricks(level) * capability.bytes_per_brick / 1e3)
-      << " kB of bricks over a " << capability.bandwidth_mb_per_s << " MB/s link (budget "
-      << static_cast<long>(byte_budget / 1e3) << " kB)";
+      << " pixels (2^" << screen_level << ")\n";
+
+  // Start: the finest level whose surface bricks arrive within fetch_seconds: a round of
+  // requests costs the latency once, their bytes cost the bandwidth.
+  const auto fetch_seconds = [&](int l) {
+    const double bricks = surface_bricks(l);
+    const double rounds = 1.0 + std::ceil(bricks / static_cast<double>(limits.in_flight_bricks));
+    const double transfer =
+        capability.bandwidth_mb_per_s > 0.0
+            ? bricks * capability.bytes_per_brick / (capability.bandwidth_mb_per_s * 1e6)
+            : 0.0;
+    return rounds * capability.brick_latency_ms / 1e3 + transfer;
+  };
+  int start = level;
+  while (start > 4 && fetch_seconds(start) > limits.fetch_seconds) --start;
+  choice.start_level_log2 = start;
+  why << "start at 2^" << start << ", refine when idle: about "
+      << static_cast<long>(surface_bricks(start) * capability.bytes_per_brick / 1e3)
+      << " kB of bricks in " << static_cast<long>(fetch_seconds(start) * 1e3) << " ms over a "
+      << capability.bandwidth_mb_per_s << " MB/s link with " << capability.brick_latency_ms
+      << " ms latency (budget " << limits.fetch_seconds * 1e3 << " ms)";
   choice.reason = why.str();
   return choice;
 }

@@ -14,8 +14,13 @@ namespace soltex::capability {
 struct Capability {
   double pixels_per_second = 0.0;  // raster + lookup + shade, all render threads
   std::size_t available_memory_mb = 0;
-  double round_trip_ms = 0.0;
-  double bandwidth_mb_per_s = 0.0;  // encoded brick bytes the link delivered per second
+  double round_trip_ms = 0.0;  // one GetServerInfo call
+  // What a brick costs whatever its size: from asking to the first byte back (the server's
+  // queue and the network's latency). Paid once per round of requests, not per brick.
+  double brick_latency_ms = 0.0;
+  // Encoded brick bytes per second while bricks stream, latency excluded; 0: unlimited (an
+  // in-process source, or a link faster than the probe could tell).
+  double bandwidth_mb_per_s = 0.0;
   double bytes_per_brick = 6000.0;  // measured mean encoded brick size
 };
 
@@ -35,13 +40,34 @@ Capability apply(Capability measured, const CapabilityOverride& override);
 // in-process cache), and the memory the kernel reports available.
 Capability measure_machine();
 
-// Fetches 64 bricks of `texture` (a throw-away probe volume) through `source` and fills in
-// bandwidth_mb_per_s and bytes_per_brick. A source that moves no bytes (in-process) leaves
-// the bandwidth at 0: unlimited.
+// One burst of the link probe: bricks asked for at once, and how long until all were in.
+struct LinkTiming {
+  double bricks = 0.0;
+  double bytes = 0.0;
+  double seconds = 0.0;
+};
+
+// Tells latency from bandwidth with two bursts of different sizes, modelling a burst as
+// seconds = latency + bytes / bandwidth: the larger burst's extra bytes over its extra time
+// are the bandwidth, and what the small burst took beyond its bytes is the latency. A link
+// 50 ms away but fast takes about 50 ms for either burst: high bandwidth, 50 ms latency.
+// Sets brick_latency_ms, bandwidth_mb_per_s (0 when the larger burst was no slower: the
+// link's bandwidth did not limit it) and bytes_per_brick. Leaves them when nothing moved.
+void fit_link(const LinkTiming& small, const LinkTiming& large, Capability& capability);
+
+// Fetches a throw-away probe volume of `texture` through `source` in bursts of 1 (to open the
+// stream), 8 and 64 bricks, and fits the last two (fit_link). A source that moves no bytes
+// (in-process) leaves the bandwidth at 0: unlimited, and the latency at 0.
 void measure_link(net::BrickSource& source, const TextureSpec& texture, Capability& capability);
 
+// The capability sets where a client starts, not where it ends: every client prepares its
+// textures at the same finest level (the level the picture needs, as far as the cache holds
+// it), so that all of them converge to the same picture; a weak link or machine starts at a
+// coarser cap (start_level_log2), fetches no finer while it is busy, and refines to the
+// finest level once idle (client/view/level_cap.h).
 struct Choice {
-  int finest_level_log2 = 8;
+  int finest_level_log2 = 8;  // the textures' finest level: where a client ends
+  int start_level_log2 = 8;   // <= finest_level_log2: the cap it starts from
   std::size_t cache_budget_bytes = 256u << 20;
   int width = 1280;
   int height = 720;
@@ -50,11 +76,19 @@ struct Choice {
 
 struct ChoiceLimits {
   double target_frame_seconds = 0.1;  // a full frame should not take longer than this
-  double fetch_seconds = 1.5;         // the finest level's surface bricks should arrive within this
-  int max_level_log2 = 11;
+  double fetch_seconds = 1.5;         // the start level's surface bricks should arrive within this
+  // The finest level a picture refines to where its objects would take finer: level 8 is
+  // the default the accuracy report measures (README.md, "What accuracy costs"). A material's
+  // own volume, or --finest-level, may ask for finer.
+  int max_level_log2 = 8;
+  std::size_t in_flight_bricks = 256;  // bricks a client asks for per round (FetcherOptions)
+  // Shrink the frame to what the machine draws in target_frame_seconds (a window); false:
+  // keep the size asked for (headless output is the size the scene or command line asks).
+  bool scale_frame = true;
 };
 
 // Chooses from the capability, the scene (objects' on-screen size) and the image size asked.
+// finest_level_log2 depends on the scene, the frame and the memory, never on the link.
 Choice choose(const Capability& capability, const Scene& scene, int width, int height,
               const ChoiceLimits& limits = {});
 

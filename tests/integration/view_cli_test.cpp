@@ -1,0 +1,164 @@
+// soltex-view as a user runs it, against a real soltexd on loopback: what it writes and the
+// exit code it ends with (README.md, "Exit codes").
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "soltexd_process.h"
+
+#ifndef SOLTEX_VIEW_BINARY
+#error "SOLTEX_VIEW_BINARY must name the soltex-view executable"
+#endif
+
+namespace soltex {
+namespace {
+
+using testing::SoltexdProcess;
+
+struct ViewRun {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+  std::filesystem::path image;
+};
+
+class ViewCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    directory_ = std::filesystem::temp_directory_path() /
+                 ("soltex-view-cli-" + std::to_string(getpid()) + "-" +
+                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(directory_);
+  }
+  void TearDown() override { std::filesystem::remove_all(directory_); }
+
+  // Runs soltex-view with `args` (and --out NAME.png) until it exits (at most 120 s).
+  ViewRun view(const std::string& name, std::vector<std::string> args) {
+    ViewRun run;
+    run.image = directory_ / (name + ".png");
+    const std::filesystem::path log = directory_ / (name + ".log");
+    args.insert(args.begin(), SOLTEX_VIEW_BINARY);
+    args.push_back("--out");
+    args.push_back(run.image.string());
+    pid_t pid = testing::spawn_process(args, log.string());
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    int status = 0;
+    while (waitpid(pid, &status, WNOHANG) != pid) {
+      if (std::chrono::steady_clock::now() > deadline) {
+        testing::kill_and_reap(pid);
+        ADD_FAILURE() << "soltex-view " << name << " did not finish within 120 s";
+        return run;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(log);
+    run.output.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return run;
+  }
+
+  std::filesystem::path directory_;
+};
+
+std::vector<uint8_t> file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A PNG's size from its IHDR chunk (bytes 16..23, big-endian); {0, 0} when not a PNG.
+std::pair<uint32_t, uint32_t> png_size(const std::filesystem::path& path) {
+  const std::vector<uint8_t> bytes = file_bytes(path);
+  if (bytes.size() < 24 || bytes[1] != 'P' || bytes[2] != 'N' || bytes[3] != 'G') return {0, 0};
+  const auto be32 = [&](std::size_t at) {
+    return (uint32_t{bytes[at]} << 24) | (uint32_t{bytes[at + 1]} << 16) |
+           (uint32_t{bytes[at + 2]} << 8) | uint32_t{bytes[at + 3]};
+  };
+  return {be32(16), be32(20)};
+}
+
+const std::vector<std::string> kSmall = {"--headless", "--width",       "160", "--height",
+                                         "90",         "--max-seconds", "90"};
+
+std::vector<std::string> against(const SoltexdProcess& server,
+                                 std::vector<std::string> extra = {}) {
+  std::vector<std::string> args = kSmall;
+  args.push_back("--server");
+  args.push_back(server.grpc_address());
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+// Every brick 50 ms late: the client starts coarser, refines once idle, and converges to the
+// picture a fast server gives, byte for byte; so does a client told its link is very thin.
+TEST_F(ViewCli, ADelayedServerConvergesToTheUndelayedPicture) {
+  SoltexdProcess fast;
+  const ViewRun undelayed = view("undelayed", against(fast));
+  ASSERT_EQ(undelayed.exit_code, 0) << undelayed.output;
+
+  SoltexdProcess slow({"--fault-delay-ms", "50"});
+  const ViewRun delayed = view("delayed", against(slow));
+  ASSERT_EQ(delayed.exit_code, 0) << delayed.output;
+  EXPECT_TRUE(file_bytes(delayed.image) == file_bytes(undelayed.image)) << delayed.output;
+
+  const ViewRun thin = view("thin", against(slow, {"--capability", "bandwidth=0.01"}));
+  ASSERT_EQ(thin.exit_code, 0) << thin.output;
+  EXPECT_NE(thin.output.find("levels:     started at 2^"), std::string::npos) << thin.output;
+  EXPECT_TRUE(file_bytes(thin.image) == file_bytes(undelayed.image)) << thin.output;
+}
+
+// The output is the size asked for, however slow this machine measures.
+TEST_F(ViewCli, HeadlessKeepsTheRequestedImageSize) {
+  const ViewRun scene_size = view(
+      "scene-size", {"--headless", "--local", "--capability", "cpu=0.001", "--finest-level", "6"});
+  ASSERT_EQ(scene_size.exit_code, 0) << scene_size.output;
+  EXPECT_EQ(png_size(scene_size.image), std::make_pair(1280u, 720u));  // the default scene's
+
+  const ViewRun asked = view("asked", {"--headless", "--local", "--capability", "cpu=0.001",
+                                       "--width", "123", "--height", "45"});
+  ASSERT_EQ(asked.exit_code, 0) << asked.output;
+  EXPECT_EQ(png_size(asked.image), std::make_pair(123u, 45u));
+}
+
+// Every brick arrives corrupt: the picture is written from what it has, and the run fails.
+TEST_F(ViewCli, BricksFailingForGoodExitThree) {
+  SoltexdProcess corrupt({"--fault-corrupt-every", "1"});
+  const ViewRun run = view("corrupt", against(corrupt));
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  EXPECT_NE(run.output.find("NOT converged"), std::string::npos) << run.output;
+  EXPECT_TRUE(std::filesystem::exists(run.image));
+}
+
+TEST_F(ViewCli, RunningOutOfTimeExitsThree) {
+  const ViewRun run =
+      view("timeout", {"--headless", "--local", "--finest-level", "10", "--max-seconds", "0.1"});
+  EXPECT_EQ(run.exit_code, 3) << run.output;
+  EXPECT_NE(run.output.find("NOT converged within"), std::string::npos) << run.output;
+}
+
+TEST_F(ViewCli, BadInputExitsTwo) {
+  EXPECT_EQ(view("brick-size", {"--headless", "--local", "--brick-size", "12"}).exit_code, 2);
+  EXPECT_EQ(view("unknown", {"--headless", "--local", "--no-such-option"}).exit_code, 2);
+  EXPECT_EQ(view("no-scene", {"--headless", "--local", "--scene", "/no/such/scene.json"}).exit_code,
+            2);
+  EXPECT_EQ(view("no-server", {"--headless"}).exit_code, 2);
+  EXPECT_EQ(view("capability", {"--headless", "--local", "--capability", "cpu=-1"}).exit_code, 2);
+
+  const std::filesystem::path scene = directory_ / "bad.json";
+  std::ofstream(scene)
+      << R"({"image": {"width": 64, "height": 64}, "objects": [{"mesh": "cube"}]})";
+  const ViewRun bad_scene = view("bad-scene", {"--headless", "--local", "--scene", scene.string()});
+  EXPECT_EQ(bad_scene.exit_code, 2) << bad_scene.output;
+
+  EXPECT_EQ(view("help", {"--help"}).exit_code, 0);
+}
+
+}  // namespace
+}  // namespace soltex

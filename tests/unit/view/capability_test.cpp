@@ -1,0 +1,160 @@
+#include "soltex/capability/capability.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "soltex/scene/default_scene.h"
+
+namespace soltex::capability {
+namespace {
+
+Capability strong_machine() {
+  Capability c;
+  c.pixels_per_second = 50e6;
+  c.available_memory_mb = 16000;
+  c.bytes_per_brick = 2500.0;
+  return c;
+}
+
+// Two bursts of a link: 8 bricks and 64 bricks of 2500 bytes each.
+LinkTiming timing(double bricks, double latency_s, double bytes_per_second) {
+  const double bytes = bricks * 2500.0;
+  return {bricks, bytes, latency_s + bytes / bytes_per_second};
+}
+
+TEST(FitLink, TellsLatencyFromBandwidth) {
+  Capability c;
+  fit_link(timing(8, 0.050, 100e6), timing(64, 0.050, 100e6), c);
+  EXPECT_NEAR(c.brick_latency_ms, 50.0, 1e-6);
+  EXPECT_NEAR(c.bandwidth_mb_per_s, 100.0, 1e-6);
+  EXPECT_DOUBLE_EQ(c.bytes_per_brick, 2500.0);
+
+  Capability slow;
+  fit_link(timing(8, 0.001, 0.2e6), timing(64, 0.001, 0.2e6), slow);
+  EXPECT_NEAR(slow.brick_latency_ms, 1.0, 1e-6);
+  EXPECT_NEAR(slow.bandwidth_mb_per_s, 0.2, 1e-9);
+}
+
+// A link that answers every burst of wants `latency` late and then moves them at
+// `bytes_per_second`; the burst arrives whole once its time is up (the probe waits for each).
+class FakeLink final : public net::BrickSource {
+ public:
+  FakeLink(std::chrono::milliseconds latency, double bytes_per_second)
+      : latency_(latency), bytes_per_second_(bytes_per_second) {}
+
+  uint64_t register_texture(const TextureSpec&, const Volume&, int, const MipSettings&) override {
+    return 42;
+  }
+  void want(std::vector<net::BrickWant> wants) override {
+    done_ = stats();  // the last burst is in: count on from it
+    pending_ = wants.size();
+    const double seconds = static_cast<double>(pending_) * kBrickBytes / bytes_per_second_;
+    ready_ = std::chrono::steady_clock::now() + latency_ +
+             std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                 std::chrono::duration<double>(seconds));
+  }
+  bool idle() const override { return pending_ == 0 || std::chrono::steady_clock::now() >= ready_; }
+  bool wait_idle(std::chrono::milliseconds) override {
+    std::this_thread::sleep_until(ready_);
+    return true;
+  }
+  net::SourceStats stats() const override {
+    net::SourceStats stats = done_;
+    if (pending_ > 0 && idle()) {
+      stats.received += pending_;
+      stats.bytes += static_cast<uint64_t>(pending_ * kBrickBytes);
+    }
+    return stats;
+  }
+
+ private:
+  static constexpr double kBrickBytes = 3000.0;
+  std::chrono::milliseconds latency_;
+  double bytes_per_second_;
+  std::size_t pending_ = 0;
+  std::chrono::steady_clock::time_point ready_{};
+  net::SourceStats done_;
+};
+
+TEST(MeasureLink, FiftyMillisecondsAwayIsNotASlowLink) {
+  FakeLink link(std::chrono::milliseconds(50), 200e6);
+  Capability c = strong_machine();
+  measure_link(link, TextureSpec{}, c);
+  EXPECT_NEAR(c.brick_latency_ms, 50.0, 15.0);
+  EXPECT_GT(c.bandwidth_mb_per_s, 20.0) << "a 200 MB/s link measured as a slow one";
+  const Choice choice = choose(c, default_scene(), 1280, 720);
+  EXPECT_EQ(choice.start_level_log2, choice.finest_level_log2) << choice.reason;
+}
+
+TEST(FitLink, ALargeBurstNoSlowerThanTheSmallOneIsUnlimitedBandwidth) {
+  Capability c;
+  fit_link({8, 20000, 0.051}, {64, 160000, 0.050}, c);
+  EXPECT_EQ(c.bandwidth_mb_per_s, 0.0);
+  EXPECT_NEAR(c.brick_latency_ms, 51.0, 1e-9);
+}
+
+TEST(FitLink, NothingMovedLeavesTheCapabilityAsItWas) {
+  Capability c;
+  c.bandwidth_mb_per_s = 7.0;
+  fit_link({}, {}, c);
+  EXPECT_EQ(c.bandwidth_mb_per_s, 7.0);
+  EXPECT_EQ(c.brick_latency_ms, 0.0);
+}
+
+// 50 ms away but fast: the same start as a link next door. The latency costs a round of
+// requests, not the picture.
+TEST(Choose, LatencyAloneDoesNotMakeASlowLink) {
+  const Scene scene = default_scene();
+  Capability near = strong_machine();
+  fit_link(timing(8, 0.0005, 100e6), timing(64, 0.0005, 100e6), near);
+  Capability far = strong_machine();
+  fit_link(timing(8, 0.050, 100e6), timing(64, 0.050, 100e6), far);
+  const Choice near_choice = choose(near, scene, 1280, 720);
+  const Choice far_choice = choose(far, scene, 1280, 720);
+  EXPECT_EQ(far_choice.start_level_log2, near_choice.start_level_log2) << far_choice.reason;
+  EXPECT_EQ(far_choice.start_level_log2, far_choice.finest_level_log2) << far_choice.reason;
+}
+
+// A thin link starts coarser, but ends where a fast one does: the capability sets the start.
+TEST(Choose, ASlowLinkStartsCoarserAndEndsAtTheSameFinestLevel) {
+  const Scene scene = default_scene();
+  Capability fast = strong_machine();
+  fast.bandwidth_mb_per_s = 500.0;
+  Capability slow = strong_machine();
+  slow.bandwidth_mb_per_s = 0.05;
+  slow.brick_latency_ms = 50.0;
+  const Choice fast_choice = choose(fast, scene, 1280, 720);
+  const Choice slow_choice = choose(slow, scene, 1280, 720);
+  EXPECT_LT(slow_choice.start_level_log2, fast_choice.start_level_log2) << slow_choice.reason;
+  EXPECT_EQ(slow_choice.finest_level_log2, fast_choice.finest_level_log2);
+  EXPECT_LE(slow_choice.start_level_log2, slow_choice.finest_level_log2);
+}
+
+// Too little memory for the finest level: the cache budget, not the link, lowers the end.
+TEST(Choose, TheCacheBudgetBoundsTheFinestLevel) {
+  const Scene scene = default_scene();
+  Capability roomy = strong_machine();
+  Capability small = strong_machine();
+  small.available_memory_mb = 64;  // a 32 MiB cache
+  EXPECT_LT(choose(small, scene, 1280, 720).finest_level_log2,
+            choose(roomy, scene, 1280, 720).finest_level_log2);
+}
+
+TEST(Choose, HeadlessKeepsTheSizeAskedForAWindowShrinksToTheMachine) {
+  const Scene scene = default_scene();
+  Capability slow_cpu = strong_machine();
+  slow_cpu.pixels_per_second = 2e6;  // 200000 pixels in the 100 ms a frame may take
+  ChoiceLimits headless;
+  headless.scale_frame = false;
+  const Choice kept = choose(slow_cpu, scene, 1280, 720, headless);
+  EXPECT_EQ(kept.width, 1280);
+  EXPECT_EQ(kept.height, 720);
+  const Choice window = choose(slow_cpu, scene, 1280, 720);
+  EXPECT_LT(window.width, 1280);
+  EXPECT_LT(window.height, 720);
+}
+
+}  // namespace
+}  // namespace soltex::capability
