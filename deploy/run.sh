@@ -25,8 +25,11 @@ port=$(sed -n 's/^grpc=//p' "$ready")
 metrics=$(sed -n 's/^metrics=//p' "$ready")
 echo "run: soltexd listening on 127.0.0.1:$port (metrics on 127.0.0.1:$metrics)"
 
+# Its exit code is the job's (README.md, "Exit codes": 3 is a picture that did not converge),
+# once the server's figures are printed and the server is stopped.
+view_status=0
 "$build/client/view/soltex-view" --headless --server "127.0.0.1:$port" \
-  --out "$out/soltex-view.png" "$@"
+  --out "$out/soltex-view.png" "$@" || view_status=$?
 
 served=$(curl -s "http://127.0.0.1:$metrics/metrics" 2>/dev/null |
   awk '/^soltex_bricks_served_total /{print $2}' || true)
@@ -34,3 +37,7 @@ echo "run: soltexd served ${served:-?} bricks"
 kill -TERM "$server"
 wait "$server" && echo "run: soltexd stopped cleanly" || echo "run: soltexd exited with $?"
 trap - EXIT
+if [ "$view_status" -ne 0 ]; then
+  echo "run: soltex-view exited with $view_status (README.md, \"Exit codes\")" >&2
+  exit "$view_status"
+fi
