@@ -143,12 +143,28 @@ inline double portable_sin(double x) {
                                                                    r2 * (1.0 / 6227020800.0)))))));
 }
 
+// How far the ripple varies over the box: its gradient's extent.
+inline double ripple_width(const MarbleParams& m, const glm::dvec3& p, const glm::dvec3& box) {
+  if (m.ripple == Ripple::axis) return m.frequency * box[static_cast<int>(m.axis)];
+  return width_along(m.frequency * glm::dvec3(p.y * p.z, p.x * p.z, p.x * p.y), box);
+}
+
 // undulate(sin(2 pi fract(ripple) + A turb)), mapped to [0, 1]. The ripple is reduced by its
-// period before the multiplication by 2 pi, so far-away points keep their precision.
-inline float marble(const MarbleParams& m, double ripple_value, float turbulence) {
+// period before the multiplication by 2 pi, so far-away points keep their precision. Over a
+// box the ripple spans 2 pi ripple_width radians, and the box average of sin over a span 2h is
+// sin times sin(h) / h: ripples finer than the box fade to the mean, 0.5.
+inline float marble(const MarbleParams& m, double ripple_value, float turbulence,
+                    double ripple_width) {
   const double phase =
       2.0 * std::numbers::pi * fract(ripple_value) + m.amplitude * static_cast<double>(turbulence);
-  return static_cast<float>(0.5 + 0.5 * portable_sin(phase));
+  const double half_span = std::numbers::pi * ripple_width;
+  double fade = 1.0;
+  if (!(half_span < waves::kMeanWidth)) {
+    fade = 0.0;  // also NaN
+  } else if (half_span > 1e-4) {
+    fade = portable_sin(half_span) / half_span;
+  }
+  return static_cast<float>(0.5 + 0.5 * (portable_sin(phase) * fade));
 }
 
 }  // namespace soltex::fields

@@ -64,38 +64,87 @@ Texel TextureEvaluator::sample(const glm::dvec3& p, double filter_width) const {
 }
 
 Texel TextureEvaluator::sample(const glm::dvec3& p, const SampleFootprint& footprint) const {
-  const double filter_width = footprint.width;
-  const glm::dvec3& box = footprint.box;
-  const OctavePlan local_plan = filter_width > 0.0 ? plan_for(filter_width) : OctavePlan{};
-  const OctavePlan& plan = filter_width > 0.0 ? local_plan : point_plan_;
   Texel texel;
-  std::visit(Overloaded{
-                 [&](const StripesParams& s) { texel.field = fields::stripes(s, p, box); },
-                 [&](const CheckerParams& c) { texel.field = fields::checker(c, p, box); },
-                 [&](const ColourCubeParams& c) {
-                   texel.colour = fields::colour_cube(c, p, box);
-                   texel.field = cube_field(texel.colour);
-                 },
-                 [&](const RingsParams& r) { texel.field = fields::rings(r, p, box); },
-                 [&](const WoodParams& w) {
-                   texel.field = fields::wood(w, {wood_tilt_z_.x, wood_tilt_z_.y},
-                                              fields::wood_rotation(w, p.y), p, box);
-                 },
-                 [&](const NoiseParams&) {
-                   texel.field = fields::normalise_fractal(plan, fractal_sum(plan, p));
-                 },
-                 [&](const TurbulenceParams&) {
-                   texel.field = fields::normalise_fractal(plan, fractal_sum(plan, p));
-                 },
-                 [&](const MarbleParams& m) {
-                   texel.field = fields::marble(m, fields::ripple(m, p), fractal_sum(plan, p));
-                 },
-             },
-             spec_.pattern);
-  if (!std::holds_alternative<ColourCubeParams>(spec_.pattern)) {
-    texel.colour = spec_.ramp.at(texel.field);
-  }
+  sample({&p, 1}, {&footprint, 1}, {&texel, 1});
   return texel;
+}
+
+void TextureEvaluator::sample(std::span<const glm::dvec3> points,
+                              std::span<const SampleFootprint> footprints,
+                              std::span<Texel> out) const {
+  const std::size_t n = points.size();
+  if (footprints.size() != n || out.size() < n) {
+    throw std::invalid_argument("TextureEvaluator::sample: " + std::to_string(n) + " points, " +
+                                std::to_string(footprints.size()) + " footprints, " +
+                                std::to_string(out.size()) + " texels");
+  }
+  const auto each = [&](auto&& field) {
+    for (std::size_t i = 0; i < n; ++i) out[i].field = field(points[i], footprints[i].box);
+  };
+  // Noise: the plan depends on the filter width alone, so a run of points of one width (most
+  // pixels of a surface at one distance differ, but a grid's do not) shares it.
+  const auto each_fractal = [&](auto&& field) {
+    OctavePlan local_plan;
+    double planned_width = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double w = footprints[i].width;
+      if (w > 0.0 && w != planned_width) {
+        local_plan = plan_for(w);
+        planned_width = w;
+      }
+      out[i].field = field(w > 0.0 ? local_plan : point_plan_, points[i], footprints[i].box);
+    }
+  };
+  const fields::WoodFrame frame{wood_tilt_z_.x, wood_tilt_z_.y};
+  std::visit(
+      Overloaded{
+          [&](const StripesParams& s) {
+            each([&](const glm::dvec3& p, const glm::dvec3& box) {
+              return fields::stripes(s, p, box);
+            });
+          },
+          [&](const CheckerParams& c) {
+            each([&](const glm::dvec3& p, const glm::dvec3& box) {
+              return fields::checker(c, p, box);
+            });
+          },
+          [&](const ColourCubeParams& c) {
+            for (std::size_t i = 0; i < n; ++i) {
+              out[i].colour = fields::colour_cube(c, points[i], footprints[i].box);
+              out[i].field = cube_field(out[i].colour);
+            }
+          },
+          [&](const RingsParams& r) {
+            each([&](const glm::dvec3& p, const glm::dvec3& box) {
+              return fields::rings(r, p, box);
+            });
+          },
+          [&](const WoodParams& w) {
+            each([&](const glm::dvec3& p, const glm::dvec3& box) {
+              return fields::wood(w, frame, fields::wood_rotation(w, p.y), p, box);
+            });
+          },
+          [&](const NoiseParams&) {
+            each_fractal([&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3&) {
+              return fields::normalise_fractal(plan, fractal_sum(plan, p));
+            });
+          },
+          [&](const TurbulenceParams&) {
+            each_fractal([&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3&) {
+              return fields::normalise_fractal(plan, fractal_sum(plan, p));
+            });
+          },
+          [&](const MarbleParams& m) {
+            each_fractal([&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3& box) {
+              return fields::marble(m, fields::ripple(m, p), fractal_sum(plan, p),
+                                    fields::ripple_width(m, p, box));
+            });
+          },
+      },
+      spec_.pattern);
+  if (!std::holds_alternative<ColourCubeParams>(spec_.pattern)) {
+    for (std::size_t i = 0; i < n; ++i) out[i].colour = spec_.ramp.at(out[i].field);
+  }
 }
 
 void TextureEvaluator::evaluate_grid(const Grid& grid, double filter_width,
@@ -173,7 +222,8 @@ void TextureEvaluator::evaluate_grid(const Grid& grid, double filter_width,
                      fractal_rows->sum(y, z, {field, nx});
                      for (std::size_t i = 0; i < nx; ++i) {
                        field[i] =
-                           fields::marble(m, fields::ripple(m, glm::dvec3(xs[i], y, z)), field[i]);
+                           fields::marble(m, fields::ripple(m, glm::dvec3(xs[i], y, z)), field[i],
+                                          fields::ripple_width(m, glm::dvec3(xs[i], y, z), box));
                      }
                    },
                },

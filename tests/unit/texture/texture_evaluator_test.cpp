@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+#include <stdexcept>
 #include <vector>
 
 #include "soltex/common/spec_error.h"
@@ -61,6 +63,41 @@ TEST(TextureEvaluator, BatchEqualsSinglePointBitForBit) {
       }
     }
   }
+}
+
+// The many-point form shares one octave plan across a run of equal widths: widths that change,
+// repeat after a change, or are 0, negative or NaN must still give each point's own result.
+TEST(TextureEvaluator, ManyPointsEqualOnePointAtATimeBitForBit) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double widths[] = {0.01, 0.01, 0.0, 0.2, 0.01, nan, -1.0, 0.2, 0.2, 3e-5, 0.01};
+  std::vector<glm::dvec3> points;
+  std::vector<SampleFootprint> footprints;
+  for (int i = 0; i < 64; ++i) {
+    const double u = 0.173 * i - 4.0;
+    points.emplace_back(u, 0.5 * u + 0.31, 1e4 - 0.07 * u);
+    const double w = widths[static_cast<std::size_t>(i) % std::size(widths)];
+    footprints.push_back({w, glm::dvec3(0.3 * (i % 5), 0.01 * (i % 3), w)});
+  }
+  for (const Pattern& pattern : all_patterns()) {
+    TextureSpec spec;
+    spec.pattern = pattern;
+    const TextureEvaluator t(spec);
+    std::vector<Texel> many(points.size());
+    t.sample(points, footprints, many);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Texel one = t.sample(points[i], footprints[i]);
+      ASSERT_EQ(many[i].field, one.field) << pattern_name(pattern) << " i=" << i;
+      ASSERT_EQ(many[i].colour, one.colour) << pattern_name(pattern) << " i=" << i;
+    }
+  }
+}
+
+TEST(TextureEvaluator, ManyPointsNeedAFootprintEach) {
+  const TextureEvaluator t(TextureSpec{});
+  const std::vector<glm::dvec3> points(3);
+  const std::vector<SampleFootprint> footprints(2);
+  std::vector<Texel> out(3);
+  EXPECT_THROW(t.sample(points, footprints, out), std::invalid_argument);
 }
 
 TEST(TextureEvaluator, ScalarChannelsMapTheFieldToTheirRange) {

@@ -73,6 +73,12 @@ class TextureEvaluator {
 
   Texel sample(const glm::dvec3& p, double filter_width = 0.0) const;
   Texel sample(const glm::dvec3& p, const SampleFootprint& footprint) const;
+  // Many points, each over its own footprint: out[i] is bit-identical to
+  // sample(points[i], footprints[i]), but the pattern is dispatched once per call and the
+  // octave plan made only for patterns with noise, once per distinct width in a run. Throws
+  // std::invalid_argument unless footprints.size() == points.size() <= out.size().
+  void sample(std::span<const glm::dvec3> points, std::span<const SampleFootprint> footprints,
+              std::span<Texel> out) const;
 
   // Writes spec().channels.sample_count() planes of grid.size() floats each, channel-planar
   // in the order R, G, B, opacity, specular (those present). out.size() must be at least
