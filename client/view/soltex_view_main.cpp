@@ -111,6 +111,7 @@ int main(int argc, char** argv) {
   std::string filter_name = "trilinear";
   std::string mip_name = "band-limited";
   std::string access_name = "auto";
+  int antialias = 1;
   double level_bias = 0.0;
   bool false_colour = false;
   double max_seconds = 30.0;
@@ -149,6 +150,11 @@ int main(int argc, char** argv) {
                  "checkers, rings, colour cube) per pixel and caches the rest; cache or evaluate "
                  "force one way for every texture")
       ->check(CLI::IsMember({"auto", "cache", "evaluate"}))
+      ->capture_default_str();
+  app.add_option("--antialias", antialias,
+                 "sub-pixels per axis for silhouettes and clip edges (1: off); costs about "
+                 "antialias^2 times the frame")
+      ->check(CLI::Range(1, 4))
       ->capture_default_str();
   app.add_option("--level-bias", level_bias, "added to every pixel's level (negative: finer)")
       ->check(CLI::Range(-8.0, 8.0));
@@ -266,6 +272,7 @@ int main(int argc, char** argv) {
     RenderOptions render_options;
     render_options.filter = filter_from(filter_name);
     render_options.access = access_from(access_name);
+    render_options.antialias = antialias;
     render_options.level_bias = level_bias;
     render_options.false_colour_levels = false_colour;
     render_options.threads = threads;

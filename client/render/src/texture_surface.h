@@ -49,11 +49,17 @@ class TextureSurface {
 };
 
 // The box over which a pixel of texture-space footprint `footprint` (a diameter in the plane
-// with unit normal n) averages hard edges: on each axis the extent of that disc,
-// footprint * sqrt(1 - n_axis^2). The band limit of noise stays the footprint itself.
+// with unit normal n), looked up kEvaluatedInset * footprint inside, averages hard edges: on
+// each axis the extent of that disc, footprint * sqrt(1 - n_axis^2), plus the extent of the
+// depth from the surface down to twice the inset, so that a pattern finer than the inset
+// along the normal averages to its mean instead of aliasing (and a face on an edge still sees
+// only the inside). The band limit of noise stays the footprint itself.
 inline SampleFootprint surface_footprint(double footprint, const glm::dvec3& n) {
-  const auto extent = [&](double c) { return footprint * std::sqrt(std::fmax(0.0, 1.0 - c * c)); };
   if (!(footprint > 0.0)) return SampleFootprint::isotropic(footprint);
+  const double depth = 2.0 * kEvaluatedInset * footprint;
+  const auto extent = [&](double c) {
+    return footprint * std::sqrt(std::fmax(0.0, 1.0 - c * c)) + depth * std::fabs(c);
+  };
   return {footprint, {extent(n.x), extent(n.y), extent(n.z)}};
 }
 
