@@ -58,6 +58,7 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
       }
     }
   }
+  if (evaluated_.count > 0) evaluate(image);
   if (lit_.batch.count > 0) flush(image);
 }
 
@@ -68,13 +69,29 @@ void TileShader::shade_evaluated(const GBuffer& g, const Pixel& pixel, const Obj
     image.set(pixel.x, pixel.y, kEvaluatedColour.r, kEvaluatedColour.g, kEvaluatedColour.b);
     return;
   }
+  if (evaluated_.count > 0 && evaluated_.object != &object) evaluate(image);
   const glm::dvec3 n = object.surface.normal(g.normal[pixel.index]);
   const double footprint = g.footprint[pixel.index];
-  const glm::dvec3 p = inset(g.texture_position[pixel.index], n, kEvaluatedInset * footprint);
-  const Texel texel = object.evaluator->sample(p, surface_footprint(footprint, n));
-  float values[CachedBrick::kMaxChannels];
-  texel_channels(object.evaluator->spec(), texel, values);
-  shade_values(pixel, object.material, values, image);
+  const std::size_t i = evaluated_.count++;
+  evaluated_.object = &object;
+  evaluated_.pixels[i] = pixel;
+  evaluated_.points[i] = inset(g.texture_position[pixel.index], n, kEvaluatedInset * footprint);
+  evaluated_.footprints[i] = surface_footprint(footprint, n);
+  if (evaluated_.count == EvaluatedPixels::kCapacity) evaluate(image);
+}
+
+void TileShader::evaluate(Image& image) {
+  const std::size_t n = evaluated_.count;
+  const ObjectShading& object = *evaluated_.object;
+  object.evaluator->sample({evaluated_.points.data(), n}, {evaluated_.footprints.data(), n},
+                           {evaluated_.texels.data(), n});
+  evaluated_.count = 0;
+  const TextureSpec& spec = object.evaluator->spec();
+  for (std::size_t i = 0; i < n; ++i) {
+    float values[CachedBrick::kMaxChannels];
+    texel_channels(spec, evaluated_.texels[i], values);
+    shade_values(evaluated_.pixels[i], object.material, values, image);
+  }
 }
 
 void TileShader::shade_cached(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <chrono>
 #include <cstddef>
 #include <memory>
@@ -71,8 +72,20 @@ class TileShader {
     int x, y;
     std::size_t index;  // in the G-buffer
   };
+  // Evaluated pixels wait here (one object at a time) and are evaluated together: the pattern
+  // is dispatched once per batch, not per pixel.
+  struct EvaluatedPixels {
+    static constexpr std::size_t kCapacity = 64;
+    std::size_t count = 0;
+    const ObjectShading* object = nullptr;
+    std::array<Pixel, kCapacity> pixels;
+    std::array<glm::dvec3, kCapacity> points;
+    std::array<SampleFootprint, kCapacity> footprints;
+    std::array<Texel, kCapacity> texels;
+  };
   void shade_evaluated(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
                        Image& image);
+  void evaluate(Image& image);
   void shade_cached(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
                     TextureSampler& sampler, Image& image);
   void shade_values(const Pixel& pixel, const MaterialInputs& m, const float* values, Image& image);
@@ -84,6 +97,7 @@ class TileShader {
   TileCounts counts_;
   const GBuffer* gbuffer_ = nullptr;  // the tile being shaded
   LitPixels lit_;                     // about 40 KB, uninitialised but for the count
+  EvaluatedPixels evaluated_;         // about 6 KB, likewise
 };
 
 }  // namespace soltex::render
