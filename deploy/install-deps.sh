@@ -9,7 +9,7 @@ packages=(
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
   libboost-dev libglm-dev libspdlog-dev libcli11-dev libstb-dev libxxhash-dev libzstd-dev liblz4-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  nlohmann-json3-dev libtinyobjloader-dev
+  nlohmann-json3-dev
   libsdl2-dev xvfb x11-apps imagemagick   # soltex-view's window and its test on a virtual X server
   libmemcached-dev memcached nginx-light  # the shared brick cache and the balancer of the scale test
   python3                                 # the scale test reads soltex-load's JSON reports
