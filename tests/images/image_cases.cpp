@@ -167,17 +167,45 @@ void clip_cases(std::vector<ImageCase>& cases) {
   }
 }
 
+// The period of each pattern at its normal scale in world units along every axis, or 0 where
+// it has none (rings and wood are not periodic across space).
+double period_of(const std::string& pattern) {
+  if (pattern == "stripes") return 0.4;
+  if (pattern == "checker-2d" || pattern == "checker-3d" || pattern == "colour-cube") return 0.5;
+  if (pattern == "noise" || pattern == "turbulence") return 64.0;  // 256 cells at 4 per unit
+  if (pattern == "marble") return 128.0;                           // 256 cells at 2 per unit
+  return 0.0;
+}
+
+std::string offset_name(const Pattern& p, double offset, bool world) {
+  char name[160];
+  std::snprintf(name, sizeof name, "%s at %g, %s space", p.name, offset,
+                world ? "world" : "object");
+  return name;
+}
+
+// Each far case against its reference, and also against the same scene at the origin where
+// it must look the same: in object space always (the texture moves with the object), in world
+// space where the offset is a whole number of the pattern's periods. That shows far objects
+// keep their detail, which a reference computed at the same place could not.
 void offset_cases(std::vector<ImageCase>& cases) {
   for (const Pattern& p : kPatterns) {
     // Scene coordinates are bounded at 1e9, the camera included: the far cases sit just
     // inside, on both sides.
     for (double offset : {0.0, 1e4, 1e6, 1e9 - 8.0, -1e9}) {
       for (bool world : {false, true}) {
-        char name[160];
-        std::snprintf(name, sizeof name, "%s at %g, %s space", p.name, offset,
-                      world ? "world" : "object");
+        const std::string name = offset_name(p, offset, world);
         add(cases, "offsets", name, one_object(kSphere, p.texture(Scale::normal), world, offset),
             p);
+        const double period = period_of(p.name);
+        const bool repeats = !world || (period > 0.0 && std::fmod(offset, period) == 0.0);
+        if (offset == 0.0 || !repeats) continue;
+        ImageCase same = cases.back();
+        same.name = name + ", against the same at the origin";
+        same.same_as = offset_name(p, 0.0, world);
+        same.psnr_floor = 40.0;
+        same.max_share_off = 0.005;
+        cases.push_back(same);
       }
     }
   }
