@@ -81,18 +81,18 @@ void TextureEvaluator::sample(std::span<const glm::dvec3> points,
   const auto each = [&](auto&& field) {
     for (std::size_t i = 0; i < n; ++i) out[i].field = field(points[i], footprints[i].box);
   };
-  // Noise: the plan depends on the filter width alone, so a run of points of one width (most
-  // pixels of a surface at one distance differ, but a grid's do not) shares it.
+  // Noise: a plan per point of its own width, made where it is used. (Keeping one plan across
+  // a run of equal widths was slower: pixels' widths all differ, and a plan copied in just
+  // before it is read stalls the loads that read it.)
   const auto each_fractal = [&](auto&& field) {
-    OctavePlan local_plan;
-    double planned_width = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       const double w = footprints[i].width;
-      if (w > 0.0 && w != planned_width) {
-        local_plan = plan_for(w);
-        planned_width = w;
+      if (w > 0.0) {
+        const OctavePlan plan = plan_for(w);
+        out[i].field = field(plan, points[i], footprints[i].box);
+      } else {
+        out[i].field = field(point_plan_, points[i], footprints[i].box);
       }
-      out[i].field = field(w > 0.0 ? local_plan : point_plan_, points[i], footprints[i].box);
     }
   };
   const fields::WoodFrame frame{wood_tilt_z_.x, wood_tilt_z_.y};

@@ -65,8 +65,8 @@ TEST(TextureEvaluator, BatchEqualsSinglePointBitForBit) {
   }
 }
 
-// The many-point form shares one octave plan across a run of equal widths: widths that change,
-// repeat after a change, or are 0, negative or NaN must still give each point's own result.
+// The many-point form plans octaves per point: widths that change, repeat after a change, or
+// are 0, negative or NaN must each give the point's own result.
 TEST(TextureEvaluator, ManyPointsEqualOnePointAtATimeBitForBit) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double widths[] = {0.01, 0.01, 0.0, 0.2, 0.01, nan, -1.0, 0.2, 0.2, 3e-5, 0.01};

@@ -75,8 +75,8 @@ class TextureEvaluator {
   Texel sample(const glm::dvec3& p, const SampleFootprint& footprint) const;
   // Many points, each over its own footprint: out[i] is bit-identical to
   // sample(points[i], footprints[i]), but the pattern is dispatched once per call and the
-  // octave plan made only for patterns with noise, once per distinct width in a run. Throws
-  // std::invalid_argument unless footprints.size() == points.size() <= out.size().
+  // octave plan made only for patterns with noise. Throws std::invalid_argument unless
+  // footprints.size() == points.size() <= out.size().
   void sample(std::span<const glm::dvec3> points, std::span<const SampleFootprint> footprints,
               std::span<Texel> out) const;
 
