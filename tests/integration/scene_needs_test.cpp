@@ -454,6 +454,10 @@ TEST(SceneNeeds, DefaultSceneReport) {
     for (const BrickKey& key : surface) {
       if (key.texture == o.texture_id) on_surface.insert(key);
     }
+    // A texture evaluated per pixel is never fetched.
+    if (evaluated_per_pixel(o.texture, TextureAccess::automatic)) {
+      EXPECT_TRUE(requested.empty()) << o.object->name;
+    }
     const uint64_t dense = dense_bricks(prepared, requested);
     dense_total += dense;
     std::printf("  %s | %zu | %zu | %llu\n", o.object->name.c_str(), requested.size(),
@@ -463,6 +467,19 @@ TEST(SceneNeeds, DefaultSceneReport) {
       "  all | %zu | %zu | %llu (requested / dense: %.2f %%)\n", fetched.requested.size(),
       surface.size(), u(dense_total),
       100.0 * static_cast<double>(fetched.requested.size()) / static_cast<double>(dense_total));
+  EXPECT_EQ(stats.evaluated_objects + stats.cached_objects, prepared.objects.size());
+  std::printf(
+      "texture access (auto, docs/TEXTURES.md \"Cache or evaluate\"): objects evaluated per "
+      "pixel %zu, cached %zu; covered pixels evaluated %zu of %zu (%.1f %%)\n",
+      stats.evaluated_objects, stats.cached_objects, stats.evaluated_pixels, stats.covered_pixels,
+      100.0 * static_cast<double>(stats.evaluated_pixels) /
+          static_cast<double>(std::max<std::size_t>(1, stats.covered_pixels)));
+  for (const PreparedObject& o : prepared.objects) {
+    std::printf("  %s | %s | %s\n", o.object->name.c_str(), pattern_name(o.texture.pattern),
+                evaluated_per_pixel(o.texture, TextureAccess::automatic)
+                    ? "evaluated per pixel, no bricks"
+                    : "cached lookup");
+  }
   std::printf(
       "bytes: colour only %llu (%.0f per brick, 3 channels); colour + opacity + specular "
       "%llu (%.0f per brick, 5 channels)\n",

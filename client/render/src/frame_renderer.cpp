@@ -12,6 +12,7 @@
 #include <thread>
 #include <unordered_map>
 
+#include "soltex/common/overloaded.h"
 #include "soltex/common/texture_evaluator.h"
 #include "soltex/render/shading.h"
 #include "tile_shader.h"
@@ -79,12 +80,29 @@ const char* texture_access_name(TextureAccess access) {
   return "?";
 }
 
+// The automatic rule, one choice per pattern kind, from tests/bench/access_bench: the warm
+// frame of one object evaluated per pixel over the cached one, per covered pixel (the figures
+// beside each kind; docs/TEXTURES.md, "Cache or evaluate"). A fixed rule rather than a timing
+// taken at run time, so that the image never depends on the machine's load. Evaluated: the
+// patterns whose box filter is exact in closed form; they cost at most about 1.3 times the
+// cached frame and fetch no bricks at all (no server time, bytes, cache memory or wait for the
+// first picture). Cached: wood, whose grain filter leaves out the jitter's slope and which
+// costs 1.6 times, and the noise patterns, whose band limit fades octaves as the cache's
+// band-limited levels do, so evaluating them buys no exactness (single-octave noise 1.3 times,
+// turbulence and marble 2.4 and 2.7).
 bool evaluated_per_pixel(const TextureSpec& texture, TextureAccess access) {
   if (access != TextureAccess::automatic) return access == TextureAccess::evaluated;
-  return std::holds_alternative<StripesParams>(texture.pattern) ||
-         std::holds_alternative<CheckerParams>(texture.pattern) ||
-         std::holds_alternative<RingsParams>(texture.pattern) ||
-         std::holds_alternative<ColourCubeParams>(texture.pattern);
+  return std::visit(Overloaded{
+                        [](const StripesParams&) { return true; },      // 0.94
+                        [](const CheckerParams&) { return true; },      // 2D 1.12, 3D 1.29
+                        [](const RingsParams&) { return true; },        // 1.31
+                        [](const ColourCubeParams&) { return true; },   // 1.13
+                        [](const WoodParams&) { return false; },        // 1.58
+                        [](const NoiseParams&) { return false; },       // 1.29
+                        [](const TurbulenceParams&) { return false; },  // 2.35
+                        [](const MarbleParams&) { return false; },      // 2.66
+                    },
+                    texture.pattern);
 }
 
 glm::dmat4 view_projection(const Camera& camera, int width, int height) {
@@ -201,6 +219,9 @@ Frame FrameRenderer::render_pixels(const PreparedScene& scene, const Camera& cam
         });
   }
   gather(shaders, frame);
+  for (const render::ObjectShading& object : shading.objects) {
+    ++(object.evaluator != nullptr ? frame.stats.evaluated_objects : frame.stats.cached_objects);
+  }
   // One pass does both: split its wall time by the share of render-thread time spent shading
   // (an estimate; the threads are busy throughout the pass).
   Clock::duration shading_time{0};

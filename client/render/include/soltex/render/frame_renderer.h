@@ -31,9 +31,9 @@ enum class TextureAccess : uint8_t {
 const char* texture_access_name(TextureAccess access);
 
 // Whether `access` evaluates `texture` per pixel (and so fetches no brick for it). Automatic
-// evaluates the analytic patterns whose filtered form is exact and costs less per pixel than a
-// cached lookup: stripes, checkers, rings and the colour cube (docs/TEXTURES.md, "Cache or
-// evaluate").
+// evaluates the analytic patterns whose filtered form is exact and which cost at most about 1.3
+// times a cached lookup per pixel: stripes, checkers, rings and the colour cube; a rule per
+// pattern kind, measured by tests/bench/access_bench (docs/TEXTURES.md, "Cache or evaluate").
 bool evaluated_per_pixel(const TextureSpec& texture, TextureAccess access);
 
 struct RenderOptions {
@@ -65,6 +65,10 @@ struct FrameStats {
   std::size_t empty_pixels = 0;      // nothing resident at all yet
   std::size_t shaded_pixels = 0;     // lit (not unlit materials)
   std::size_t evaluated_pixels = 0;  // textures evaluated per pixel, not looked up
+  // Objects whose texture this frame evaluated per pixel (and fetched no bricks for), and
+  // objects whose texture it looked up in the brick cache (RenderOptions::access).
+  std::size_t evaluated_objects = 0;
+  std::size_t cached_objects = 0;
   RasterStats raster;
 };
 
