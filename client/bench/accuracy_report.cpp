@@ -55,6 +55,38 @@ std::string frame_time_text(const FrameTime& t, int decimals = 1) {
          fixed(t.q3_ms, decimals) + ")";
 }
 
+double evaluated_percent(const SettingResult& r) {
+  if (r.covered_pixels == 0) return 0.0;
+  return 100.0 * static_cast<double>(r.evaluated_pixels) / static_cast<double>(r.covered_pixels);
+}
+
+// What `auto` chose per texture, with the frames of the three access settings beside it.
+void write_automatic_access(std::ofstream& out, const AccuracyRun& run) {
+  out << "\n## Cache or evaluate\n\n"
+      << "`auto` reads each texture by a fixed rule per pattern kind, from the per-pixel costs "
+      << "measured by `build/tests/bench/access_bench` (docs/TEXTURES.md, \"Cache or "
+      << "evaluate\"); no timing taken at run time decides it, so the image does not depend on "
+      << "the machine. In this scene:\n\n"
+      << "| object | pattern | auto reads it by |\n|---|---|---|\n";
+  for (const TextureChoice& c : run.automatic_access) {
+    out << "| " << c.object << " | " << c.pattern << " | "
+        << (c.evaluated ? "evaluation per pixel (no bricks)" : "cached lookup") << " |\n";
+  }
+  out << "\n| access | PSNR dB | CPU ms/frame | ms/frame | eval px % | bricks | MB fetched | "
+         "cache MiB |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const SettingResult& r : run.results) {
+    const AccuracySetting& s = r.setting;
+    AccuracySetting as_default;
+    as_default.access = s.access;
+    if (!(s == as_default)) continue;  // the default with only its access changed
+    out << "| " << texture_access_name(s.access) << " | " << fixed(r.error.psnr_db, 2) << " | "
+        << frame_time_text(r.frame_cpu, 2) << " | " << frame_time_text(r.frame) << " | "
+        << fixed(evaluated_percent(r), 1) << " | " << r.cost.bricks << " | "
+        << fixed(megabytes(static_cast<double>(r.cost.encoded_bytes)), 2) << " | "
+        << fixed(mebibytes(static_cast<double>(r.resident_bytes)), 1) << " |\n";
+  }
+}
+
 }  // namespace
 
 void write_markdown(const AccuracyRun& run, const std::string& command,
@@ -101,6 +133,11 @@ void write_markdown(const AccuracyRun& run, const std::string& command,
       << "- **bricks, MB:** the distinct bricks the frame fetched until it converged, and their "
       << "encoded size with the setting's codec. **cache MiB:** `BrickCache` resident bytes "
       << "(decoded samples and bookkeeping).\n"
+      << "- **access:** how each texture is read per pixel: `cache` looks every one up in its "
+      << "bricks, `evaluate` evaluates every one over the pixel's footprint (and fetches no "
+      << "brick for it), `auto` (the default) follows the rule per pattern kind in "
+      << "docs/TEXTURES.md, \"Cache or evaluate\". **eval px %:** the share of covered pixels "
+      << "whose texture was evaluated.\n"
       << "- **Codec rows** draw the default's frame (the cache holds decoded bricks): same "
       << "error, frame time and cache; only bytes and brick times differ.\n"
       << "- **front:** on the Pareto front of median " << clock_column
@@ -109,9 +146,9 @@ void write_markdown(const AccuracyRun& run, const std::string& command,
       << "![PSNR against frame time](" << plot_link.generic_string() << ")\n\n"
       << "| setting | level | B | filter | MIP | octaves | codec | PSNR dB | SSIM | max Δ R/G/B "
          "| ms/frame | CPU ms/frame | server µs/brick | encode µs | decode µs | bricks "
-         "| MB fetched | cache MiB | front |\n"
-      << "|---|---:|---:|---|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|"
-         "\n";
+         "| MB fetched | cache MiB | access | eval px % | front |\n"
+      << "|---|---:|---:|---|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---"
+         "|---:|---|\n";
   for (const SettingResult& r : run.results) {
     const AccuracySetting& s = r.setting;
     out << "| " << s.label() << " | " << s.finest_level << " | " << s.brick_size << " | "
@@ -123,8 +160,10 @@ void write_markdown(const AccuracyRun& run, const std::string& command,
         << fixed(r.cost.encode_us, 1) << " | " << fixed(r.cost.decode_us, 1) << " | "
         << r.cost.bricks << " | " << fixed(megabytes(static_cast<double>(r.cost.encoded_bytes)), 2)
         << " | " << fixed(mebibytes(static_cast<double>(r.resident_bytes)), 1) << " | "
+        << texture_access_name(s.access) << " | " << fixed(evaluated_percent(r), 1) << " | "
         << (r.on_front ? "yes" : "") << " |\n";
   }
+  write_automatic_access(out, run);
   const std::vector<const SettingResult*> front = front_fastest_first(run);
   out << "\n## The front as a choice\n\n"
       << "For a frame-time budget, the most accurate setting measured that fits it (the "
@@ -151,7 +190,7 @@ void write_csv(const AccuracyRun& run, const std::filesystem::path& path) {
   out << "setting,finest_level,brick_size,filter,mip,octaves,codec,psnr_db,ssim,max_abs_r,"
          "max_abs_g,max_abs_b,frame_ms,frame_ms_q1,frame_ms_q3,cpu_ms,cpu_ms_q1,cpu_ms_q3,"
          "server_us_per_brick,encode_us_per_brick,decode_us_per_brick,bricks,bytes_fetched,"
-         "resident_bytes,"
+         "resident_bytes,access,evaluated_pixels,covered_pixels,"
          "pareto_front\n";
   for (const SettingResult& r : run.results) {
     const AccuracySetting& s = r.setting;
@@ -164,8 +203,9 @@ void write_csv(const AccuracyRun& run, const std::filesystem::path& path) {
         << fixed(r.frame_cpu.median_ms, 2) << "," << fixed(r.frame_cpu.q1_ms, 2) << ","
         << fixed(r.frame_cpu.q3_ms, 2) << "," << fixed(r.cost.server_us, 1) << ","
         << fixed(r.cost.encode_us, 2) << "," << fixed(r.cost.decode_us, 2) << "," << r.cost.bricks
-        << "," << r.cost.encoded_bytes << "," << r.resident_bytes << "," << (r.on_front ? 1 : 0)
-        << "\n";
+        << "," << r.cost.encoded_bytes << "," << r.resident_bytes << ","
+        << texture_access_name(s.access) << "," << r.evaluated_pixels << "," << r.covered_pixels
+        << "," << (r.on_front ? 1 : 0) << "\n";
   }
   close_checked(out, path);
 }

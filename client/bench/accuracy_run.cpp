@@ -61,6 +61,11 @@ AccuracyRun run_accuracy_sweep(const Scene& scene, const std::string& scene_name
                                const SweepOptions& options) {
   AccuracyRun run;
   run.scene_name = scene_name;
+  for (const SceneObject& object : scene.objects) {
+    const TextureSpec& texture = object.material.texture;
+    run.automatic_access.push_back({object.name, pattern_name(texture.pattern),
+                                    evaluated_per_pixel(texture, TextureAccess::automatic)});
+  }
   run.options = options;
   run.machine = machine_description();
   run.load_before = load_average();
@@ -119,6 +124,8 @@ AccuracyRun run_accuracy_sweep(const Scene& scene, const std::string& scene_name
     const FrameUnderTest& drawn = *frames[frame];
     result.error = image_error(drawn.image(), reference);
     result.resident_bytes = drawn.resident_bytes();
+    result.covered_pixels = drawn.covered_pixels();
+    result.evaluated_pixels = drawn.evaluated_pixels();
     meters.push_back(drawn.brick_cost_meter(setting.codec));
     run.results.push_back(result);
     frame_of.push_back(frame);

@@ -42,17 +42,27 @@ struct FrameTime {
 // Everything measured for one setting.
 struct SettingResult {
   AccuracySetting setting;
-  ImageError error;             // the converged frame against the reference
-  FrameTime frame;              // wall time of FrameRenderer::render, warm cache
-  FrameTime frame_cpu;          // CPU time of the same frames, all render threads
-  BrickCost cost;               // the bricks the frame fetched, with the setting's codec
-  uint64_t resident_bytes = 0;  // BrickCache::stats().resident_bytes once converged
-  int frame_group = 0;          // index of the first result drawing the same frame (codec aside)
-  bool on_front = false;        // its frame is on the Pareto front of median time against PSNR
+  ImageError error;                  // the converged frame against the reference
+  FrameTime frame;                   // wall time of FrameRenderer::render, warm cache
+  FrameTime frame_cpu;               // CPU time of the same frames, all render threads
+  BrickCost cost;                    // the bricks the frame fetched, with the setting's codec
+  uint64_t resident_bytes = 0;       // BrickCache::stats().resident_bytes once converged
+  std::size_t covered_pixels = 0;    // of the converged frame
+  std::size_t evaluated_pixels = 0;  // of those, evaluated per pixel rather than looked up
+  int frame_group = 0;    // index of the first result drawing the same frame (codec aside)
+  bool on_front = false;  // its frame is on the Pareto front of median time against PSNR
+};
+
+// How the renderer's automatic rule reads one object's texture (evaluated_per_pixel()).
+struct TextureChoice {
+  std::string object;
+  std::string pattern;
+  bool evaluated = false;
 };
 
 struct AccuracyRun {
   std::string scene_name;
+  std::vector<TextureChoice> automatic_access;  // per scene object
   SweepOptions options;
   std::string machine;
   double load_before = -1.0;  // 1-minute load average when the sweep started and ended

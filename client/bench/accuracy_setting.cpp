@@ -32,6 +32,8 @@ std::string AccuracySetting::label() const {
   if (mip != defaults.mip) parts.push_back(std::string("mip=") + mip_mode_name(mip));
   if (octave_cap != defaults.octave_cap) parts.push_back("octaves=" + octaves_name(octave_cap));
   if (codec != defaults.codec) parts.push_back("codec=" + codec.name());
+  if (access != defaults.access)
+    parts.push_back(std::string("access=") + texture_access_name(access));
   if (parts.empty()) return "default";
   std::string label = parts.front();
   for (std::size_t i = 1; i < parts.size(); ++i) label += " " + parts[i];

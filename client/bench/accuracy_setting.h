@@ -6,6 +6,7 @@
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/brick_evaluator.h"
 #include "soltex/common/texture_sampler.h"
+#include "soltex/render/frame_renderer.h"
 
 namespace soltex::bench {
 
@@ -29,11 +30,14 @@ struct AccuracySetting {
   MipMode mip = MipMode::band_limited;
   std::optional<int> octave_cap;  // fractal octave_max capped to this; empty: the scene's own
   CodecChoice codec;
+  // Per texture: cached lookups, per-pixel evaluation, or the renderer's rule per pattern kind.
+  TextureAccess access = TextureAccess::automatic;
 
   // The knobs that differ from the default, e.g. "level=7 filter=nearest"; "default" for it.
   std::string label() const;
   // The codec is the only knob that leaves the frame alone: the cache holds decoded bricks,
-  // so two settings that differ in it alone draw the same frame from the same cache.
+  // so two settings that differ in it alone draw the same frame from the same cache. (Access
+  // changes the frame: an evaluated texture is not read from bricks.)
   bool same_frame_as(const AccuracySetting& other) const;
   bool operator==(const AccuracySetting&) const = default;
 };

@@ -13,6 +13,8 @@ constexpr SampleFilter kFilters[] = {SampleFilter::nearest, SampleFilter::trilin
                                      SampleFilter::quadrilinear};
 constexpr MipMode kMipModes[] = {MipMode::point, MipMode::band_limited, MipMode::supersampled};
 constexpr int kOctaveCaps[] = {2, 4, 6};
+// Beside the default (automatic): every texture cached, every texture evaluated per pixel.
+constexpr TextureAccess kAccesses[] = {TextureAccess::cached, TextureAccess::evaluated};
 constexpr CodecChoice kCodecs[] = {
     {Codec::raw, 0}, {Codec::lz4, 0}, {Codec::zstd, 1}, {Codec::zstd, 3}};
 
@@ -36,6 +38,7 @@ std::vector<AccuracySetting> accuracy_sweep(const Scene& scene, bool quick) {
     vary([](AccuracySetting& s) { s.filter = SampleFilter::nearest; });
     vary([](AccuracySetting& s) { s.codec = {Codec::lz4, 0}; });
     if (scene_octaves && *scene_octaves > 2) vary([](AccuracySetting& s) { s.octave_cap = 2; });
+    for (TextureAccess access : kAccesses) vary([&](AccuracySetting& s) { s.access = access; });
     return sweep;
   }
   for (int level : kLevels) vary([&](AccuracySetting& s) { s.finest_level = level; });
@@ -47,6 +50,7 @@ std::vector<AccuracySetting> accuracy_sweep(const Scene& scene, bool quick) {
       vary([&](AccuracySetting& s) { s.octave_cap = cap; });
   }
   for (const CodecChoice& codec : kCodecs) vary([&](AccuracySetting& s) { s.codec = codec; });
+  for (TextureAccess access : kAccesses) vary([&](AccuracySetting& s) { s.access = access; });
   for (int level : kLevels) {
     for (SampleFilter filter : kFilters) {
       vary([&](AccuracySetting& s) {

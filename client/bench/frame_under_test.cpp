@@ -28,6 +28,7 @@ FrameUnderTest::FrameUnderTest(const Scene& scene, const AccuracySetting& settin
   RenderOptions options;
   options.filter = setting.filter;
   options.threads = threads;
+  options.access = setting.access;
   renderer_ = std::make_unique<FrameRenderer>(*cache_, options);
   view::HeadlessOptions converge;
   converge.max_time = max_converge;
@@ -44,6 +45,10 @@ FrameUnderTest::FrameUnderTest(const Scene& scene, const AccuracySetting& settin
     if (cache_->contains(key)) bricks_.push_back(key);
   }
   resident_bytes_ = cache_->stats().resident_bytes;
+  const FrameStats stats =
+      renderer_->render(prepared_, scene_.camera, size.width, size.height).stats;
+  covered_pixels_ = stats.covered_pixels;
+  evaluated_pixels_ = stats.evaluated_pixels;
 }
 
 Elapsed FrameUnderTest::time_frame() {

@@ -38,6 +38,9 @@ class FrameUnderTest {
   // Distinct bricks the frame asked for until it converged, all of them resident.
   const std::vector<BrickKey>& bricks() const { return bricks_; }
   uint64_t resident_bytes() const { return resident_bytes_; }
+  // Of the converged frame: covered pixels, and those whose texture was evaluated per pixel.
+  std::size_t covered_pixels() const { return covered_pixels_; }
+  std::size_t evaluated_pixels() const { return evaluated_pixels_; }
 
   // Draws the frame once more and returns how long FrameRenderer::render took. Throws
   // std::runtime_error if it missed a brick (the cache is meant to be warm).
@@ -60,6 +63,7 @@ class FrameUnderTest {
   Image image_;
   std::vector<BrickKey> bricks_;
   uint64_t resident_bytes_ = 0;
+  std::size_t covered_pixels_ = 0, evaluated_pixels_ = 0;
 };
 
 }  // namespace soltex::bench
