@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""A soltex brick client written from docs/PROTOCOL.md: register a texture, fetch a brick, decode it.
+"""A soltex brick client written from docs/PROTOCOL.md: registers a texture, fetches a brick
+and decodes it.
 
 Debian packages: python3-grpcio python3-protobuf python3-numpy python3-lz4 python3-zstandard
 python3-xxhash, and protobuf-compiler with protobuf-compiler-grpc to make the Python stubs.
@@ -80,8 +81,13 @@ def decode_brick(payload: bytes) -> DecodedBrick:
         raw = body
     elif codec == 1:  # a bare LZ4 block
         raw = lz4.block.decompress(body, uncompressed_size=decoded_size)
-    else:  # one zstd frame that declares its size
-        raw = zstandard.ZstdDecompressor().decompress(body)
+    else:  # one zstd frame that declares its size, nothing after it
+        if zstandard.get_frame_parameters(body).content_size != decoded_size:
+            raise DecodeError("the zstd frame does not declare the decoded size")
+        frame = zstandard.ZstdDecompressor().decompressobj()
+        raw = frame.decompress(body)
+        if frame.unused_data:
+            raise DecodeError(f"{len(frame.unused_data)} bytes after the zstd frame")
     if len(raw) != decoded_size:
         raise DecodeError(f"decompressed to {len(raw)} bytes, expected {decoded_size}")
     planes = np.frombuffer(raw, np.uint8).reshape(channels, side, side, side)
@@ -155,8 +161,8 @@ def main():
         sys.exit(f"no brick: {errors}")
     brick = decode_brick(bricks[0].payload)
     xs, ys, zs = sample_axes(request.volume, handle.brick_size, args.level, args.brick)
-    print(f"texture {handle.id:016x}, brick {tuple(args.brick)} of level {args.level}: B = {brick.size}, "
-          f"{brick.planes.shape[0]} planes (R, G, B, opacity), {brick.codec}, "
+    print(f"texture {handle.id:016x}, brick {tuple(args.brick)} of level {args.level}: "
+          f"B = {brick.size}, {brick.planes.shape[0]} planes (R, G, B, opacity), {brick.codec}, "
           f"{len(bricks[0].payload)} bytes, checksum {brick.checksum:016x}")
     for i, j, k in [(0, 0, 0), (3, 0, 0), (brick.size, brick.size, brick.size)]:
         values = ", ".join(f"{q / 255:.3f}" for q in brick.planes[:, k, j, i])

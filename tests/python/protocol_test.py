@@ -6,6 +6,7 @@ bricks in every codec the server offers and checks each sample against the doc's
 """
 import argparse
 import pathlib
+import struct
 import subprocess
 import sys
 import tempfile
@@ -60,20 +61,18 @@ class ProtocolTest(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
         cls.directory = tempfile.TemporaryDirectory(prefix="soltex-protocol-")
-        cls.tx, cls.pb, cls.rpc = bc.load_stubs(ARGS.proto_dir, pathlib.Path(cls.directory.name) / "stubs",
-                                            ARGS.protoc, ARGS.grpc_python_plugin)
-        cls.process, port = start_soltexd(ARGS.soltexd, cls.directory.name)
+        cls.addClassCleanup(cls.directory.cleanup)
+        stubs = pathlib.Path(cls.directory.name) / "stubs"
+        cls.tx, cls.pb, cls.rpc = bc.load_stubs(ARGS.proto_dir, stubs, ARGS.protoc,
+                                                ARGS.grpc_python_plugin)
+        process, port = start_soltexd(ARGS.soltexd, cls.directory.name)
+        cls.addClassCleanup(process.wait)
+        cls.addClassCleanup(process.kill)
         cls.channel = grpc.insecure_channel(f"127.0.0.1:{port}")
+        cls.addClassCleanup(cls.channel.close)
         cls.stub = cls.rpc.BrickServiceStub(cls.channel)
         cls.request = bc.colour_cube_request(cls.tx, cls.pb)
         cls.handle = cls.stub.RegisterTexture(cls.request)
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.channel.close()
-        cls.process.kill()
-        cls.process.wait()
-        cls.directory.cleanup()
 
     def keys(self):
         # Level 0 brick (2, 1, 3) holds x = 0.1875, where tri(x / 0.75) = 0.5: the rounding tie.
@@ -120,7 +119,8 @@ class ProtocolTest(unittest.TestCase):
         self.assertEqual(bc.quantize(values).tolist(), [0, 0, 0, 0, 1, 128, 255, 255, 255])
 
     def test_first_known_codec_is_taken(self):
-        bricks, errors = bc.fetch_bricks(self.stub, self.pb, self.keys()[2:], [99, self.pb.CODEC_LZ4])
+        bricks, errors = bc.fetch_bricks(self.stub, self.pb, self.keys()[2:],
+                                         [99, self.pb.CODEC_LZ4])
         self.assertEqual(errors, [])
         self.assertEqual([b.codec for b in bricks], [self.pb.CODEC_LZ4])
         bricks, _ = bc.fetch_bricks(self.stub, self.pb, self.keys()[2:], [])
@@ -162,6 +162,11 @@ class ProtocolTest(unittest.TestCase):
             bc.decode_brick(bytes(payload))
         with self.assertRaisesRegex(bc.DecodeError, "payload size"):
             bc.decode_brick(bricks[0].payload[:-1])
+        bricks, _ = bc.fetch_bricks(self.stub, self.pb, self.keys()[:1], self.pb.CODEC_ZSTD)
+        payload = bricks[0].payload + b"junk"
+        payload = payload[:16] + struct.pack("<I", len(payload) - 28) + payload[20:]
+        with self.assertRaisesRegex(bc.DecodeError, "after the zstd frame"):
+            bc.decode_brick(payload)
 
 
 if __name__ == "__main__":
