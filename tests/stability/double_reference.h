@@ -119,9 +119,12 @@ inline double turbulence(const FractalParams& f, double filter_width, const glm:
   return std::clamp(t, 0.0, 1.0);
 }
 
-// Marble: (1 + sin(2 pi fract(ripple) + A * turb)) / 2. The ripple f * x is formed in long
-// double (64-bit mantissa): for the frequencies used here the product of a double coordinate
-// is exact, so the reference phase does not inherit double's rounding at 1e9.
+// Marble: (1 + sin(2 pi fract(ripple) + A * turb) * fade) / 2. The ripple f * x is formed in
+// long double (64-bit mantissa): for the frequencies used here the product of a double
+// coordinate is exact, so the reference phase does not inherit double's rounding at 1e9. The
+// box of width w on every axis averages the sine over a span of 2 pi f w (w the sum of the
+// box's extents along the ripple's gradient, for the product ripple): fade = sin(h) / h,
+// h = pi f w.
 inline double marble(const MarbleParams& m, double filter_width, const glm::dvec3& p) {
   long double ripple;
   if (m.ripple == Ripple::axis) {
@@ -133,7 +136,13 @@ inline double marble(const MarbleParams& m, double filter_width, const glm::dvec
   const long double fraction = ripple - std::floor(ripple);
   const double phase = 2.0 * std::numbers::pi * static_cast<double>(fraction) +
                        m.amplitude * fractal(m.turbulence, filter_width, p).raw;
-  return 0.5 + 0.5 * std::sin(phase);
+  const double span = m.ripple == Ripple::axis
+                          ? m.frequency * filter_width
+                          : m.frequency * filter_width *
+                                (std::fabs(p.y * p.z) + std::fabs(p.x * p.z) + std::fabs(p.x * p.y));
+  const double h = std::numbers::pi * span;
+  const double fade = h > 1e-4 ? std::sin(h) / h : 1.0;
+  return 0.5 + 0.5 * std::sin(phase) * fade;
 }
 
 // floor(u) mod 2, from the integer part (exact for |u| < 2^63).
