@@ -1,14 +1,19 @@
 #include "texture_registration.h"
 
-#include <algorithm>
+#include <cstdint>
 #include <optional>
+#include <string>
 
+#include "soltex/common/brick_layout.h"
 #include "soltex/common/spec_error.h"
 #include "soltex/spec_proto/brick_proto.h"
 #include "soltex/spec_proto/spec_from_proto.h"
 
 namespace soltex::server {
 namespace {
+
+// The registry's own bound (texture_registry.cpp) as well.
+constexpr int kMaxSupersample = 4;
 
 MipSettings mip_from(const v1::RegisterTextureRequest& request) {
   const std::optional<MipMode> mode = mip_mode_from_proto(request.mip_mode());
@@ -21,11 +26,29 @@ MipSettings mip_from(const v1::RegisterTextureRequest& request) {
   MipSettings mip;
   mip.mode = *mode;
   if (mip.mode == MipMode::supersampled) {
-    // Out-of-range values are clamped into the validator's view so it can name the bound.
-    mip.supersample =
-        request.supersample() == 0 ? 2 : static_cast<int>(std::min(request.supersample(), 1000u));
+    // Checked as sent, before any conversion, so the message quotes the client's value.
+    const uint32_t k = request.supersample();
+    if (k > static_cast<uint32_t>(kMaxSupersample)) {
+      throw RegistrationError(grpc::StatusCode::INVALID_ARGUMENT,
+                              "supersample = " + std::to_string(k) + ": must be in [1, " +
+                                  std::to_string(kMaxSupersample) + "] (0: the default, 2)");
+    }
+    mip.supersample = k == 0 ? 2 : static_cast<int>(k);
   }
   return mip;
+}
+
+// 0 means the default, 16; anything else must be a size the layout supports, checked as sent.
+int brick_size_from(uint32_t size) {
+  if (size == 0) return kMaxBrickSize;
+  if (size != static_cast<uint32_t>(kMinBrickSize) &&
+      size != static_cast<uint32_t>(kMaxBrickSize)) {
+    throw RegistrationError(grpc::StatusCode::INVALID_ARGUMENT,
+                            "brick_size = " + std::to_string(size) + ": must be " +
+                                std::to_string(kMinBrickSize) + " or " +
+                                std::to_string(kMaxBrickSize) + " (0: the default, 16)");
+  }
+  return static_cast<int>(size);
 }
 
 }  // namespace
@@ -34,8 +57,7 @@ TexturePtr register_texture(TextureRegistry& registry, const v1::RegisterTexture
   try {
     const TextureSpec spec = from_proto(request.spec());
     const Volume volume = from_proto(request.volume());
-    const int brick_size =
-        request.brick_size() == 0 ? 16 : static_cast<int>(std::min(request.brick_size(), 1000u));
+    const int brick_size = brick_size_from(request.brick_size());
     return registry.register_texture(spec, volume, brick_size, mip_from(request));
   } catch (const SpecError& e) {
     throw RegistrationError(grpc::StatusCode::INVALID_ARGUMENT, e.what());
