@@ -115,6 +115,12 @@ Daemon::Daemon(const ServerConfig& config)
   builder.AddListeningPort(config.listen, server_credentials(config), &grpc_port_);
   builder.RegisterService(service_.get());
   builder.SetMaxReceiveMessageSize(static_cast<int>(config.max_message_bytes));
+  // Sees every call, also those gRPC refuses before a handler runs (a message too large).
+  std::vector<std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>> interceptors;
+  // Our service and gRPC's default health service use the callback API; reflection is sync.
+  interceptors.push_back(metrics_state_.grpc_calls.interceptor_factory(
+      {v1::BrickService::service_full_name(), "grpc.health.v1.Health"}));
+  builder.experimental().SetInterceptorCreators(std::move(interceptors));
   server_ = builder.BuildAndStart();
   if (!server_ || grpc_port_ == 0) {
     throw std::runtime_error("cannot listen for gRPC on " + config.listen +
@@ -123,6 +129,8 @@ Daemon::Daemon(const ServerConfig& config)
   const HostPort metrics_address = parse_host_port(config.metrics_listen);
   metrics_ = std::make_unique<MetricsHttpServer>(metrics_address.host, metrics_address.port,
                                                  [this] { return render_metrics(); });
+  // Health answers for the service by name as well as for the server ("").
+  server_->GetHealthCheckService()->SetServingStatus(v1::BrickService::service_full_name(), true);
   server_->GetHealthCheckService()->SetServingStatus(true);
 }
 

@@ -40,9 +40,7 @@ class Session : public std::enable_shared_from_this<Session> {
       response_.set(http::field::content_type, "text/plain");
       response_.body() = "not found: try GET /metrics\n";
     } else {
-      response_.result(http::status::ok);
-      response_.set(http::field::content_type, "text/plain; version=0.0.4");
-      response_.body() = render_();
+      render_page();
     }
     response_.prepare_payload();
     http::async_write(socket_, response_,
@@ -50,6 +48,20 @@ class Session : public std::enable_shared_from_this<Session> {
                         beast::error_code ignored;
                         self->socket_.shutdown(tcp::socket::shutdown_both, ignored);
                       });
+  }
+
+  // A page that cannot be made whole is a 500, never a partial page a scraper would misread.
+  void render_page() {
+    try {
+      response_.body() = render_();
+      response_.result(http::status::ok);
+      response_.set(http::field::content_type, "text/plain; version=0.0.4; charset=utf-8");
+    } catch (const std::exception& e) {
+      spdlog::error("rendering /metrics failed: {}", e.what());
+      response_.result(http::status::internal_server_error);
+      response_.set(http::field::content_type, "text/plain");
+      response_.body() = std::string("rendering metrics failed: ") + e.what() + "\n";
+    }
   }
 
   tcp::socket socket_;

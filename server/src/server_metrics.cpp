@@ -1,141 +1,194 @@
 #include "server_metrics.h"
 
-#include <cstdio>
+#include <array>
+#include <optional>
 
+#include "process_metrics.h"
 #include "soltex/common/evaluation_counters.h"
 
 namespace soltex::server {
 namespace {
 
-const char* const kCodeNames[17] = {
-    "OK",        "CANCELLED",      "UNKNOWN",           "INVALID_ARGUMENT",   "DEADLINE_EXCEEDED",
-    "NOT_FOUND", "ALREADY_EXISTS", "PERMISSION_DENIED", "RESOURCE_EXHAUSTED", "FAILED_PRECONDITION",
-    "ABORTED",   "OUT_OF_RANGE",   "UNIMPLEMENTED",     "INTERNAL",           "UNAVAILABLE",
-    "DATA_LOSS", "UNAUTHENTICATED"};
+// Every family soltexd exposes: identifier, name, type, help. HELP and TYPE lines are made
+// from this table only.
+#define SOLTEX_METRIC_FAMILIES(X)                                                                \
+  X(build_info, "soltex_build_info", gauge, "Always 1; the version label is soltexd's version.") \
+  X(process_cpu, "process_cpu_seconds_total", counter, "User and system CPU time, seconds.")     \
+  X(process_resident, "process_resident_memory_bytes", gauge, "Resident memory size, bytes.")    \
+  X(process_virtual, "process_virtual_memory_bytes", gauge, "Virtual memory size, bytes.")       \
+  X(process_open_fds, "process_open_fds", gauge, "Open file descriptors.")                       \
+  X(process_max_fds, "process_max_fds", gauge, "The limit on open file descriptors.")            \
+  X(process_start, "process_start_time_seconds", gauge,                                          \
+    "Start time of the process since the Unix epoch, seconds.")                                  \
+  X(grpc_started, "grpc_server_started_total", counter,                                          \
+    "gRPC calls started on the server, every service.")                                          \
+  X(grpc_handled, "grpc_server_handled_total", counter,                                          \
+    "gRPC calls finished, by status code. A call gRPC ended before its status was sent "         \
+    "(client cancel, deadline, a message over --max-message-bytes) counts as CANCELLED.")        \
+  X(grpc_received, "grpc_server_msg_received_total", counter,                                    \
+    "Messages received from clients, per method.")                                               \
+  X(grpc_sent, "grpc_server_msg_sent_total", counter, "Messages sent to clients, per method.")   \
+  X(grpc_cut_short, "soltex_grpc_calls_cut_short_total", counter,                                \
+    "Calls gRPC ended before the server's status was sent: the client cancelled or left, its "   \
+    "deadline passed, or gRPC refused a message over --max-message-bytes (the client sees "      \
+    "RESOURCE_EXHAUSTED).")                                                                      \
+  X(streams_opened, "soltex_streams_opened_total", counter, "StreamBricks calls started.")       \
+  X(streams_open, "soltex_streams_open", gauge, "StreamBricks calls in progress.")               \
+  X(stream_messages, "soltex_stream_messages_total", counter, "BrickRequest messages read.")     \
+  X(register_requests, "soltex_register_requests_total", counter,                                \
+    "Texture registrations: RegisterTexture calls and textures carried on streams.")             \
+  X(bricks_requested, "soltex_bricks_requested_total", counter,                                  \
+    "Brick keys accepted into stream queues.")                                                   \
+  X(bricks_served, "soltex_bricks_served_total", counter, "Bricks sent to clients.")             \
+  X(bytes_served, "soltex_brick_bytes_served_total", counter,                                    \
+    "Encoded brick bytes sent to clients.")                                                      \
+  X(bricks_evaluated, "soltex_bricks_evaluated_total", counter,                                  \
+    "Bricks evaluated from the texture function.")                                               \
+  X(bricks_cancelled, "soltex_bricks_cancelled_total", counter,                                  \
+    "Requested bricks never sent: cancelled by the client, or left when a stream was "           \
+    "cancelled, closed or shut down.")                                                           \
+  X(bricks_shared, "soltex_bricks_from_shared_cache_total", counter,                             \
+    "Bricks another replica evaluated, read from the shared memcached cache.")                   \
+  X(octaves_evaluated, "soltex_octave_samples_evaluated_total", counter,                         \
+    "Noise octaves evaluated, times the samples they were evaluated at.")                        \
+  X(octaves_skipped, "soltex_octave_samples_skipped_total", counter,                             \
+    "Noise octaves a level could not show, replaced by their mean, times the samples.")          \
+  X(queue_depth, "soltex_queue_depth", gauge, "Bricks queued over all streams.")                 \
+  X(textures, "soltex_textures_registered", gauge, "Textures in the registry.")                  \
+  X(cache_hits, "soltex_cache_hits_total", counter, "Brick cache hits.")                         \
+  X(cache_misses, "soltex_cache_misses_total", counter, "Brick cache misses.")                   \
+  X(cache_coalesced, "soltex_cache_coalesced_total", counter,                                    \
+    "Cache misses that waited for a brick already being evaluated (single flight).")             \
+  X(cache_evictions, "soltex_cache_evictions_total", counter, "Bricks evicted from the cache.")  \
+  X(cache_bytes, "soltex_cache_bytes", gauge, "Bytes held by the brick cache.")                  \
+  X(cache_budget, "soltex_cache_budget_bytes", gauge, "Byte budget of the brick cache.")         \
+  X(cache_bricks, "soltex_cache_bricks", gauge, "Bricks held by the brick cache.")               \
+  X(shared_hits, "soltex_shared_cache_hits_total", counter, "Shared (memcached) cache hits.")    \
+  X(shared_misses, "soltex_shared_cache_misses_total", counter,                                  \
+    "Shared (memcached) cache misses.")                                                          \
+  X(shared_errors, "soltex_shared_cache_errors_total", counter,                                  \
+    "Shared cache lookups that failed (node down or slow) and fell back to evaluation.")         \
+  X(shared_corrupt, "soltex_shared_cache_corrupt_total", counter,                                \
+    "Shared cache values that failed their checksum and were evaluated instead.")                \
+  X(shared_stores, "soltex_shared_cache_stores_total", counter,                                  \
+    "Bricks written back to the shared cache.")                                                  \
+  X(shared_store_errors, "soltex_shared_cache_store_errors_total", counter,                      \
+    "Write-backs to the shared cache that failed (ignored).")                                    \
+  X(faults_corrupted, "soltex_faults_corrupted_total", counter,                                  \
+    "Bricks deliberately corrupted on the way out (--fault-corrupt-every).")                     \
+  X(errors, "soltex_errors_total", counter,                                                      \
+    "Per-brick and per-request errors the handlers answered, by gRPC status code.")              \
+  X(brick_latency, "soltex_brick_latency_seconds", histogram,                                    \
+    "From a brick entering a stream's queue to its batch being written.")
 
-class Exposition {
- public:
-  void metric(const char* name, const char* type, const char* help) {
-    out_ += "# HELP ";
-    out_ += name;
-    out_ += ' ';
-    out_ += help;
-    out_ += "\n# TYPE ";
-    out_ += name;
-    out_ += ' ';
-    out_ += type;
-    out_ += '\n';
-  }
-  void sample(const std::string& name, double value) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, " %.17g\n", value);
-    out_ += name;
-    out_ += buffer;
-  }
-  std::string take() { return std::move(out_); }
-
- private:
-  std::string out_;
+enum class F : std::size_t {
+#define SOLTEX_METRIC_ID(id, name, type, help) id,
+  SOLTEX_METRIC_FAMILIES(SOLTEX_METRIC_ID)
+#undef SOLTEX_METRIC_ID
 };
 
+constexpr MetricFamily kFamilies[] = {
+#define SOLTEX_METRIC_ENTRY(id, name, type, help) {name, MetricType::type, help},
+    SOLTEX_METRIC_FAMILIES(SOLTEX_METRIC_ENTRY)
+#undef SOLTEX_METRIC_ENTRY
+};
+
+const MetricFamily& family(F id) {
+  return kFamilies[static_cast<std::size_t>(id)];
+}
+
+// Writes one family with its single unlabelled sample.
+void single(Exposition& e, F id, double value) {
+  e.family(family(id));
+  e.sample(value);
+}
+
+void write_process(Exposition& e) {
+  e.family(family(F::build_info));
+  e.sample(1.0, {{"version", SOLTEX_VERSION}});
+  const std::optional<ProcessStats> p = read_process_stats();
+  if (!p) return;
+  single(e, F::process_cpu, p->cpu_seconds);
+  single(e, F::process_resident, p->resident_bytes);
+  single(e, F::process_virtual, p->virtual_bytes);
+  single(e, F::process_open_fds, p->open_fds);
+  single(e, F::process_max_fds, p->max_fds);
+  single(e, F::process_start, p->start_time_seconds);
+}
+
+void write_brick_latency(Exposition& e, const LatencyHistogram& histogram) {
+  // Fixed boundaries in seconds, filled from the log-linear histogram.
+  static constexpr double kBounds[] = {50e-6, 100e-6, 250e-6, 500e-6, 1e-3,   2.5e-3, 5e-3, 10e-3,
+                                       25e-3, 50e-3,  100e-3, 250e-3, 500e-3, 1.0,    2.5};
+  const LatencyHistogramSnapshot snapshot = histogram.snapshot();
+  std::array<uint64_t, std::size(kBounds)> cumulative{};
+  for (std::size_t i = 0; i < cumulative.size(); ++i) {
+    cumulative[i] = snapshot.cumulative_count_at_or_below(static_cast<uint64_t>(kBounds[i] * 1e9));
+  }
+  e.family(family(F::brick_latency));
+  e.histogram(kBounds, cumulative, snapshot.count(),
+              snapshot.mean() * static_cast<double>(snapshot.count()) * 1e-9);
+}
+
+void write_shared_cache(Exposition& e, const SharedCacheStats& shared) {
+  const auto counter = [&](F id, uint64_t value) { single(e, id, static_cast<double>(value)); };
+  counter(F::shared_hits, shared.hits);
+  counter(F::shared_misses, shared.misses);
+  counter(F::shared_errors, shared.errors);
+  counter(F::shared_corrupt, shared.corrupt);
+  counter(F::shared_stores, shared.stores);
+  counter(F::shared_store_errors, shared.store_errors);
+}
+
 }  // namespace
+
+std::span<const MetricFamily> metric_families() {
+  return kFamilies;
+}
 
 std::string ServerMetrics::render(const BrickStoreStats& store, std::size_t store_budget,
                                   std::size_t textures, const SharedCacheStats* shared,
                                   uint64_t faults_corrupted) const {
   Exposition e;
-  const auto counter = [&](const char* name, const char* help, uint64_t value) {
-    e.metric(name, "counter", help);
-    e.sample(name, static_cast<double>(value));
-  };
-  const auto gauge = [&](const char* name, const char* help, double value) {
-    e.metric(name, "gauge", help);
-    e.sample(name, value);
-  };
+  const auto value = [&](F id, auto v) { single(e, id, static_cast<double>(v)); };
   const auto load = [](const auto& a) { return a.load(std::memory_order_relaxed); };
 
-  counter("soltex_streams_opened_total", "StreamBricks calls started.", load(streams_opened));
-  gauge("soltex_streams_open", "StreamBricks calls in progress.",
-        static_cast<double>(load(streams_open)));
-  counter("soltex_stream_messages_total", "BrickRequest messages read.", load(stream_messages));
-  counter("soltex_register_requests_total", "RegisterTexture calls.", load(register_requests));
-  counter("soltex_bricks_requested_total", "Brick keys accepted into stream queues.",
-          load(bricks_requested));
-  counter("soltex_bricks_served_total", "Bricks sent to clients.", load(bricks_served));
-  counter("soltex_brick_bytes_served_total", "Encoded brick bytes sent to clients.",
-          load(bytes_served));
-  counter("soltex_bricks_evaluated_total", "Bricks evaluated from the texture function.",
-          load(bricks_evaluated));
-  counter("soltex_bricks_cancelled_total", "Queued bricks dropped by client cancellations.",
-          load(bricks_cancelled));
-  counter("soltex_bricks_from_shared_cache_total",
-          "Bricks another replica evaluated, read from the shared memcached cache.",
-          load(bricks_from_shared_cache));
+  write_process(e);
+  grpc_calls.write(e, {family(F::grpc_started), family(F::grpc_handled), family(F::grpc_received),
+                       family(F::grpc_sent), family(F::grpc_cut_short)});
+  value(F::streams_opened, load(streams_opened));
+  value(F::streams_open, load(streams_open));
+  value(F::stream_messages, load(stream_messages));
+  value(F::register_requests, load(register_requests));
+  value(F::bricks_requested, load(bricks_requested));
+  value(F::bricks_served, load(bricks_served));
+  value(F::bytes_served, load(bytes_served));
+  value(F::bricks_evaluated, load(bricks_evaluated));
+  value(F::bricks_cancelled, load(bricks_cancelled));
+  value(F::bricks_shared, load(bricks_from_shared_cache));
   const OctaveCounts octaves = octave_counters().snapshot();
-  counter("soltex_octave_samples_evaluated_total",
-          "Noise octaves evaluated, times the samples they were evaluated at.",
-          octaves.evaluated_octave_samples);
-  counter("soltex_octave_samples_skipped_total",
-          "Noise octaves a level could not show, replaced by their mean, times the samples.",
-          octaves.skipped_octave_samples);
-  gauge("soltex_queue_depth", "Bricks queued over all streams.",
-        static_cast<double>(load(queue_depth)));
-  gauge("soltex_textures_registered", "Textures in the registry.", static_cast<double>(textures));
-  counter("soltex_cache_hits_total", "Brick cache hits.", store.hits);
-  counter("soltex_cache_misses_total", "Brick cache misses.", store.misses);
-  counter("soltex_cache_coalesced_total",
-          "Cache misses that waited for a brick already being evaluated (single flight).",
-          store.coalesced);
-  counter("soltex_cache_evictions_total", "Bricks evicted from the cache.", store.evictions);
-  gauge("soltex_cache_bytes", "Bytes held by the brick cache.", static_cast<double>(store.bytes));
-  gauge("soltex_cache_budget_bytes", "Byte budget of the brick cache.",
-        static_cast<double>(store_budget));
-  gauge("soltex_cache_bricks", "Bricks held by the brick cache.",
-        static_cast<double>(store.entries));
+  value(F::octaves_evaluated, octaves.evaluated_octave_samples);
+  value(F::octaves_skipped, octaves.skipped_octave_samples);
+  value(F::queue_depth, load(queue_depth));
+  value(F::textures, textures);
+  value(F::cache_hits, store.hits);
+  value(F::cache_misses, store.misses);
+  value(F::cache_coalesced, store.coalesced);
+  value(F::cache_evictions, store.evictions);
+  value(F::cache_bytes, store.bytes);
+  value(F::cache_budget, store_budget);
+  value(F::cache_bricks, store.entries);
+  if (shared) write_shared_cache(e, *shared);
+  value(F::faults_corrupted, faults_corrupted);
 
-  if (shared) {
-    counter("soltex_shared_cache_hits_total", "Shared (memcached) cache hits.", shared->hits);
-    counter("soltex_shared_cache_misses_total", "Shared (memcached) cache misses.", shared->misses);
-    counter("soltex_shared_cache_errors_total",
-            "Shared cache lookups that failed (node down or slow) and fell back to evaluation.",
-            shared->errors);
-    counter("soltex_shared_cache_corrupt_total",
-            "Shared cache values that failed their checksum and were evaluated instead.",
-            shared->corrupt);
-    counter("soltex_shared_cache_stores_total", "Bricks written back to the shared cache.",
-            shared->stores);
-    counter("soltex_shared_cache_store_errors_total",
-            "Write-backs to the shared cache that failed (ignored).", shared->store_errors);
-  }
-  counter("soltex_faults_corrupted_total",
-          "Bricks deliberately corrupted on the way out (--fault-corrupt-every).",
-          faults_corrupted);
-
-  e.metric("soltex_errors_total", "Per-brick and per-request errors by gRPC status code.",
-           "counter");
+  // The label keeps its name `code` (dashboards and tests select on it); the grpc_server_*
+  // families carry the grpc_code convention.
+  e.family(family(F::errors));
   for (std::size_t code = 1; code < errors_by_code.size(); ++code) {
-    e.sample(std::string("soltex_errors_total{code=\"") + kCodeNames[code] + "\"}",
-             static_cast<double>(load(errors_by_code[code])));
+    e.sample(static_cast<double>(load(errors_by_code[code])),
+             {{"code", grpc_code_name(static_cast<int>(code))}});
   }
-
-  // Fixed boundaries in seconds, filled from the log-linear histogram.
-  e.metric("soltex_brick_latency_seconds",
-           "From a brick entering a stream's queue to its batch being written.", "histogram");
-  const LatencyHistogramSnapshot snapshot = brick_latency_ns.snapshot();
-  static constexpr double kBounds[] = {50e-6, 100e-6, 250e-6, 500e-6, 1e-3,   2.5e-3, 5e-3, 10e-3,
-                                       25e-3, 50e-3,  100e-3, 250e-3, 500e-3, 1.0,    2.5};
-  for (double bound : kBounds) {
-    char label[64];
-    std::snprintf(label, sizeof label, "{le=\"%g\"}", bound);
-    e.sample(std::string("soltex_brick_latency_seconds_bucket") + label,
-             static_cast<double>(
-                 snapshot.cumulative_count_at_or_below(static_cast<uint64_t>(bound * 1e9))));
-  }
-  e.sample("soltex_brick_latency_seconds_bucket{le=\"+Inf\"}",
-           static_cast<double>(snapshot.count()));
-  e.sample("soltex_brick_latency_seconds_sum",
-           snapshot.mean() * static_cast<double>(snapshot.count()) * 1e-9);
-  e.sample("soltex_brick_latency_seconds_count", static_cast<double>(snapshot.count()));
+  write_brick_latency(e, brick_latency_ns);
   return e.take();
 }
 

@@ -3,16 +3,20 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <span>
 #include <string>
 
 #include "brick_store.h"
+#include "grpc_call_metrics.h"
+#include "metrics_exposition.h"
 #include "shared_brick_cache.h"
 #include "soltex/common/latency_histogram.h"
 
 namespace soltex::server {
 
 // The daemon's counters, updated lock-free from any thread and rendered in the Prometheus
-// text exposition format for GET /metrics.
+// text exposition format for GET /metrics. Every family it renders is in one table
+// (metric_families()).
 struct ServerMetrics {
   std::atomic<uint64_t> streams_opened{0};
   std::atomic<int64_t> streams_open{0};
@@ -22,12 +26,13 @@ struct ServerMetrics {
   std::atomic<uint64_t> bricks_served{0};
   std::atomic<uint64_t> bytes_served{0};  // brick payload bytes
   std::atomic<uint64_t> bricks_evaluated{0};
-  std::atomic<uint64_t> bricks_from_shared_cache{0};  // made by another replica
-  std::atomic<uint64_t> bricks_cancelled{0};
+  std::atomic<uint64_t> bricks_from_shared_cache{0};       // made by another replica
+  std::atomic<uint64_t> bricks_cancelled{0};               // requested, then dropped unserved
   std::atomic<int64_t> queue_depth{0};                     // bricks queued over all streams
   std::array<std::atomic<uint64_t>, 17> errors_by_code{};  // grpc::StatusCode 0..16
   // From a brick entering a stream's queue to its batch being handed to gRPC, nanoseconds.
   LatencyHistogram brick_latency_ns;
+  GrpcCallMetrics grpc_calls;  // every call, by method and status, from a server interceptor
 
   void count_error(int code) {
     if (code >= 0 && code < static_cast<int>(errors_by_code.size())) {
@@ -39,5 +44,8 @@ struct ServerMetrics {
   std::string render(const BrickStoreStats& store, std::size_t store_budget, std::size_t textures,
                      const SharedCacheStats* shared, uint64_t faults_corrupted) const;
 };
+
+// Every family /metrics may show (some only with a shared cache configured), in page order.
+std::span<const MetricFamily> metric_families();
 
 }  // namespace soltex::server

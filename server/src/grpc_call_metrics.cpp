@@ -1,0 +1,164 @@
+#include "grpc_call_metrics.h"
+
+#include <grpcpp/grpcpp.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+namespace soltex::server {
+namespace {
+
+using grpc::experimental::InterceptionHookPoints;
+using grpc::experimental::InterceptorBatchMethods;
+using grpc::experimental::ServerRpcInfo;
+
+const char* const kCodeNames[17] = {
+    "OK",        "CANCELLED",      "UNKNOWN",           "INVALID_ARGUMENT",   "DEADLINE_EXCEEDED",
+    "NOT_FOUND", "ALREADY_EXISTS", "PERMISSION_DENIED", "RESOURCE_EXHAUSTED", "FAILED_PRECONDITION",
+    "ABORTED",   "OUT_OF_RANGE",   "UNIMPLEMENTED",     "INTERNAL",           "UNAVAILABLE",
+    "DATA_LOSS", "UNAUTHENTICATED"};
+
+const char* type_label(ServerRpcInfo::Type type) {
+  switch (type) {
+    case ServerRpcInfo::Type::UNARY:
+      return "unary";
+    case ServerRpcInfo::Type::CLIENT_STREAMING:
+      return "client_stream";
+    case ServerRpcInfo::Type::SERVER_STREAMING:
+      return "server_stream";
+    case ServerRpcInfo::Type::BIDI_STREAMING:
+      return "bidi_stream";
+  }
+  return "unknown";
+}
+
+// One per call. Hooks of one call can run on different threads at once (a bidi stream reads
+// and writes concurrently), hence the atomics.
+class CallInterceptor final : public grpc::experimental::Interceptor {
+ public:
+  CallInterceptor(ServerRpcInfo* info, MethodCallCounters& counters, bool callback_api)
+      : info_(info), counters_(counters), callback_api_(callback_api) {
+    counters_.started.fetch_add(1, std::memory_order_relaxed);
+  }
+
+  void Intercept(InterceptorBatchMethods* methods) override {
+    if (methods->QueryInterceptionHookPoint(InterceptionHookPoints::POST_RECV_MESSAGE) &&
+        methods->GetRecvMessage() != nullptr) {
+      counters_.messages_received.fetch_add(1, std::memory_order_relaxed);
+    }
+    if (methods->QueryInterceptionHookPoint(InterceptionHookPoints::PRE_SEND_MESSAGE)) {
+      counters_.messages_sent.fetch_add(1, std::memory_order_relaxed);
+    }
+    if (methods->QueryInterceptionHookPoint(InterceptionHookPoints::PRE_SEND_STATUS)) {
+      code_.store(static_cast<int>(methods->GetSendStatus().error_code()),
+                  std::memory_order_relaxed);
+    }
+    // The call is over: whatever status it ended with is known now.
+    if (methods->QueryInterceptionHookPoint(InterceptionHookPoints::POST_RECV_CLOSE)) finish();
+    methods->Proceed();
+  }
+
+ private:
+  void finish() {
+    int code = code_.load(std::memory_order_relaxed);
+    // Cancelled: the status the handler gave (if any) never reached the client. Asked of
+    // callback-API calls only: on a sync-API call IsCancelled() plucks the very completion
+    // this hook runs inside, and re-enters it.
+    if (callback_api_ && info_->server_context()->IsCancelled()) {
+      counters_.cut_short.fetch_add(1, std::memory_order_relaxed);
+      code = static_cast<int>(grpc::StatusCode::CANCELLED);
+      spdlog::debug("{} call from {} ended before its status was sent", info_->method(),
+                    info_->server_context()->peer());
+    } else if (code < 0 || code >= static_cast<int>(counters_.handled.size())) {
+      code = static_cast<int>(grpc::StatusCode::UNKNOWN);
+    }
+    counters_.handled[static_cast<std::size_t>(code)].fetch_add(1, std::memory_order_relaxed);
+  }
+
+  ServerRpcInfo* info_;
+  MethodCallCounters& counters_;
+  const bool callback_api_;
+  std::atomic<int> code_{-1};  // the status the server sent; -1 before PRE_SEND_STATUS
+};
+
+class Factory final : public grpc::experimental::ServerInterceptorFactoryInterface {
+ public:
+  Factory(GrpcCallMetrics& metrics, std::vector<std::string> callback_services)
+      : metrics_(metrics), callback_services_(std::move(callback_services)) {}
+  grpc::experimental::Interceptor* CreateServerInterceptor(ServerRpcInfo* info) override {
+    MethodCallCounters& counters = metrics_.counters(info->method(), info->type());
+    const bool callback_api = std::find(callback_services_.begin(), callback_services_.end(),
+                                        counters.service) != callback_services_.end();
+    return new CallInterceptor(info, counters, callback_api);
+  }
+
+ private:
+  GrpcCallMetrics& metrics_;
+  const std::vector<std::string> callback_services_;
+};
+
+}  // namespace
+
+const char* grpc_code_name(int code) {
+  return code >= 0 && code < 17 ? kCodeNames[code] : "UNKNOWN";
+}
+
+MethodCallCounters& GrpcCallMetrics::counters(const std::string& full_method,
+                                              ServerRpcInfo::Type type) {
+  std::lock_guard lock(mutex_);
+  if (auto it = by_name_.find(full_method); it != by_name_.end()) return *it->second;
+  MethodCallCounters& added = methods_.emplace_back();
+  added.type = type_label(type);
+  // "/soltex.v1.BrickService/StreamBricks" -> service and method.
+  const std::size_t slash = full_method.rfind('/');
+  const std::size_t begin = full_method.starts_with('/') ? 1 : 0;
+  added.service = slash == std::string::npos || slash < begin
+                      ? std::string()
+                      : full_method.substr(begin, slash - begin);
+  added.method = slash == std::string::npos ? full_method : full_method.substr(slash + 1);
+  by_name_.emplace(full_method, &added);
+  return added;
+}
+
+void GrpcCallMetrics::write(Exposition& e, const Families& families) const {
+  std::lock_guard lock(mutex_);
+  const auto load = [](const std::atomic<uint64_t>& a) {
+    return static_cast<double>(a.load(std::memory_order_relaxed));
+  };
+  const auto each = [&](const MetricFamily& family, auto&& write_method) {
+    e.family(family);
+    for (const MethodCallCounters& m : methods_) write_method(m);
+  };
+  each(families.started, [&](const MethodCallCounters& m) {
+    e.sample(load(m.started),
+             {{"grpc_type", m.type}, {"grpc_service", m.service}, {"grpc_method", m.method}});
+  });
+  each(families.handled, [&](const MethodCallCounters& m) {
+    for (std::size_t code = 0; code < m.handled.size(); ++code) {
+      if (m.handled[code].load(std::memory_order_relaxed) == 0) continue;
+      e.sample(load(m.handled[code]), {{"grpc_type", m.type},
+                                       {"grpc_service", m.service},
+                                       {"grpc_method", m.method},
+                                       {"grpc_code", kCodeNames[code]}});
+    }
+  });
+  each(families.received, [&](const MethodCallCounters& m) {
+    e.sample(load(m.messages_received),
+             {{"grpc_type", m.type}, {"grpc_service", m.service}, {"grpc_method", m.method}});
+  });
+  each(families.sent, [&](const MethodCallCounters& m) {
+    e.sample(load(m.messages_sent),
+             {{"grpc_type", m.type}, {"grpc_service", m.service}, {"grpc_method", m.method}});
+  });
+  each(families.cut_short, [&](const MethodCallCounters& m) {
+    e.sample(load(m.cut_short),
+             {{"grpc_type", m.type}, {"grpc_service", m.service}, {"grpc_method", m.method}});
+  });
+}
+
+std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>
+GrpcCallMetrics::interceptor_factory(std::vector<std::string> callback_services) {
+  return std::make_unique<Factory>(*this, std::move(callback_services));
+}
+
+}  // namespace soltex::server
