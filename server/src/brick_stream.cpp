@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "soltex/common/texture_id.h"
 #include "soltex/spec_proto/brick_proto.h"
 #include "texture_registration.h"
@@ -50,10 +52,18 @@ BrickStream::BrickStream(Context context, uint64_t id, std::string peer,
 BrickStream::~BrickStream() {
   context_.metrics.streams_open.fetch_sub(1, std::memory_order_relaxed);
   drop_queue();
+  // Bricks made for a stream that was cancelled before it could write them.
+  const auto unsent = std::count_if(outbox_.begin(), outbox_.end(),
+                                    [](const Outgoing& o) { return o.brick != nullptr; });
+  context_.metrics.bricks_cancelled.fetch_add(static_cast<uint64_t>(unsent),
+                                              std::memory_order_relaxed);
 }
 
 void BrickStream::drop_queue() {
-  count_queued(-static_cast<int64_t>(queue_.clear()));
+  // Requested and now never sent: the stream was cancelled, shut down or is gone.
+  const std::size_t dropped = queue_.clear();
+  context_.metrics.bricks_cancelled.fetch_add(dropped, std::memory_order_relaxed);
+  count_queued(-static_cast<int64_t>(dropped));
 }
 
 void BrickStream::count_queued(int64_t delta) {
