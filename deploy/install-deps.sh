@@ -13,6 +13,7 @@ packages=(
   libsdl2-dev xvfb x11-apps imagemagick   # soltex-view's window and its test on a virtual X server
   libmemcached-dev memcached nginx-light  # the shared brick cache and the balancer of the scale test
   python3                                 # the scale test reads soltex-load's JSON reports
+  python3-prometheus-client               # the Prometheus parser the /metrics test reads the page with
   python3-grpcio python3-protobuf python3-numpy python3-lz4 python3-zstandard python3-xxhash
                                           # the Python client of docs/PROTOCOL.md (tests/python/)
   openssl                                 # certificates for the TLS tests

@@ -327,6 +327,31 @@ TEST(Soltexd, HealthAndGracefulShutdownWithOpenStreams) {
   EXPECT_NE(server.log().find("shutting down"), std::string::npos);
 }
 
+// Values are checked as sent, before any conversion: the message quotes the client's value.
+TEST(Soltexd, RegistrationErrorsQuoteTheValueSent) {
+  SoltexdProcess server;
+  auto stub = connect(server);
+  const auto refusal = [&](const v1::RegisterTextureRequest& request) {
+    grpc::ClientContext context;
+    v1::TextureHandle handle;
+    const grpc::Status status = stub->RegisterTexture(&context, request, &handle);
+    EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+    return status.error_message();
+  };
+  v1::RegisterTextureRequest big_bricks = marble_request();
+  big_bricks.set_brick_size(4294967295u);
+  EXPECT_EQ(refusal(big_bricks), "brick_size = 4294967295: must be 8 or 16 (0: the default, 16)");
+  v1::RegisterTextureRequest many_samples = marble_request();
+  many_samples.set_mip_mode(v1::MIP_MODE_SUPERSAMPLED);
+  many_samples.set_supersample(4294967295u);
+  EXPECT_EQ(refusal(many_samples),
+            "supersample = 4294967295: must be in [1, 4] (0: the default, 2)");
+  many_samples.set_supersample(5);
+  EXPECT_NE(refusal(many_samples).find("supersample = 5:"), std::string::npos);
+  many_samples.set_supersample(4);
+  EXPECT_GT(register_texture(*stub, many_samples).levels(), 0u);
+}
+
 TEST(Soltexd, MetricsEndpoint) {
   SoltexdProcess server;
   int status = 0;
