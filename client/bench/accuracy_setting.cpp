@@ -34,6 +34,7 @@ std::string AccuracySetting::label() const {
   if (codec != defaults.codec) parts.push_back("codec=" + codec.name());
   if (access != defaults.access)
     parts.push_back(std::string("access=") + texture_access_name(access));
+  if (antialias != defaults.antialias) parts.push_back("antialias=" + std::to_string(antialias));
   if (parts.empty()) return "default";
   std::string label = parts.front();
   for (std::size_t i = 1; i < parts.size(); ++i) label += " " + parts[i];

@@ -32,6 +32,7 @@ struct AccuracySetting {
   CodecChoice codec;
   // Per texture: cached lookups, per-pixel evaluation, or the renderer's rule per pattern kind.
   TextureAccess access = TextureAccess::automatic;
+  int antialias = 1;  // sub-pixels per axis for silhouettes and clip edges
 
   // The knobs that differ from the default, e.g. "level=7 filter=nearest"; "default" for it.
   std::string label() const;

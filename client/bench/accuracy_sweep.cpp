@@ -15,6 +15,8 @@ constexpr MipMode kMipModes[] = {MipMode::point, MipMode::band_limited, MipMode:
 constexpr int kOctaveCaps[] = {2, 4, 6};
 // Beside the default (automatic): every texture cached, every texture evaluated per pixel.
 constexpr TextureAccess kAccesses[] = {TextureAccess::cached, TextureAccess::evaluated};
+// Sub-pixels per axis beside the default 1.
+constexpr int kAntialias[] = {2, 4};
 constexpr CodecChoice kCodecs[] = {
     {Codec::raw, 0}, {Codec::lz4, 0}, {Codec::zstd, 1}, {Codec::zstd, 3}};
 
@@ -39,6 +41,7 @@ std::vector<AccuracySetting> accuracy_sweep(const Scene& scene, bool quick) {
     vary([](AccuracySetting& s) { s.codec = {Codec::lz4, 0}; });
     if (scene_octaves && *scene_octaves > 2) vary([](AccuracySetting& s) { s.octave_cap = 2; });
     for (TextureAccess access : kAccesses) vary([&](AccuracySetting& s) { s.access = access; });
+    vary([](AccuracySetting& s) { s.antialias = 2; });
     return sweep;
   }
   for (int level : kLevels) vary([&](AccuracySetting& s) { s.finest_level = level; });
@@ -51,6 +54,7 @@ std::vector<AccuracySetting> accuracy_sweep(const Scene& scene, bool quick) {
   }
   for (const CodecChoice& codec : kCodecs) vary([&](AccuracySetting& s) { s.codec = codec; });
   for (TextureAccess access : kAccesses) vary([&](AccuracySetting& s) { s.access = access; });
+  for (int k : kAntialias) vary([&](AccuracySetting& s) { s.antialias = k; });
   for (int level : kLevels) {
     for (SampleFilter filter : kFilters) {
       vary([&](AccuracySetting& s) {

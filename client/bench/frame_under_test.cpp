@@ -29,6 +29,7 @@ FrameUnderTest::FrameUnderTest(const Scene& scene, const AccuracySetting& settin
   options.filter = setting.filter;
   options.threads = threads;
   options.access = setting.access;
+  options.antialias = setting.antialias;
   renderer_ = std::make_unique<FrameRenderer>(*cache_, options);
   view::HeadlessOptions converge;
   converge.max_time = max_converge;
