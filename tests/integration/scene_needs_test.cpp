@@ -53,6 +53,8 @@ Scene with_channels(Scene scene, const ChannelSet& channels) {
 
 // The bricks the visible surface touches: at every covered pixel, the brick that holds its
 // texture position at the level its footprint asks for (trilinear: the nearest level).
+// The bricks the visible surface reads, of the objects whose textures come from bricks (the
+// default access evaluates the analytic ones per pixel: they read none).
 KeySet surface_bricks(const PreparedScene& scene, const GBuffer& g, BrickCache& cache) {
   std::vector<std::unique_ptr<TextureSampler>> samplers;
   for (const PreparedObject& o : scene.objects) {
@@ -61,6 +63,9 @@ KeySet surface_bricks(const PreparedScene& scene, const GBuffer& g, BrickCache& 
   KeySet keys;
   for (std::size_t i = 0; i < g.pixel_count(); ++i) {
     if (!g.covered(i)) continue;
+    if (evaluated_per_pixel(scene.objects[g.object_id[i]].texture, TextureAccess::automatic)) {
+      continue;
+    }
     TextureSampler& sampler = *samplers[g.object_id[i]];
     const double lod = std::min(sampler.level_of_detail(g.footprint[i]),
                                 static_cast<double>(sampler.layout().coarsest_level()));
