@@ -18,7 +18,10 @@ struct ServerConfig {
   // After the 3D predictor, zstd level 1 compresses as well as 3 and encodes faster
   // (docs/PERFORMANCE.md, brick codec).
   int zstd_level = 1;
-  uint32_t max_textures = 1024;
+  // The texture registry: least recently used textures no stream uses are evicted beyond these.
+  uint32_t max_textures = 16384;
+  uint32_t registry_mb = 16;
+  uint32_t max_textures_per_client = 256;
   uint32_t max_keys_per_request = 1024;
   uint32_t max_queued_per_stream = 4096;
   uint32_t max_message_bytes = 4u << 20;
@@ -38,11 +41,12 @@ struct ServerConfig {
   std::string tls_cert_file;
   std::string tls_key_file;
   std::string tls_client_ca_file;
-  std::string token_file;  // bearer token required on every BrickService call when set
+  std::string token_file;  // tokens file (access_tokens.h); a token is required when set
   std::string token;       // or the token itself (SOLTEXD_TOKEN)
   uint32_t max_streams_per_client = 64;
   uint32_t max_queued_per_client = 65536;
-  bool trust_forwarded_for = false;
+  bool trust_forwarded_for = false;          // replaced by trusted_proxies: refused at start
+  std::vector<std::string> trusted_proxies;  // peers whose x-forwarded-for names the client
 
   FaultConfig faults;
 };
