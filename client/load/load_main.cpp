@@ -1,7 +1,5 @@
 // soltex-load: puts a measured, bounded load on one soltexd and reports per-brick throughput,
 // latency percentiles and errors by status code.
-#include <unistd.h>
-
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <iostream>
@@ -9,6 +7,7 @@
 #include "load_generator.h"
 #include "load_options.h"
 #include "load_report.h"
+#include "progress_bar.h"
 #include "soltex/net/channel_security_options.h"
 
 int main(int argc, char** argv) {
@@ -34,18 +33,14 @@ int main(int argc, char** argv) {
                  "can be outstanding per stream\n",
                  options.in_flight, options.hot_set, options.hot_set);
   }
-  // On a terminal the line is redrawn in place; into a file or pipe, one line per second.
-  const bool terminal = isatty(STDERR_FILENO) != 0;
+  soltex::ProgressBar bar;
   ProgressCallback progress;
   if (options.progress) {
-    progress = [terminal](const ProgressLine& line) {
-      std::fprintf(stderr, terminal ? "\r%s\033[K" : "%s\n", format_progress(line).c_str());
-      std::fflush(stderr);
-    };
+    progress = [&bar](const ProgressLine& line) { bar.show(format_progress(line)); };
   }
   try {
     const LoadResult result = run_load(options, progress);
-    if (options.progress && terminal) std::fputc('\n', stderr);
+    bar.finish();
     std::cout << format_result(result, options.format) << std::flush;
   } catch (const LoadOptionsError& e) {
     std::fprintf(stderr, "soltex-load: %s\n", e.what());
