@@ -35,7 +35,7 @@ struct Pattern {
 // evaluated per pixel over the footprint, as the reference is at 16 sub-pixels: they must
 // match closely. Wood and the noise family come from bricks, whose level is chosen for the
 // longer side of the footprint; on surfaces seen at a slant that blurs detail the reference
-// keeps (docs/IMAGES.md), and their floors say so.
+// keeps (docs/IMAGES.md), and their floors say so. Wood's thin grain suffers most.
 struct Floors {
   double psnr;
   double share_off;
@@ -43,9 +43,8 @@ struct Floors {
 
 Floors floors_for(const std::string& pattern) {
   if (pattern == "rings") return {36.0, 0.025};
-  if (pattern == "wood" || pattern == "noise" || pattern == "turbulence" || pattern == "marble") {
-    return {29.0, 0.08};
-  }
+  if (pattern == "wood") return {30.0, 0.06};
+  if (pattern == "noise" || pattern == "turbulence" || pattern == "marble") return {34.0, 0.03};
   return {38.0, 0.015};
 }
 

@@ -79,9 +79,9 @@ void target_cases(std::vector<ImageCase>& cases, const std::filesystem::path& sc
   ImageCase scene = target("default scene, 1280x720", default_scene_json(), 38.0, 0.02);
   scene.finest_level_log2 = 9;
   cases.push_back(scene);
-  scene.name = "default scene, 1280x720, --antialias 4";
+  scene.name = "default scene, 1280x720, --antialias 2";
   scene.psnr_floor = 42.0;
-  scene.antialias = 4;
+  scene.antialias = 2;
   cases.push_back(scene);
   std::filesystem::create_directories(scratch);
   const std::string origin = "OBJ sphere near the origin";

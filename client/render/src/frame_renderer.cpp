@@ -161,13 +161,11 @@ Frame FrameRenderer::render(const PreparedScene& scene, const Camera& camera, in
                             int height) {
   const int k = options_.antialias;
   if (k <= 1) return render_pixels(scene, camera, width, height, options_);
-  // k x k sub-pixels per pixel, averaged: silhouettes and clip edges get their coverage.
-  // Cached textures keep the pixel's level (each sub-pixel's footprint times k), so they read
-  // the bricks a frame without anti-aliasing reads; evaluated ones filter over the sub-pixel,
-  // as the supersampled reference does.
-  RenderOptions sub_pixels = options_;
-  sub_pixels.cached_footprint_scale = static_cast<float>(k);
-  Frame frame = render_pixels(scene, camera, width * k, height * k, sub_pixels);
+  // A frame k times as wide and high, each pixel the average of its k x k sub-pixels:
+  // silhouettes and clip edges get their coverage, and every sub-pixel reads its texture at
+  // its own level of detail, as the supersampled reference does (about k^2 the raster and
+  // shading work, and bricks one or two levels finer where the finest level allows).
+  Frame frame = render_pixels(scene, camera, width * k, height * k, options_);
   frame.image = box_downsample(frame.image, k);
   return frame;
 }

@@ -97,7 +97,7 @@ void TileShader::evaluate(Image& image) {
 void TileShader::shade_cached(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
                               TextureSampler& sampler, Image& image) {
   const RenderOptions& options = frame_.options;
-  const float footprint = g.footprint[pixel.index] * options.cached_footprint_scale;
+  const float footprint = g.footprint[pixel.index];
   const double lod = frame_.by_table ? static_cast<double>(object.level_table.level(footprint))
                                      : sampler.level_of_detail(footprint) + options.level_bias;
   glm::dvec3 p = g.texture_position[pixel.index];

@@ -42,12 +42,10 @@ struct RenderOptions {
   double level_bias = 0.0;           // added to every pixel's level of detail (negative: finer)
   bool false_colour_levels = false;  // show the level each pixel drew from instead of shading
   int threads = 0;                   // 0: one per core
-  // Sub-pixels per axis (1..4) whose colours each pixel averages: silhouettes and clip edges
-  // anti-aliased by supersampling, at antialias^2 times the frame's raster and shading work.
+  // Sub-pixels per axis (1..4) whose colours each pixel averages: silhouettes, clip edges and
+  // textures anti-aliased by supersampling, each sub-pixel textured at its own level, at about
+  // antialias^2 times the frame's raster and shading work.
   int antialias = 1;
-  // Cached lookups choose their level for the pixel's footprint times this (anti-aliasing's
-  // sub-pixels read the level of the whole pixel).
-  float cached_footprint_scale = 1.0f;
   // Keep the whole frame's G-buffer for last_gbuffer() (tests, tools). Off, each tile is
   // shaded from a tile-sized G-buffer as soon as it is rasterized, and no frame-sized one is
   // written, read back, or (on the first frame) faulted in.
