@@ -57,7 +57,9 @@ CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommandOptions& options) {
       ->capture_default_str();
   command->add_option("--md", options.markdown, "Markdown table (default: OUT_DIR/accuracy.md)");
   command->add_option("--csv", options.csv, "CSV (default: OUT_DIR/accuracy.csv)");
-  command->add_option("--svg", options.svg, "SVG plot (default: OUT_DIR/accuracy.svg)");
+  command->add_option("--svg", options.svg,
+                      "plot, drawn by plot_accuracy.py with matplotlib; .svg or .png "
+                      "(default: OUT_DIR/accuracy.svg)");
   command->add_option("--threads", options.threads, "render threads (0: one per core)")
       ->check(CLI::Range(0, 256));
   command
@@ -116,9 +118,10 @@ int run_accuracy_command(const AccuracyCommandOptions& options) {
     const AccuracyRun run = run_accuracy_sweep(scene, scene_name, settings, sweep);
     write_markdown(run, command_line(options, sweep), markdown, svg);
     write_csv(run, csv);
-    write_plot(run, svg);
-    std::printf("%zu settings measured; wrote %s, %s, %s\n", run.results.size(), markdown.c_str(),
-                csv.c_str(), svg.c_str());
+    // Without a plot the table and the CSV still stand; write_plot says what is missing.
+    const bool plotted = write_plot(run, csv, svg);
+    std::printf("%zu settings measured; wrote %s, %s%s%s\n", run.results.size(), markdown.c_str(),
+                csv.c_str(), plotted ? ", " : "", plotted ? svg.c_str() : "");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "\nsoltex-bench: %s\n", e.what());
     return 1;

@@ -6,11 +6,11 @@
 
 namespace soltex::bench {
 
-// The sweep as an SVG scatter plot, written by hand (no plotting dependency): PSNR (up is
-// better) against warm ms/frame (left is faster), a labelled point per distinct frame, the
-// Pareto front drawn as a line through its marked points, and per-pixel evaluation without
-// the cache as a separate marker for scale. Throws std::runtime_error naming the path when it
-// cannot be written.
-void write_plot(const AccuracyRun& run, const std::filesystem::path& path);
+// Draws the sweep's plot from its CSV with plot_accuracy.py (matplotlib): PSNR against frame
+// time, a point per distinct frame, the Pareto front and per-pixel evaluation for scale. The
+// format follows the extension of `plot` (.svg, .png). Returns false, with the reason on stderr,
+// when the plot could not be drawn: no Python, no matplotlib, no script, or the script failed.
+bool write_plot(const AccuracyRun& run, const std::filesystem::path& csv,
+                const std::filesystem::path& plot);
 
 }  // namespace soltex::bench

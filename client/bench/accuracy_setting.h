@@ -11,10 +11,10 @@
 namespace soltex::bench {
 
 // A brick codec as soltexd can be configured: the codec and, for zstd, its level. The 3D
-// predictor is always on, as soltexd runs it.
+// predictor is always on, as soltexd runs it. The default is soltexd's (its --zstd-level).
 struct CodecChoice {
   Codec codec = Codec::zstd;
-  int zstd_level = 3;
+  int zstd_level = 1;
 
   std::string name() const;  // "raw", "lz4", "zstd-1", "zstd-3"
   CodecOptions options() const;
