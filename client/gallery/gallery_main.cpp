@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "gallery_scenes.h"
+#include "soltex/cli/tool_cli.h"
 #include "soltex/common/texture_evaluator.h"
 #include "soltex/render/image.h"
 
@@ -62,18 +63,8 @@ void draw_sphere(const TextureEvaluator& texture, Image& image, int size) {
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"soltex-gallery: every solid texture as a slice and on a sphere, as PNG files"};
-  std::filesystem::path out_dir = "gallery";
-  int size = 256;
-  app.add_option("--out", out_dir, "directory for the PNG files")->capture_default_str();
-  app.add_option("--size", size, "pixels per side of each half")
-      ->check(CLI::Range(16, 4096))
-      ->capture_default_str();
-  CLI11_PARSE(app, argc, argv);
-
+// Every texture as one PNG in `out_dir`; throws when a file cannot be written.
+void write_gallery(const std::filesystem::path& out_dir, int size) {
   std::filesystem::create_directories(out_dir);
   std::printf("soltex-gallery: %d x %d slice + sphere per texture -> %s\n", size, size,
               std::filesystem::absolute(out_dir).c_str());
@@ -90,5 +81,29 @@ int main(int argc, char** argv) {
     std::printf("  %-20s %7.1f ms  %s  (%s)\n", entry.name.c_str(), ms, path.c_str(),
                 entry.description.c_str());
   }
-  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  namespace cli = soltex::cli;
+  CLI::App app{"soltex-gallery: every solid texture as a slice and on a sphere, as PNG files"};
+  std::filesystem::path out_dir = "gallery";
+  int size = 256;
+  std::string log_level = "info";
+  cli::add_common_options(app, "soltex-gallery", log_level);
+  // --out-dir as in soltex-bench, since it names a folder; --out is the old name.
+  app.add_option("--out-dir,--out", out_dir, "folder for the PNG files")->capture_default_str();
+  app.add_option("--size", size, "pixels per side of each half")
+      ->check(CLI::Range(16, 4096))
+      ->capture_default_str();
+  if (const auto exit_code = cli::parse(app, "soltex-gallery", argc, argv)) return *exit_code;
+  cli::start_logging("soltex-gallery", log_level);
+  try {
+    write_gallery(out_dir, size);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "soltex-gallery: %s\n", e.what());
+    return cli::kExitFailure;
+  }
+  return cli::kExitOk;
 }

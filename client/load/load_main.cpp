@@ -8,21 +8,26 @@
 #include "load_options.h"
 #include "load_report.h"
 #include "progress_bar.h"
+#include "soltex/cli/tool_cli.h"
 #include "soltex/net/channel_security_options.h"
 
 int main(int argc, char** argv) {
   using namespace soltex::load;
+  namespace cli = soltex::cli;
   LoadOptions options;
   CLI::App app{"soltex-load: load generator for soltexd (closed or open loop, per-brick latency)"};
+  std::string log_level = "info";
+  cli::add_common_options(app, "soltex-load", log_level);
   add_load_options(app, options);
   soltex::net::ChannelSecurityOptions security;
   soltex::net::add_channel_security_options(app, security);
-  CLI11_PARSE(app, argc, argv);
+  if (const auto exit_code = cli::parse(app, "soltex-load", argc, argv)) return *exit_code;
+  cli::start_logging("soltex-load", log_level);
   try {
     options.security = soltex::net::finish_channel_security(security);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "soltex-load: %s\n", e.what());
-    return 2;
+    return cli::kExitUsage;
   }
 
   if (options.mix == MixKind::hot && !options.open_loop() && options.in_flight > options.hot_set) {
@@ -44,10 +49,13 @@ int main(int argc, char** argv) {
     std::cout << format_result(result, options.format) << std::flush;
   } catch (const LoadOptionsError& e) {
     std::fprintf(stderr, "soltex-load: %s\n", e.what());
-    return 2;
+    return cli::kExitUsage;
   } catch (const LoadSetupError& e) {
     std::fprintf(stderr, "soltex-load: %s\n", e.what());
-    return 1;
+    return cli::kExitFailure;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "soltex-load: %s\n", e.what());
+    return cli::kExitFailure;
   }
-  return 0;
+  return cli::kExitOk;
 }

@@ -82,7 +82,7 @@ void add_choice(CLI::App& app, const char* name, Enum& value,
 
 void resolve(LoadOptions& o) {
   using B = LoadBounds;
-  require(!o.target.empty(), "--target HOST:PORT is required");
+  require(!o.target.empty(), "--server HOST:PORT is required");
   require(o.connections >= 1 && o.connections <= B::kMaxConnections,
           "--connections " + std::to_string(o.connections) + ": must be in [1, " +
               std::to_string(B::kMaxConnections) + "]");
@@ -91,8 +91,8 @@ void resolve(LoadOptions& o) {
                                                              std::to_string(B::kMaxStreams) + "]");
   if (o.duration_seconds) {
     require(*o.duration_seconds > 0.0 && *o.duration_seconds <= B::kMaxSeconds,
-            "--duration " + text(*o.duration_seconds) + ": must be in (0, " + text(B::kMaxSeconds) +
-                "] seconds");
+            "--duration-s " + text(*o.duration_seconds) + ": must be in (0, " +
+                text(B::kMaxSeconds) + "] seconds");
   }
   if (o.count) {
     require(*o.count >= 1 && *o.count <= B::kMaxCount, "--count " + std::to_string(*o.count) +
@@ -102,10 +102,10 @@ void resolve(LoadOptions& o) {
   // Always bounded: a count alone still stops at the time cap.
   if (!o.duration_seconds && !o.count) o.duration_seconds = B::kDefaultDurationSeconds;
   require(o.warmup_seconds >= 0.0 && o.warmup_seconds <= B::kMaxSeconds,
-          "--warmup " + text(o.warmup_seconds) + ": must be in [0, " + text(B::kMaxSeconds) +
+          "--warmup-s " + text(o.warmup_seconds) + ": must be in [0, " + text(B::kMaxSeconds) +
               "] seconds");
   require(o.drain_timeout_seconds >= 0.0 && o.drain_timeout_seconds <= B::kMaxSeconds,
-          "--drain-timeout " + text(o.drain_timeout_seconds) + ": must be in [0, " +
+          "--drain-timeout-s " + text(o.drain_timeout_seconds) + ": must be in [0, " +
               text(B::kMaxSeconds) + "] seconds");
   require(o.in_flight >= 1 && o.in_flight <= B::kMaxInFlight,
           "--in-flight " + std::to_string(o.in_flight) + ": must be in [1, " +
@@ -152,18 +152,21 @@ void add_load_options(CLI::App& app, LoadOptions& o) {
   const std::map<std::string, OutputFormat> formats = {
       {"text", OutputFormat::text}, {"json", OutputFormat::json}, {"csv", OutputFormat::csv}};
 
-  app.add_option("--target", o.target, "soltexd gRPC address HOST:PORT")->required();
+  // --target, --duration, --warmup and --drain-timeout are the old names, kept for scripts:
+  // every tool now calls the server --server and names a flag's unit at its end.
+  app.add_option("--server,--target", o.target, "soltexd gRPC address HOST:PORT")->required();
   app.add_option("--connections", o.connections, "gRPC channels (separate TCP connections)")
       ->capture_default_str();
   app.add_option("--streams", o.streams, "StreamBricks streams, spread over the connections")
       ->capture_default_str();
 
-  app.add_option("--duration", o.duration_seconds,
+  app.add_option("--duration-s,--duration", o.duration_seconds,
                  "seconds of measured load after the warmup (default 10 unless --count)");
   app.add_option("--count", o.count, "stop after this many measured brick requests");
-  app.add_option("--warmup", o.warmup_seconds, "seconds of load first, left out of the results")
+  app.add_option("--warmup-s,--warmup", o.warmup_seconds,
+                 "seconds of load first, left out of the results")
       ->capture_default_str();
-  app.add_option("--drain-timeout", o.drain_timeout_seconds,
+  app.add_option("--drain-timeout-s,--drain-timeout", o.drain_timeout_seconds,
                  "seconds to wait for outstanding answers after the stop; the rest are cancelled")
       ->capture_default_str();
 

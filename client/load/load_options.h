@@ -39,7 +39,7 @@ struct LoadBounds {
 };
 
 struct LoadOptions {
-  std::string target;  // HOST:PORT
+  std::string target;  // --server HOST:PORT
   net::ChannelSecurity security;
   int connections = 1;
   int streams = 1;

@@ -13,6 +13,7 @@
 
 #include "headless_session.h"
 #include "request_log.h"
+#include "soltex/cli/tool_cli.h"
 #ifdef SOLTEX_HAVE_SDL2
 #include "viewer_window.h"
 #endif
@@ -29,12 +30,15 @@ namespace {
 
 using namespace soltex;
 
-// soltex-view's exit codes (README.md, "Exit codes").
-constexpr int kExitConverged = 0;     // the picture converged (a window: closed normally)
-constexpr int kExitFailure = 1;       // a runtime failure: the server, a file, the network
-constexpr int kExitBadInput = 2;      // a bad command line or scene, or no display for a window
-constexpr int kExitNotConverged = 3;  // written, but not converged: --max-seconds ran out or
-                                      // bricks failed for good (refused, or corrupt each time)
+// soltex-view's exit codes: the table every tool shares (README.md, "Exit codes").
+// 0: the picture converged (a window: closed normally); 1: a runtime failure (the server, a
+// file, the network); 2: a bad command line or scene, or no display for a window; 3: written
+// but not converged, as --max-time-s ran out or bricks failed for good (refused, or corrupt
+// each time).
+constexpr int kExitConverged = cli::kExitOk;
+constexpr int kExitFailure = cli::kExitFailure;
+constexpr int kExitBadInput = cli::kExitUsage;
+constexpr int kExitNotConverged = cli::kExitNotConverged;
 
 SampleFilter filter_from(const std::string& name) {
   if (name == "nearest") return SampleFilter::nearest;
@@ -123,6 +127,7 @@ int main(int argc, char** argv) {
   std::string log_level = "info";
   int window_frames = 0;
   std::filesystem::path screenshot;
+  cli::add_common_options(app, "soltex-view", log_level);
   app.add_option("--server", server, "soltexd address HOST:PORT");
   app.add_flag("--local", local, "evaluate bricks in this process instead of fetching them");
   app.add_option("--scene", scene_path, "scene file (JSON); default: the built-in scene")
@@ -159,7 +164,8 @@ int main(int argc, char** argv) {
   app.add_option("--level-bias", level_bias, "added to every pixel's level (negative: finer)")
       ->check(CLI::Range(-8.0, 8.0));
   app.add_flag("--false-colour", false_colour, "show each pixel's level in false colour");
-  app.add_option("--max-seconds", max_seconds, "give up converging after this long (exit 3)")
+  app.add_option("--max-time-s,--max-seconds", max_seconds,
+                 "give up converging after this many seconds (exit 3; --max-seconds: old name)")
       ->check(CLI::Range(0.1, 3600.0))
       ->capture_default_str();
   app.add_option("--threads", threads, "render threads (0: one per core)")
@@ -188,19 +194,10 @@ int main(int argc, char** argv) {
       ->excludes(headless_flag);
   app.add_option("--record", record_path,
                  "write every brick request to FILE (soltex-load --mix replay plays it back)");
-  app.add_option("--log-level", log_level, "trace, debug, info, warn, error")
-      ->capture_default_str();
   net::ChannelSecurityOptions security_options;
   net::add_channel_security_options(app, security_options);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    // CLI11's own codes (105, 106, ...) would say nothing to a script: every bad command
-    // line is 2; --help and --version are 0.
-    return app.exit(e) == 0 ? kExitConverged : kExitBadInput;
-  }
-  spdlog::set_level(spdlog::level::from_str(log_level));
-  spdlog::set_pattern("%^%l%$ soltex-view: %v");
+  if (const auto exit_code = cli::parse(app, "soltex-view", argc, argv)) return *exit_code;
+  cli::start_logging("soltex-view", log_level);
   if (!local && server.empty()) {
     std::fprintf(stderr, "soltex-view: give --server HOST:PORT, or --local to run without one\n");
     return kExitBadInput;
@@ -279,7 +276,7 @@ int main(int argc, char** argv) {
 #ifdef SOLTEX_HAVE_SDL2
     if (!headless) {
       for (const char* option :
-           {"--out", "--exact", "--reference", "--supersample", "--max-seconds"}) {
+           {"--out", "--exact", "--reference", "--supersample", "--max-time-s"}) {
         if (app.count(option) > 0) spdlog::warn("{} applies to --headless only; ignored", option);
       }
       return run_window(scene, resolution, *cache, *source, render_options, choice, window_frames,

@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "daemon.h"
+#include "soltex/cli/tool_cli.h"
 
 namespace {
 
@@ -32,8 +33,8 @@ int main(int argc, char** argv) {
   ServerConfig config;
   CLI::App app{"soltexd: procedural solid-texture brick server (gRPC)"};
   app.set_config("--config", "", "read options from a TOML or INI file");
+  soltex::cli::add_common_options(app, "soltexd", config.log_level);
   app.add_option("--listen", config.listen, "gRPC address HOST:PORT (port 0: any free port)")
-      ->envname("SOLTEXD_LISTEN")
       ->capture_default_str();
   app.add_option("--metrics-listen", config.metrics_listen,
                  "Prometheus metrics address HOST:PORT, served at GET /metrics")
@@ -43,9 +44,6 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--threads", config.threads, "brick worker threads (0: one per core)")
       ->check(CLI::Range(0, 1024))
-      ->capture_default_str();
-  app.add_option("--log-level", config.log_level, "trace, debug, info, warn, error or off")
-      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "critical", "off"}))
       ->capture_default_str();
   app.add_option("--zstd-level", config.zstd_level, "zstd compression level for bricks")
       ->check(CLI::Range(1, 19))
@@ -74,8 +72,8 @@ int main(int argc, char** argv) {
                  "longest a made brick waits for others to share its message, microseconds")
       ->check(CLI::Range(0u, 1000000u))
       ->capture_default_str();
-  app.add_option("--shutdown-grace", config.shutdown_grace_seconds,
-                 "seconds open calls get to finish on SIGINT/SIGTERM")
+  app.add_option("--shutdown-grace-s,--shutdown-grace", config.shutdown_grace_seconds,
+                 "seconds open calls get to finish on SIGINT/SIGTERM (--shutdown-grace: old name)")
       ->check(CLI::Range(0.0, 600.0))
       ->capture_default_str();
   app.add_option("--ready-file", config.ready_file,
@@ -111,8 +109,7 @@ int main(int argc, char** argv) {
       ->add_option("--token-file", config.token_file,
                    "file holding the bearer token every BrickService call must carry")
       ->check(CLI::ExistingFile);
-  security->add_option("--token", config.token, "the bearer token itself (prefer --token-file)")
-      ->envname("SOLTEXD_TOKEN");
+  security->add_option("--token", config.token, "the bearer token itself (prefer --token-file)");
   security
       ->add_option("--max-streams-per-client", config.max_streams_per_client,
                    "open brick streams one client address may hold")
@@ -136,23 +133,26 @@ int main(int argc, char** argv) {
                    "flip a payload byte in every Nth brick sent (0: never)")
       ->check(CLI::Range(0u, 1u << 30));
 
-  CLI11_PARSE(app, argc, argv);
+  // SOLTEXD_LISTEN and SOLTEXD_TOKEN were the only variables before every option had one.
+  if (const auto exit_code = soltex::cli::parse(
+          app, "soltexd", argc, argv,
+          {{"SOLTEXD_LISTEN", "SOLTEX_LISTEN"}, {"SOLTEXD_TOKEN", "SOLTEX_TOKEN"}})) {
+    return *exit_code;
+  }
   if (config.max_keys_per_request > config.max_queued_per_stream) {
     std::fprintf(stderr,
                  "--max-keys-per-request (%u) must not exceed --max-queued-per-stream (%u)\n",
                  config.max_keys_per_request, config.max_queued_per_stream);
-    return 2;
+    return soltex::cli::kExitUsage;
   }
-
-  spdlog::set_level(spdlog::level::from_str(config.log_level));
-  spdlog::set_pattern("%Y-%m-%dT%H:%M:%S.%e %^%l%$ soltexd: %v");
+  soltex::cli::start_logging("soltexd", config.log_level, soltex::cli::LogStyle::timestamped);
 
   std::unique_ptr<soltex::server::Daemon> daemon;
   try {
     daemon = std::make_unique<soltex::server::Daemon>(config);
   } catch (const std::exception& e) {
     spdlog::critical("{}", e.what());
-    return 1;
+    return soltex::cli::kExitFailure;
   }
   spdlog::info("soltexd {} listening on {} (gRPC port {}), metrics on http://{}/metrics (port {})",
                SOLTEX_VERSION, config.listen, daemon->grpc_port(), config.metrics_listen,

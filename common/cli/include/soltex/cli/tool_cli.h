@@ -1,0 +1,54 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <initializer_list>
+#include <optional>
+#include <string>
+
+// The conventions every soltex tool's command line follows, in one place so that the five
+// tools cannot drift apart: --version, a validated --log-level with logs on stderr, an
+// environment variable SOLTEX_<NAME> for every option, and one table of exit codes.
+namespace soltex::cli {
+
+// README.md, "Exit codes". Every tool uses the first three; 3 is soltex-view's alone.
+inline constexpr int kExitOk = 0;            // done (also --help and --version)
+inline constexpr int kExitFailure = 1;       // a runtime failure: network, server, files
+inline constexpr int kExitUsage = 2;         // bad usage or input: options, environment, files
+inline constexpr int kExitNotConverged = 3;  // soltex-view: written, but not converged
+
+// The CMake project version, e.g. "0.1.0".
+const char* version();
+
+// The names spdlog knows, as --log-level accepts them.
+inline constexpr const char* kLogLevels[] = {"trace", "debug",    "info", "warn",
+                                             "error", "critical", "off"};
+
+// Adds --version (prints "TOOL VERSION") and --log-level (one of kLogLevels; anything else
+// is refused rather than read as "off", which is what spdlog makes of an unknown name).
+void add_common_options(CLI::App& app, const std::string& tool, std::string& log_level);
+
+// An environment variable renamed: the old name still sets the option, with a warning.
+struct DeprecatedEnvironmentName {
+  const char* old_name;
+  const char* new_name;
+};
+
+// Gives every option that has none an environment variable named after its first long name
+// (--metrics-listen: SOLTEX_METRICS_LISTEN), in the app, its option groups and subcommands,
+// then parses. The command line wins over a config file, which wins over the environment.
+// Returns the exit code when the tool should stop now: 0 after --help or --version, 2 after
+// any parse or validation error (CLI11's own codes, 105, 109, ..., say nothing to a script).
+std::optional<int> parse(CLI::App& app, const std::string& tool, int argc, char** argv,
+                         std::initializer_list<DeprecatedEnvironmentName> deprecated = {});
+
+// The environment variable an option's long name maps to: "--max-time-s" -> "SOLTEX_MAX_TIME_S".
+std::string environment_name(const std::string& long_name);
+
+enum class LogStyle { plain, timestamped };
+
+// Sends spdlog's default logger to stderr (spdlog's own default writes to stdout, where the
+// tools print their results) at `level`, each line tagged with the tool's name.
+void start_logging(const std::string& tool, const std::string& level,
+                   LogStyle style = LogStyle::plain);
+
+}  // namespace soltex::cli

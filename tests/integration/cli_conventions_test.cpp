@@ -1,0 +1,352 @@
+// The command-line conventions every tool shares, checked on the real binaries: --version,
+// --help listing SOLTEX_* variables, exit 2 for any bad usage (README.md, "Exit codes"), a
+// validated --log-level, options set from the environment, logs on stderr, results on stdout.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "soltexd_process.h"
+
+#if !defined(SOLTEXD_BINARY) || !defined(SOLTEX_VIEW_BINARY) || !defined(SOLTEX_LOAD_BINARY) || \
+    !defined(SOLTEX_BENCH_BINARY) || !defined(SOLTEX_GALLERY_BINARY) ||                         \
+    !defined(SOLTEX_EXPECTED_VERSION)
+#error "the five tools' paths and the project version must be defined"
+#endif
+
+extern char** environ;
+
+namespace soltex {
+namespace {
+
+using Environment = std::vector<std::pair<std::string, std::string>>;
+
+struct ToolRun {
+  int exit_code = -1;  // -1: killed or did not finish in time
+  std::string out;
+  std::string err;
+};
+
+std::string file_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// In the child: the test's own SOLTEX_* variables (a developer's shell may have some) must not
+// leak into a run, so only `environment` is set.
+void set_child_environment(const Environment& environment) {
+  std::vector<std::string> inherited;
+  for (char** entry = environ; *entry != nullptr; ++entry) {
+    const std::string text = *entry;
+    if (text.rfind("SOLTEX", 0) == 0) inherited.push_back(text.substr(0, text.find('=')));
+  }
+  for (const std::string& name : inherited) unsetenv(name.c_str());
+  for (const auto& [name, value] : environment) setenv(name.c_str(), value.c_str(), 1);
+}
+
+// A tool started with stdout and stderr in separate files under `directory`.
+class ToolProcess {
+ public:
+  ToolProcess(const std::string& binary, std::vector<std::string> args,
+              const Environment& environment, const std::filesystem::path& directory)
+      : out_(directory / "stdout.txt"), err_(directory / "stderr.txt") {
+    args.insert(args.begin(), binary);
+    pid_ = fork();
+    if (pid_ < 0) throw std::runtime_error("fork failed");
+    if (pid_ == 0) {
+      set_child_environment(environment);
+      const int out = open(out_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      const int err = open(err_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (out < 0 || err < 0) _exit(126);
+      dup2(out, STDOUT_FILENO);
+      dup2(err, STDERR_FILENO);
+      std::vector<char*> argv;
+      for (std::string& a : args) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      execv(argv[0], argv.data());
+      _exit(127);
+    }
+  }
+  ~ToolProcess() { testing::kill_and_reap(pid_); }
+
+  void signal(int number) const { kill(pid_, number); }
+
+  // Waits up to `limit` for the exit, then kills it; the run's exit code and output.
+  ToolRun finish(std::chrono::seconds limit = std::chrono::seconds(120)) {
+    ToolRun run;
+    const auto deadline = std::chrono::steady_clock::now() + limit;
+    int status = 0;
+    while (waitpid(pid_, &status, WNOHANG) != pid_) {
+      if (std::chrono::steady_clock::now() > deadline) {
+        testing::kill_and_reap(pid_);
+        ADD_FAILURE() << "did not finish within " << limit.count() << " s";
+        return run;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    pid_ = -1;
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    run.out = file_text(out_);
+    run.err = file_text(err_);
+    return run;
+  }
+
+ private:
+  std::filesystem::path out_;
+  std::filesystem::path err_;
+  pid_t pid_ = -1;
+};
+
+struct Tool {
+  std::string name;
+  std::string binary;
+  std::vector<std::string> help;  // what lists the options (soltex-bench: its subcommand's)
+};
+
+std::ostream& operator<<(std::ostream& out, const Tool& tool) {
+  return out << tool.name;
+}
+
+// A scratch folder per test for the runs' output.
+class ToolTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    std::string name = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+    for (char& c : name) c = c == '/' ? '-' : c;
+    directory_ = std::filesystem::temp_directory_path() /
+                 ("soltex-cli-" + std::to_string(getpid()) + "-" + name);
+    std::filesystem::create_directories(directory_);
+  }
+  void TearDown() override { std::filesystem::remove_all(directory_); }
+
+  ToolRun run_tool(const std::string& binary, const std::vector<std::string>& args,
+                   const Environment& environment = {}) {
+    return ToolProcess(binary, args, environment, directory_).finish();
+  }
+
+  std::filesystem::path directory_;
+};
+
+class CliConventions : public ToolTest, public ::testing::WithParamInterface<Tool> {
+ protected:
+  ToolRun run(const std::vector<std::string>& args, const Environment& environment = {}) {
+    return run_tool(GetParam().binary, args, environment);
+  }
+};
+
+TEST_P(CliConventions, VersionPrintsTheProjectVersionAndExits0) {
+  const ToolRun r = run({"--version"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, GetParam().name + " " + SOLTEX_EXPECTED_VERSION + "\n");
+}
+
+TEST_P(CliConventions, HelpExits0AndNamesTheEnvironmentVariables) {
+  const ToolRun r = run({"--help"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("--version"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(Env:SOLTEX_LOG_LEVEL)"), std::string::npos) << r.out;
+  const ToolRun options = run(GetParam().help);
+  EXPECT_EQ(options.exit_code, 0) << options.err;
+  // Every option of the tool has a variable, not only --log-level.
+  std::size_t count = 0;
+  for (std::size_t at = options.out.find("(Env:SOLTEX_"); at != std::string::npos;
+       at = options.out.find("(Env:SOLTEX_", at + 1)) {
+    ++count;
+  }
+  EXPECT_GE(count, 3u) << options.out;
+}
+
+TEST_P(CliConventions, AnUnknownOptionExits2) {
+  const ToolRun r = run({"--no-such-option"});
+  EXPECT_EQ(r.exit_code, 2);
+  // Named unless a missing required option or subcommand is reported first.
+  EXPECT_NE(r.err, "");
+  EXPECT_EQ(r.out, "");
+}
+
+void expect_log_levels_named(const ToolRun& r) {
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("verbose"), std::string::npos) << r.err;
+  for (const char* level : {"trace", "debug", "info", "warn", "error", "critical", "off"}) {
+    EXPECT_NE(r.err.find(level), std::string::npos) << level << " not named in: " << r.err;
+  }
+}
+
+TEST_P(CliConventions, AnUnknownLogLevelExits2NamingTheAcceptedOnes) {
+  expect_log_levels_named(run({"--log-level", "verbose"}));
+}
+
+TEST_P(CliConventions, TheEnvironmentSetsTheLogLevel) {
+  // Refused like the option: proof that the variable reached it. (Each tool's tests below
+  // show a valid value taking effect.)
+  const ToolRun from_environment = run(GetParam().help, {{"SOLTEX_LOG_LEVEL", "verbose"}});
+  expect_log_levels_named(from_environment);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    EveryTool, CliConventions,
+    ::testing::Values(Tool{"soltexd", SOLTEXD_BINARY, {"--help"}},
+                      Tool{"soltex-view", SOLTEX_VIEW_BINARY, {"--help"}},
+                      Tool{"soltex-load", SOLTEX_LOAD_BINARY, {"--help"}},
+                      Tool{"soltex-bench", SOLTEX_BENCH_BINARY, {"accuracy", "--help"}},
+                      Tool{"soltex-gallery", SOLTEX_GALLERY_BINARY, {"--help"}}),
+    [](const ::testing::TestParamInfo<Tool>& info) {
+      std::string name = info.param.name;
+      for (char& c : name) c = c == '-' ? '_' : c;
+      return name;
+    });
+
+}  // namespace
+}  // namespace soltex
+
+namespace soltex {
+namespace {
+
+// Lines spdlog wrote at info level ("info TOOL: ..."), wherever they went.
+bool has_info_line(const std::string& text, const std::string& tool) {
+  return text.find("info " + tool + ":") != std::string::npos;
+}
+
+bool wait_for_file(const std::filesystem::path& path) {
+  for (int i = 0; i < 400 && !std::filesystem::exists(path); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return std::filesystem::exists(path);
+}
+
+using SoltexdCli = ToolTest;
+
+TEST_F(SoltexdCli, RunsFromTheEnvironmentAndLogsOnStderr) {
+  const std::filesystem::path ready = directory_ / "ready";
+  Environment environment = {{"SOLTEX_LISTEN", "127.0.0.1:0"},
+                             {"SOLTEX_METRICS_LISTEN", "127.0.0.1:0"},
+                             {"SOLTEX_READY_FILE", ready.string()},
+                             {"SOLTEX_SHUTDOWN_GRACE_S", "0"}};
+  for (const std::string level : {"info", "warn"}) {
+    std::filesystem::remove(ready);
+    environment.emplace_back("SOLTEX_LOG_LEVEL", level);
+    ToolProcess soltexd(SOLTEXD_BINARY, {}, environment, directory_);
+    ASSERT_TRUE(wait_for_file(ready)) << "soltexd did not start from SOLTEX_* alone";
+    soltexd.signal(SIGTERM);
+    const ToolRun r = soltexd.finish();
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "");  // a daemon has no results: everything it says is a log line
+    EXPECT_EQ(has_info_line(r.err, "soltexd"), level == "info") << level << ": " << r.err;
+    environment.pop_back();
+  }
+}
+
+TEST_F(SoltexdCli, TheOldEnvironmentNameStillWorks) {
+  const std::filesystem::path ready = directory_ / "ready";
+  ToolProcess soltexd(SOLTEXD_BINARY,
+                      {"--metrics-listen", "127.0.0.1:0", "--ready-file", ready.string()},
+                      {{"SOLTEXD_LISTEN", "127.0.0.1:0"}}, directory_);
+  ASSERT_TRUE(wait_for_file(ready)) << "soltexd did not take SOLTEXD_LISTEN";
+  soltexd.signal(SIGTERM);
+  const ToolRun r = soltexd.finish();
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("SOLTEXD_LISTEN is deprecated; use SOLTEX_LISTEN"), std::string::npos)
+      << r.err;
+}
+
+TEST_F(SoltexdCli, AValueFromTheEnvironmentIsValidatedLikeTheOption) {
+  const ToolRun r = run_tool(SOLTEXD_BINARY, {}, {{"SOLTEX_CACHE_MB", "0"}});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--cache-mb"), std::string::npos) << r.err;
+}
+
+using ViewCliConventions = ToolTest;
+
+TEST_F(ViewCliConventions, RunsFromTheEnvironmentWithResultsOnStdoutAndLogsOnStderr) {
+  const std::filesystem::path png = directory_ / "view.png";
+  Environment environment = {{"SOLTEX_LOCAL", "1"},        {"SOLTEX_HEADLESS", "true"},
+                             {"SOLTEX_WIDTH", "32"},       {"SOLTEX_HEIGHT", "18"},
+                             {"SOLTEX_OUT", png.string()}, {"SOLTEX_MAX_TIME_S", "60"}};
+  const ToolRun info = run_tool(SOLTEX_VIEW_BINARY, {}, environment);
+  EXPECT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_TRUE(std::filesystem::exists(png));
+  EXPECT_NE(info.out.find("wrote:"), std::string::npos) << info.out;
+  EXPECT_TRUE(has_info_line(info.err, "soltex-view")) << info.err;
+  EXPECT_FALSE(has_info_line(info.out, "soltex-view")) << info.out;
+
+  environment.emplace_back("SOLTEX_LOG_LEVEL", "warn");
+  const ToolRun quiet = run_tool(SOLTEX_VIEW_BINARY, {}, environment);
+  EXPECT_EQ(quiet.exit_code, 0) << quiet.err;
+  EXPECT_FALSE(has_info_line(quiet.err, "soltex-view")) << quiet.err;
+}
+
+TEST_F(ViewCliConventions, TheOldNameOfMaxTimeStillWorks) {
+  const ToolRun r = run_tool(SOLTEX_VIEW_BINARY,
+                             {"--headless", "--local", "--width", "32", "--height", "18",
+                              "--max-seconds", "60", "--out", (directory_ / "v.png").string()});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+using LoadCliConventions = ToolTest;
+
+TEST_F(LoadCliConventions, TakesItsServerFromTheEnvironmentOrEitherName) {
+  testing::SoltexdProcess soltexd;
+  const std::vector<std::string> args = {"--count", "20", "--no-progress", "--format", "json"};
+  const ToolRun r = run_tool(SOLTEX_LOAD_BINARY, args, {{"SOLTEX_SERVER", soltexd.grpc_address()}});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, 1), "{") << r.out;
+  for (const char* name : {"--server", "--target"}) {
+    std::vector<std::string> named = args;
+    named.insert(named.end(), {name, soltexd.grpc_address(), "--duration-s", "30"});
+    const ToolRun n = run_tool(SOLTEX_LOAD_BINARY, named);
+    EXPECT_EQ(n.exit_code, 0) << name << ": " << n.err;
+  }
+}
+
+TEST_F(LoadCliConventions, WithoutAServerItExits2NamingServer) {
+  const ToolRun r = run_tool(SOLTEX_LOAD_BINARY, {"--count", "1"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--server"), std::string::npos) << r.err;
+}
+
+TEST_F(LoadCliConventions, ADurationFromTheEnvironmentIsChecked) {
+  const ToolRun r =
+      run_tool(SOLTEX_LOAD_BINARY, {"--server", "127.0.0.1:1"}, {{"SOLTEX_DURATION_S", "0"}});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--duration-s 0"), std::string::npos) << r.err;
+}
+
+using BenchCliConventions = ToolTest;
+
+TEST_F(BenchCliConventions, ASubcommandOptionComesFromTheEnvironment) {
+  // Refused before any measuring starts, which is what shows the variable reached the option.
+  const ToolRun r =
+      run_tool(SOLTEX_BENCH_BINARY, {"accuracy", "--quick", "--out-dir", directory_.string()},
+               {{"SOLTEX_FRONT_CLOCK", "sundial"}});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--front-clock"), std::string::npos) << r.err;
+}
+
+using GalleryCliConventions = ToolTest;
+
+TEST_F(GalleryCliConventions, RunsFromTheEnvironment) {
+  const std::filesystem::path out = directory_ / "gallery";
+  const ToolRun r = run_tool(SOLTEX_GALLERY_BINARY, {},
+                             {{"SOLTEX_SIZE", "16"}, {"SOLTEX_OUT_DIR", out.string()}});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("16 x 16"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::is_empty(out));
+  const ToolRun old_name =
+      run_tool(SOLTEX_GALLERY_BINARY, {"--size", "16", "--out", (directory_ / "old").string()});
+  EXPECT_EQ(old_name.exit_code, 0) << old_name.err;
+  EXPECT_FALSE(std::filesystem::is_empty(directory_ / "old"));
+}
+
+}  // namespace
+}  // namespace soltex
