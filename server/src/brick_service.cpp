@@ -20,11 +20,13 @@ BrickServiceImpl::BrickServiceImpl(BrickStream::Context context, ClientAccess& a
                                    v1::ServerInfo info)
     : context_(context), access_(access), info_(std::move(info)) {}
 
-grpc::Status BrickServiceImpl::admit(const grpc::CallbackServerContext& context) {
-  grpc::Status status = access_.authenticate(context);
+grpc::Status BrickServiceImpl::admit(const grpc::CallbackServerContext& context,
+                                     std::string& client) {
+  grpc::Status status = access_.identify(context, client);
   if (!status.ok()) {
     context_.metrics.count_error(static_cast<int>(status.error_code()));
-    spdlog::warn("call from {} refused: {}", context.peer(), status.error_message());
+    context_.refusals.refused(client, "call from " + client + " (peer " + context.peer() +
+                                          ") refused: " + status.error_message());
   }
   return status;
 }
@@ -33,7 +35,8 @@ grpc::ServerUnaryReactor* BrickServiceImpl::GetServerInfo(grpc::CallbackServerCo
                                                           const v1::GetServerInfoRequest*,
                                                           v1::ServerInfo* response) {
   auto* reactor = context->DefaultReactor();
-  const grpc::Status admitted = admit(*context);
+  std::string client;
+  const grpc::Status admitted = admit(*context, client);
   if (admitted.ok()) *response = info_;
   reactor->Finish(admitted);
   return reactor;
@@ -43,16 +46,22 @@ grpc::ServerUnaryReactor* BrickServiceImpl::RegisterTexture(
     grpc::CallbackServerContext* context, const v1::RegisterTextureRequest* request,
     v1::TextureHandle* response) {
   auto* reactor = context->DefaultReactor();
-  if (grpc::Status admitted = admit(*context); !admitted.ok()) {
+  std::string client;
+  if (grpc::Status admitted = admit(*context, client); !admitted.ok()) {
     reactor->Finish(admitted);
     return reactor;
   }
   context_.metrics.register_requests.fetch_add(1, std::memory_order_relaxed);
   try {
-    *response = texture_handle(*register_texture(context_.registry, *request));
+    // Not used by a stream yet: the pin goes at once and the texture is the most recent.
+    *response = texture_handle(*register_texture(context_.registry, *request, client).texture());
   } catch (const RegistrationError& e) {
     context_.metrics.count_error(static_cast<int>(e.code()));
-    spdlog::debug("RegisterTexture from {} refused: {}", context->peer(), e.what());
+    if (e.code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
+      context_.refusals.refused(client, "RegisterTexture from " + client + " refused: " + e.what());
+    } else {
+      spdlog::debug("RegisterTexture from {} refused: {}", client, e.what());
+    }
     reactor->Finish(grpc::Status(e.code(), e.what()));
     return reactor;
   }
@@ -62,19 +71,21 @@ grpc::ServerUnaryReactor* BrickServiceImpl::RegisterTexture(
 
 grpc::ServerBidiReactor<v1::BrickRequest, v1::BrickBatch>* BrickServiceImpl::StreamBricks(
     grpc::CallbackServerContext* context) {
-  if (grpc::Status admitted = admit(*context); !admitted.ok()) {
+  std::string client;
+  if (grpc::Status admitted = admit(*context, client); !admitted.ok()) {
     return new RefusedStream(admitted);
   }
   grpc::Status refusal;
-  const std::string client = access_.client_of(*context);
   std::unique_ptr<StreamLease> lease = access_.open_stream(client, refusal);
   if (!lease) {
     context_.metrics.count_error(static_cast<int>(refusal.error_code()));
-    spdlog::warn("stream from {} refused: {}", context->peer(), refusal.error_message());
+    context_.refusals.refused(client, "stream from " + client + " (peer " + context->peer() +
+                                          ") refused: " + refusal.error_message());
     return new RefusedStream(refusal);
   }
   const uint64_t id = next_stream_id_.fetch_add(1, std::memory_order_relaxed);
-  auto stream = std::make_shared<BrickStream>(context_, id, context->peer(), std::move(lease));
+  auto stream = std::make_shared<BrickStream>(
+      context_, id, client + " (peer " + context->peer() + ")", std::move(lease));
   {
     std::lock_guard lock(streams_mutex_);
     // Forget streams that have ended, so the map stays the size of the open ones.

@@ -30,8 +30,9 @@ class BrickServiceImpl final : public v1::BrickService::CallbackService {
   void shut_down_streams();
 
  private:
-  // OK, or the status the call is refused with (counted and logged).
-  grpc::Status admit(const grpc::CallbackServerContext& context);
+  // OK with `client` set to the caller's identity, or the status the call is refused with
+  // (counted, and logged at most once a second per client).
+  grpc::Status admit(const grpc::CallbackServerContext& context, std::string& client);
 
   BrickStream::Context context_;
   ClientAccess& access_;

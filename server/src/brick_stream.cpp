@@ -97,14 +97,30 @@ void BrickStream::on_read_done(bool ok) {
 }
 
 void BrickStream::register_textures() {
+  const std::string& client = lease_->usage().client;
   for (const v1::RegisterTextureRequest& texture : request_.textures()) {
     try {
-      register_texture(context_.registry, texture);
+      TexturePin pin = register_texture(context_.registry, texture, client);
       context_.metrics.register_requests.fetch_add(1, std::memory_order_relaxed);
+      const uint64_t id = pin.texture()->id;
+      pins_.try_emplace(id, std::move(pin));  // already held: the extra pin is let go
     } catch (const RegistrationError& e) {
       add_request_error(e.code(), std::string("texture on the stream refused: ") + e.what());
+      if (e.code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
+        context_.refusals.refused(client, "texture on stream " + std::to_string(id_) + " from " +
+                                              client + " refused: " + e.what());
+      }
     }
   }
+}
+
+TexturePtr BrickStream::use_texture(uint64_t id) {
+  if (const auto it = pins_.find(id); it != pins_.end()) return it->second.texture();
+  TexturePin pin = context_.registry.pin(id);
+  if (!pin) return nullptr;
+  TexturePtr texture = pin.texture();
+  pins_.emplace(id, std::move(pin));
+  return texture;
 }
 
 std::size_t BrickStream::accept_request() {
@@ -137,11 +153,12 @@ std::size_t BrickStream::accept_request() {
   TexturePtr texture;  // consecutive keys usually name the same texture
   for (const v1::BrickWant& want : request_.want()) {
     const v1::BrickKey& k = want.key();
-    if (!texture || texture->id != k.texture_id()) texture = context_.registry.find(k.texture_id());
+    if (!texture || texture->id != k.texture_id()) texture = use_texture(k.texture_id());
     if (!texture) {
       add_error(k, grpc::StatusCode::NOT_FOUND,
                 "texture " + texture_id_hex(k.texture_id()) +
-                    " is not registered on this server (call RegisterTexture first)");
+                    " is not registered on this server (call RegisterTexture first, or send it "
+                    "in the request's textures; an unused texture may have been evicted)");
       continue;
     }
     const BrickLayout& layout = texture->layout;
@@ -363,6 +380,7 @@ void BrickStream::on_done() {
   reactor_ = nullptr;
   coalesce_timer_.cancel();
   lease_->release();
+  pins_.clear();  // its textures may be evicted now; queued work holds its own references
 }
 
 }  // namespace soltex::server

@@ -9,11 +9,13 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <unordered_map>
 
 #include "brick_producer.h"
 #include "brick_scheduler.h"
 #include "client_access.h"
 #include "fault_injection.h"
+#include "refusal_log.h"
 #include "server_metrics.h"
 #include "soltex/v1/brick_service.grpc.pb.h"
 #include "texture_registry.h"
@@ -51,6 +53,7 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
     BrickProducer& producer;
     ServerMetrics& metrics;
     FaultInjection& faults;
+    RefusalLog& refusals;
     StreamLimits limits;
   };
 
@@ -88,8 +91,9 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   // All below: mutex_ held.
   std::size_t accept_request();  // returns how many keys were queued
   void register_textures();
-  void count_queued(int64_t delta);  // this stream's queue grew or shrank by delta
-  void drop_queue();                 // empties the queue, counted
+  TexturePtr use_texture(uint64_t id);  // pinned for the stream's life; null: not registered
+  void count_queued(int64_t delta);     // this stream's queue grew or shrank by delta
+  void drop_queue();                    // empties the queue, counted
   void add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message);
   void add_request_error(grpc::StatusCode code, std::string message);
   void pump();                 // start the next read, write or finish, whichever is due
@@ -117,6 +121,9 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   bool finished_ = false;
   bool shutting_down_ = false;
   bool cancelled_ = false;
+
+  // Every texture the stream registered or asked for, kept from eviction until it ends.
+  std::unordered_map<uint64_t, TexturePin> pins_;
 
   WorkQueue queue_;  // queued bricks, and those taken by a worker and not yet delivered
   // Sends a held-back message when its wait ends, should no delivery come first to do it.

@@ -1,12 +1,14 @@
 #include "client_access.h"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string_view>
 
 namespace soltex::server {
 namespace {
 
 constexpr std::string_view kBearer = "Bearer ";
+constexpr std::string_view kForwardedFor = "x-forwarded-for";
 
 // Compares in time independent of where the strings differ, so the token cannot be guessed
 // a byte at a time from response times.
@@ -27,21 +29,24 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-// "ipv4:127.0.0.1:5000" -> "127.0.0.1", "ipv6:[::1]:5000" -> "::1", else unchanged.
-std::string host_of_peer(const std::string& peer) {
-  std::string_view rest = peer;
-  if (const auto colon = rest.find(':');
-      colon != std::string_view::npos && (rest.starts_with("ipv4:") || rest.starts_with("ipv6:"))) {
-    rest.remove_prefix(colon + 1);
-  } else {
-    return peer;
+bool trusted(const std::vector<AddressRange>& proxies, const IpAddress& address) {
+  return std::any_of(proxies.begin(), proxies.end(),
+                     [&](const AddressRange& range) { return range.contains(address); });
+}
+
+// Every comma-separated entry of every x-forwarded-for header, in order (client first).
+std::vector<std::string_view> forwarded_entries(const grpc::ServerContextBase& context) {
+  std::vector<std::string_view> entries;
+  const auto [begin, end] = context.client_metadata().equal_range(kForwardedFor.data());
+  for (auto it = begin; it != end; ++it) {
+    std::string_view value(it->second.data(), it->second.size());
+    while (!value.empty()) {
+      const auto comma = value.find(',');
+      entries.push_back(trim(value.substr(0, comma)));
+      value.remove_prefix(comma == std::string_view::npos ? value.size() : comma + 1);
+    }
   }
-  if (rest.starts_with('[')) {
-    const auto close = rest.find(']');
-    return std::string(rest.substr(1, close == std::string_view::npos ? rest.npos : close - 1));
-  }
-  const auto port = rest.rfind(':');
-  return std::string(port == std::string_view::npos ? rest : rest.substr(0, port));
+  return entries;
 }
 
 }  // namespace
@@ -50,10 +55,29 @@ void StreamLease::release() {
   if (!released_.exchange(true)) access_.close_stream(*usage_);
 }
 
-ClientAccess::ClientAccess(AccessConfig config) : config_(std::move(config)) {}
+ClientAccess::ClientAccess(AccessConfig config)
+    : config_(std::move(config)),
+      token_required_(!config_.tokens.empty()),
+      tokens_(std::make_shared<const std::vector<AccessToken>>(config_.tokens)) {}
 
-grpc::Status ClientAccess::authenticate(const grpc::ServerContextBase& context) const {
-  if (config_.token.empty()) return grpc::Status::OK;
+std::shared_ptr<const std::vector<AccessToken>> ClientAccess::tokens() const {
+  std::lock_guard lock(tokens_mutex_);
+  return tokens_;
+}
+
+void ClientAccess::replace_tokens(std::vector<AccessToken> tokens) {
+  if (token_required_ && tokens.empty()) {
+    throw std::invalid_argument("a reload may not remove every token (restart without one)");
+  }
+  auto next = std::make_shared<const std::vector<AccessToken>>(std::move(tokens));
+  std::lock_guard lock(tokens_mutex_);
+  tokens_ = std::move(next);
+}
+
+grpc::Status ClientAccess::identify(const grpc::ServerContextBase& context,
+                                    std::string& client) const {
+  client = address_of(context);
+  if (!token_required_) return grpc::Status::OK;
   const auto& metadata = context.client_metadata();
   const auto it = metadata.find("authorization");
   if (it == metadata.end()) {
@@ -65,22 +89,40 @@ grpc::Status ClientAccess::authenticate(const grpc::ServerContextBase& context) 
     return {grpc::StatusCode::UNAUTHENTICATED,
             "the 'authorization' metadata must read 'Bearer <token>'"};
   }
-  if (!equal_in_constant_time(value.substr(kBearer.size()), config_.token)) {
+  const std::string_view presented = value.substr(kBearer.size());
+  const AccessToken* match = nullptr;
+  // Every token is compared, so the time taken tells nothing about which one matched.
+  for (const AccessToken& token : *tokens()) {
+    if (equal_in_constant_time(presented, token.secret) && match == nullptr) match = &token;
+  }
+  if (match == nullptr) {
     return {grpc::StatusCode::UNAUTHENTICATED, "the bearer token is not valid for this server"};
   }
+  if (!match->name.empty()) client = "token:" + match->name;
   return grpc::Status::OK;
 }
 
-std::string ClientAccess::client_of(const grpc::ServerContextBase& context) const {
-  if (config_.trust_forwarded_for) {
-    const auto& metadata = context.client_metadata();
-    if (const auto it = metadata.find("x-forwarded-for"); it != metadata.end()) {
-      std::string_view value(it->second.data(), it->second.size());
-      value = trim(value.substr(0, value.find(',')));
-      if (!value.empty()) return std::string(value);
+std::string ClientAccess::address_of(const grpc::ServerContextBase& context) const {
+  const std::string peer = host_of_peer(context.peer());
+  if (config_.trusted_proxies.empty()) return peer;
+  return client_address(peer, forwarded_entries(context), config_.trusted_proxies);
+}
+
+std::string client_address(const std::string& peer_host,
+                           const std::vector<std::string_view>& forwarded,
+                           const std::vector<AddressRange>& trusted_proxies) {
+  const std::optional<IpAddress> peer = IpAddress::parse(peer_host);
+  if (!peer || !trusted(trusted_proxies, *peer)) return peer_host;
+  // Walking from the right, each trusted proxy added the address it saw; what the client
+  // itself sent (and could forge) lies further left.
+  for (auto it = forwarded.rbegin(); it != forwarded.rend(); ++it) {
+    const std::optional<IpAddress> address = IpAddress::parse(*it);
+    if (!address) break;
+    if (!trusted(trusted_proxies, *address) || std::next(it) == forwarded.rend()) {
+      return std::string(*it);
     }
   }
-  return host_of_peer(context.peer());
+  return peer_host;
 }
 
 std::unique_ptr<StreamLease> ClientAccess::open_stream(const std::string& client,

@@ -7,24 +7,37 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <string_view>
 #include <unordered_map>
+#include <vector>
+
+#include "access_tokens.h"
+#include "address_range.h"
 
 namespace soltex::server {
 
 struct AccessConfig {
-  std::string token;  // empty: no token required
+  std::vector<AccessToken> tokens;  // empty: no token required
   uint32_t max_streams_per_client = 64;
   uint32_t max_queued_per_client = 65536;
-  // Behind a balancer every peer is the balancer: name clients by its x-forwarded-for.
-  bool trust_forwarded_for = false;
+  // Peers whose x-forwarded-for header names the client (the balancers in front of soltexd).
+  std::vector<AddressRange> trusted_proxies;
 };
 
-// What one client (one address) holds over all its streams.
+// What one client (one identity) holds over all its streams.
 struct ClientUsage {
   std::string client;
   uint32_t streams = 0;            // guarded by ClientAccess's mutex
   std::atomic<int64_t> queued{0};  // bricks queued over its streams
 };
+
+// Who a caller is by address: `peer_host` (its address without the port) unless it is a
+// trusted proxy; then the last x-forwarded-for entry (`forwarded`, in header order) that no
+// trusted proxy wrote, or the first when every one is trusted. An entry that is not an address
+// ends the search at the peer: no proxy of ours wrote it.
+std::string client_address(const std::string& peer_host,
+                           const std::vector<std::string_view>& forwarded,
+                           const std::vector<AddressRange>& trusted_proxies);
 
 // Held by a stream for its lifetime: releases the client's stream slot when destroyed.
 class StreamLease {
@@ -47,30 +60,44 @@ class StreamLease {
   std::atomic<bool> released_{false};
 };
 
-// Who may call and how much one client may hold: the bearer token checked on every
-// BrickService call (the health service stays open for probes), and the per-client bounds on
-// open streams and queued bricks.
+// Who may call and how much one client may hold: the bearer tokens checked on every
+// BrickService call (the health service stays open for probes), who the caller is, and the
+// per-client bounds on open streams and queued bricks.
+//
+// A client is an identity: "token:NAME" for a caller with a named token, else its address:
+// the x-forwarded-for entry a trusted proxy wrote when the peer is one, else the peer's.
 class ClientAccess {
  public:
   explicit ClientAccess(AccessConfig config);
 
-  // OK, or UNAUTHENTICATED saying what was missing or wrong.
-  grpc::Status authenticate(const grpc::ServerContextBase& context) const;
+  // OK with `client` set to the caller's identity, or UNAUTHENTICATED saying what was missing
+  // or wrong (`client` is then its address, for the log).
+  grpc::Status identify(const grpc::ServerContextBase& context, std::string& client) const;
 
-  // The client's address without its port (or the first x-forwarded-for entry when trusted).
-  std::string client_of(const grpc::ServerContextBase& context) const;
+  // The caller's address without its port: the client x-forwarded-for names when the peer is
+  // a trusted proxy, else the peer.
+  std::string address_of(const grpc::ServerContextBase& context) const;
 
   // A stream slot for `client`, or null with `refusal` set to RESOURCE_EXHAUSTED.
   std::unique_ptr<StreamLease> open_stream(const std::string& client, grpc::Status& refusal);
 
+  // SIGHUP: later calls are checked against these tokens; open streams are not touched.
+  // Tokens may not be turned on or off this way (empty keeps requiring none, and is refused
+  // when tokens are required).
+  void replace_tokens(std::vector<AccessToken> tokens);
+
   uint32_t max_queued_per_client() const { return config_.max_queued_per_client; }
-  bool token_required() const { return !config_.token.empty(); }
+  bool token_required() const { return token_required_; }
 
  private:
   friend class StreamLease;
   void close_stream(ClientUsage& usage);
+  std::shared_ptr<const std::vector<AccessToken>> tokens() const;
 
   const AccessConfig config_;
+  const bool token_required_;
+  mutable std::mutex tokens_mutex_;
+  std::shared_ptr<const std::vector<AccessToken>> tokens_;
   std::mutex mutex_;
   std::unordered_map<std::string, std::shared_ptr<ClientUsage>> clients_;
 };

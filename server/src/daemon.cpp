@@ -7,11 +7,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
 #include "soltex/common/brick_layout.h"
-#include "soltex/common/text_file.h"
 
 namespace soltex::server {
 namespace {
@@ -40,14 +40,29 @@ v1::ServerInfo make_info(const ServerConfig& config, int threads) {
   return info;
 }
 
+std::vector<AccessToken> access_tokens(const ServerConfig& config) {
+  if (!config.token_file.empty()) return read_access_tokens(config.token_file);
+  if (!config.token.empty()) return {AccessToken{"", config.token}};
+  return {};
+}
+
 AccessConfig access_config(const ServerConfig& config) {
+  if (config.trust_forwarded_for) {
+    throw std::runtime_error(
+        "--trust-forwarded-for trusted x-forwarded-for from any peer and is gone: name the "
+        "balancers whose header to trust with --trusted-proxies ADDRESS[/BITS],...");
+  }
   AccessConfig access;
-  access.token = config.token;
-  if (!config.token_file.empty()) access.token = read_trimmed_text_file(config.token_file, "token");
+  access.tokens = access_tokens(config);
   access.max_streams_per_client = config.max_streams_per_client;
   access.max_queued_per_client = config.max_queued_per_client;
-  access.trust_forwarded_for = config.trust_forwarded_for;
+  access.trusted_proxies = parse_address_ranges(config.trusted_proxies);
   return access;
+}
+
+RegistryLimits registry_limits(const ServerConfig& config) {
+  return {std::size_t{config.registry_mb} << 20, config.max_textures,
+          config.max_textures_per_client};
 }
 
 std::unique_ptr<SharedBrickCache> shared_cache(const ServerConfig& config, int threads) {
@@ -62,7 +77,7 @@ std::unique_ptr<SharedBrickCache> shared_cache(const ServerConfig& config, int t
   return std::make_unique<SharedBrickCache>(shared);
 }
 
-std::shared_ptr<grpc::ServerCredentials> server_credentials(const ServerConfig& config) {
+std::unique_ptr<ReloadableTls> server_tls(const ServerConfig& config) {
   if (config.tls_cert_file.empty() != config.tls_key_file.empty()) {
     throw std::runtime_error("TLS needs both --tls-cert and --tls-key");
   }
@@ -70,16 +85,10 @@ std::shared_ptr<grpc::ServerCredentials> server_credentials(const ServerConfig& 
     if (!config.tls_client_ca_file.empty()) {
       throw std::runtime_error("--tls-client-ca needs --tls-cert and --tls-key");
     }
-    return grpc::InsecureServerCredentials();
+    return nullptr;
   }
-  grpc::SslServerCredentialsOptions options(GRPC_SSL_DONT_REQUEST_CLIENT_CERTIFICATE);
-  options.pem_key_cert_pairs.push_back({read_text_file(config.tls_key_file, "TLS key"),
-                                        read_text_file(config.tls_cert_file, "TLS certificate")});
-  if (!config.tls_client_ca_file.empty()) {
-    options.pem_root_certs = read_text_file(config.tls_client_ca_file, "client CA");
-    options.client_certificate_request = GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY;
-  }
-  return grpc::SslServerCredentials(options);
+  return std::make_unique<ReloadableTls>(
+      TlsFiles{config.tls_cert_file, config.tls_key_file, config.tls_client_ca_file});
 }
 
 }  // namespace
@@ -87,9 +96,11 @@ std::shared_ptr<grpc::ServerCredentials> server_credentials(const ServerConfig& 
 Daemon::Daemon(const ServerConfig& config)
     : config_(config),
       access_(access_config(config)),
+      refusals_([](const std::string& line) { spdlog::warn("{}", line); }),
+      tls_(server_tls(config)),
       faults_(config.faults),
       shared_cache_(shared_cache(config, worker_count(config.threads))),
-      registry_(config.max_textures),
+      registry_(registry_limits(config)),
       store_(config.cache_mb << 20),
       scheduler_(worker_count(config.threads)),
       producer_(store_, metrics_state_, config.zstd_level, shared_cache_.get(), &faults_) {
@@ -103,6 +114,7 @@ Daemon::Daemon(const ServerConfig& config)
       producer_,
       metrics_state_,
       faults_,
+      refusals_,
       StreamLimits{config.max_keys_per_request, config.max_queued_per_stream, 32, 1u << 20,
                    config.max_queued_per_client, config.coalesce_bricks,
                    std::chrono::microseconds(config.coalesce_wait_us)}};
@@ -112,7 +124,8 @@ Daemon::Daemon(const ServerConfig& config)
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
-  builder.AddListeningPort(config.listen, server_credentials(config), &grpc_port_);
+  builder.AddListeningPort(
+      config.listen, tls_ ? tls_->credentials() : grpc::InsecureServerCredentials(), &grpc_port_);
   builder.RegisterService(service_.get());
   builder.SetMaxReceiveMessageSize(static_cast<int>(config.max_message_bytes));
   // Sees every call, also those gRPC refuses before a handler runs (a message too large).
@@ -141,8 +154,26 @@ Daemon::~Daemon() {
 std::string Daemon::render_metrics() const {
   const std::optional<SharedCacheStats> shared =
       shared_cache_ ? std::optional(shared_cache_->stats()) : std::nullopt;
-  return metrics_state_.render(store_.stats(), store_.byte_budget(), registry_.size(),
-                               shared ? &*shared : nullptr, faults_.corrupted());
+  const AccessCounts access{reloads_ok_.load(), reloads_failed_.load(), refusals_.suppressed()};
+  return metrics_state_.render(store_.stats(), store_.byte_budget(), registry_.stats(),
+                               shared ? &*shared : nullptr, faults_.corrupted(), access);
+}
+
+void Daemon::reload() {
+  try {
+    // Everything is read before anything is replaced: a failure changes nothing.
+    std::optional<std::vector<AccessToken>> tokens;
+    if (!config_.token_file.empty()) tokens = read_access_tokens(config_.token_file);
+    if (tls_) tls_->reload();
+    if (tokens) access_.replace_tokens(std::move(*tokens));
+    reloads_ok_.fetch_add(1);
+    spdlog::info("reloaded{}{}: open streams go on, new calls use what was read",
+                 tls_ ? " the TLS certificate and key" : "",
+                 config_.token_file.empty() ? "" : " the tokens file");
+  } catch (const std::exception& e) {
+    reloads_failed_.fetch_add(1);
+    spdlog::error("reload failed, keeping what was loaded before: {}", e.what());
+  }
 }
 
 void Daemon::shut_down() {

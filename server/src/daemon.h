@@ -2,6 +2,7 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <atomic>
 #include <memory>
 
 #include "brick_producer.h"
@@ -11,6 +12,8 @@
 #include "client_access.h"
 #include "fault_injection.h"
 #include "metrics_http_server.h"
+#include "refusal_log.h"
+#include "reloadable_tls.h"
 #include "server_config.h"
 #include "server_metrics.h"
 #include "shared_brick_cache.h"
@@ -34,10 +37,16 @@ class Daemon {
 
   std::string render_metrics() const;
 
+  // SIGHUP: reads the TLS files and the tokens file again. Open streams go on; calls and
+  // connections after it use what was read. On an error (logged, counted) the old ones stay.
+  void reload();
+
  private:
   ServerConfig config_;
   ServerMetrics metrics_state_;
   ClientAccess access_;
+  RefusalLog refusals_;
+  std::unique_ptr<ReloadableTls> tls_;  // null: plaintext
   FaultInjection faults_;
   std::unique_ptr<SharedBrickCache> shared_cache_;  // null: no memcached configured
   TextureRegistry registry_;
@@ -49,6 +58,8 @@ class Daemon {
   std::unique_ptr<MetricsHttpServer> metrics_;
   int grpc_port_ = 0;
   bool shut_down_ = false;
+  std::atomic<uint64_t> reloads_ok_{0};
+  std::atomic<uint64_t> reloads_failed_{0};
 };
 
 }  // namespace soltex::server

@@ -55,6 +55,17 @@ namespace {
     "Noise octaves a level could not show, replaced by their mean, times the samples.")          \
   X(queue_depth, "soltex_queue_depth", gauge, "Bricks queued over all streams.")                 \
   X(textures, "soltex_textures_registered", gauge, "Textures in the registry.")                  \
+  X(textures_pinned, "soltex_textures_pinned", gauge,                                            \
+    "Textures in the registry that an open stream uses (never evicted).")                        \
+  X(registry_bytes, "soltex_texture_registry_bytes", gauge,                                      \
+    "Memory charged to the registry's textures, bytes.")                                         \
+  X(registry_budget, "soltex_texture_registry_budget_bytes", gauge,                              \
+    "The registry's memory bound (--registry-mb), bytes.")                                       \
+  X(textures_evicted, "soltex_textures_evicted_total", counter,                                  \
+    "Textures evicted from the registry (least recently used, used by no open stream).")         \
+  X(registrations_refused, "soltex_texture_registrations_refused_total", counter,                \
+    "Texture registrations refused: registry_full (every texture in use by a stream) or "        \
+    "client_quota (the client's --max-textures-per-client all in use).")                         \
   X(cache_hits, "soltex_cache_hits_total", counter, "Brick cache hits.")                         \
   X(cache_misses, "soltex_cache_misses_total", counter, "Brick cache misses.")                   \
   X(cache_coalesced, "soltex_cache_coalesced_total", counter,                                    \
@@ -76,6 +87,10 @@ namespace {
     "Write-backs to the shared cache that failed (ignored).")                                    \
   X(faults_corrupted, "soltex_faults_corrupted_total", counter,                                  \
     "Bricks deliberately corrupted on the way out (--fault-corrupt-every).")                     \
+  X(reloads, "soltex_config_reloads_total", counter,                                             \
+    "SIGHUP reloads of the TLS files and the tokens file, by result (ok, failed).")              \
+  X(refusal_lines_suppressed, "soltex_refusal_log_lines_suppressed_total", counter,              \
+    "Warnings about refused calls left out of the log (at most one a second per client).")       \
   X(errors, "soltex_errors_total", counter,                                                      \
     "Per-brick and per-request errors the handlers answered, by gRPC status code.")              \
   X(brick_latency, "soltex_brick_latency_seconds", histogram,                                    \
@@ -140,6 +155,25 @@ void write_shared_cache(Exposition& e, const SharedCacheStats& shared) {
   counter(F::shared_store_errors, shared.store_errors);
 }
 
+void write_registry(Exposition& e, const RegistryStats& registry) {
+  const auto value = [&](F id, auto v) { single(e, id, static_cast<double>(v)); };
+  value(F::textures, registry.textures);
+  value(F::textures_pinned, registry.pinned);
+  value(F::registry_bytes, registry.bytes);
+  value(F::registry_budget, registry.max_bytes);
+  value(F::textures_evicted, registry.evicted);
+  e.family(family(F::registrations_refused));
+  e.sample(static_cast<double>(registry.refused_full), {{"reason", "registry_full"}});
+  e.sample(static_cast<double>(registry.refused_client_quota), {{"reason", "client_quota"}});
+}
+
+void write_access(Exposition& e, const AccessCounts& access) {
+  e.family(family(F::reloads));
+  e.sample(static_cast<double>(access.reloads_ok), {{"result", "ok"}});
+  e.sample(static_cast<double>(access.reloads_failed), {{"result", "failed"}});
+  single(e, F::refusal_lines_suppressed, static_cast<double>(access.refusal_lines_suppressed));
+}
+
 }  // namespace
 
 std::span<const MetricFamily> metric_families() {
@@ -147,8 +181,8 @@ std::span<const MetricFamily> metric_families() {
 }
 
 std::string ServerMetrics::render(const BrickStoreStats& store, std::size_t store_budget,
-                                  std::size_t textures, const SharedCacheStats* shared,
-                                  uint64_t faults_corrupted) const {
+                                  const RegistryStats& registry, const SharedCacheStats* shared,
+                                  uint64_t faults_corrupted, const AccessCounts& access) const {
   Exposition e;
   const auto value = [&](F id, auto v) { single(e, id, static_cast<double>(v)); };
   const auto load = [](const auto& a) { return a.load(std::memory_order_relaxed); };
@@ -170,7 +204,7 @@ std::string ServerMetrics::render(const BrickStoreStats& store, std::size_t stor
   value(F::octaves_evaluated, octaves.evaluated_octave_samples);
   value(F::octaves_skipped, octaves.skipped_octave_samples);
   value(F::queue_depth, load(queue_depth));
-  value(F::textures, textures);
+  write_registry(e, registry);
   value(F::cache_hits, store.hits);
   value(F::cache_misses, store.misses);
   value(F::cache_coalesced, store.coalesced);
@@ -180,6 +214,7 @@ std::string ServerMetrics::render(const BrickStoreStats& store, std::size_t stor
   value(F::cache_bricks, store.entries);
   if (shared) write_shared_cache(e, *shared);
   value(F::faults_corrupted, faults_corrupted);
+  write_access(e, access);
 
   // The label keeps its name `code` (dashboards and tests select on it); the grpc_server_*
   // families carry the grpc_code convention.

@@ -11,8 +11,16 @@
 #include "metrics_exposition.h"
 #include "shared_brick_cache.h"
 #include "soltex/common/latency_histogram.h"
+#include "texture_registry.h"
 
 namespace soltex::server {
+
+// Counted outside ServerMetrics: SIGHUP reloads and refusal log lines left out.
+struct AccessCounts {
+  uint64_t reloads_ok = 0;
+  uint64_t reloads_failed = 0;
+  uint64_t refusal_lines_suppressed = 0;
+};
 
 // The daemon's counters, updated lock-free from any thread and rendered in the Prometheus
 // text exposition format for GET /metrics. Every family it renders is in one table
@@ -41,8 +49,9 @@ struct ServerMetrics {
   }
 
   // `shared` is null when no shared cache is configured.
-  std::string render(const BrickStoreStats& store, std::size_t store_budget, std::size_t textures,
-                     const SharedCacheStats* shared, uint64_t faults_corrupted) const;
+  std::string render(const BrickStoreStats& store, std::size_t store_budget,
+                     const RegistryStats& registry, const SharedCacheStats* shared,
+                     uint64_t faults_corrupted, const AccessCounts& access) const;
 };
 
 // Every family /metrics may show (some only with a shared cache configured), in page order.

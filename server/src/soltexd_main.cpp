@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "daemon.h"
+#include "limit_options.h"
 #include "soltex/cli/tool_cli.h"
 
 namespace {
@@ -48,7 +49,8 @@ int main(int argc, char** argv) {
   app.add_option("--zstd-level", config.zstd_level, "zstd compression level for bricks")
       ->check(CLI::Range(1, 19))
       ->capture_default_str();
-  app.add_option("--max-textures", config.max_textures, "texture registry bound")
+  app.add_option("--max-textures", config.max_textures,
+                 "textures the registry holds before evicting the least recently used unused one")
       ->check(CLI::Range(1u, 1u << 20))
       ->capture_default_str();
   app.add_option("--max-keys-per-request", config.max_keys_per_request,
@@ -107,7 +109,7 @@ int main(int argc, char** argv) {
       ->check(CLI::ExistingFile);
   security
       ->add_option("--token-file", config.token_file,
-                   "file holding the bearer token every BrickService call must carry")
+                   "tokens file ('NAME TOKEN' or 'TOKEN' per line) for BrickService calls")
       ->check(CLI::ExistingFile);
   security->add_option("--token", config.token, "the bearer token itself (prefer --token-file)");
   security
@@ -120,8 +122,8 @@ int main(int argc, char** argv) {
                    "bricks one client address may have queued over all its streams")
       ->check(CLI::Range(1u, 1u << 30))
       ->capture_default_str();
-  security->add_flag("--trust-forwarded-for", config.trust_forwarded_for,
-                     "name clients by x-forwarded-for (only behind a balancer that sets it)");
+  security->add_flag("--trust-forwarded-for", config.trust_forwarded_for)->group("");  // refused
+  soltex::server::add_limit_options(*security, config);
 
   auto* faults = app.add_option_group("faults", "for testing clients against a misbehaving server");
   faults
@@ -161,12 +163,7 @@ int main(int argc, char** argv) {
     write_ready_file(config.ready_file, daemon->grpc_port(), daemon->metrics_port());
   }
 
-  boost::asio::io_context signals_io;
-  boost::asio::signal_set signals(signals_io, SIGINT, SIGTERM);
-  signals.async_wait([&](const boost::system::error_code& ec, int signal_number) {
-    if (!ec) spdlog::info("received signal {}", signal_number);
-  });
-  signals_io.run();
+  soltex::server::wait_for_signals(*daemon);  // SIGHUP reloads; SIGINT or SIGTERM returns
   daemon->shut_down();
   return 0;
 }

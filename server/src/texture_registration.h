@@ -22,9 +22,10 @@ class RegistrationError : public std::runtime_error {
   grpc::StatusCode code_;
 };
 
-// Validates and registers one texture, whether it came as a RegisterTexture call or inside a
-// stream's BrickRequest. Throws RegistrationError.
-TexturePtr register_texture(TextureRegistry& registry, const v1::RegisterTextureRequest& request);
+// Validates and registers one texture for `client`, whether it came as a RegisterTexture call
+// or inside a stream's BrickRequest, and returns it pinned. Throws RegistrationError.
+TexturePin register_texture(TextureRegistry& registry, const v1::RegisterTextureRequest& request,
+                            const std::string& client);
 
 // What the client learns about a registered texture.
 v1::TextureHandle texture_handle(const RegisteredTexture& texture);

@@ -90,6 +90,10 @@ void SoltexdProcess::kill_now() {
   kill_and_reap(pid_);
 }
 
+void SoltexdProcess::send_signal(int signal) {
+  if (pid_ > 0) kill(pid_, signal);
+}
+
 std::string SoltexdProcess::log() const {
   std::ifstream in(directory_ + "/log");
   std::stringstream text;

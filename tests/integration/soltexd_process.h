@@ -27,6 +27,8 @@ class SoltexdProcess {
   int terminate();
   // SIGKILL: the server dies mid-stream, as in a crash.
   void kill_now();
+  // Sends `signal` (SIGHUP: reload) and returns at once.
+  void send_signal(int signal);
 
   // The daemon's log (stdout and stderr) so far.
   std::string log() const;

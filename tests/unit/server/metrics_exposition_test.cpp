@@ -74,7 +74,7 @@ TEST(MetricFamilies, NamesAreValidUniqueAndFollowConventions) {
 TEST(ServerMetrics, RendersEveryFamilyOnceWithShared) {
   ServerMetrics metrics;
   const SharedCacheStats shared{};
-  const std::string page = metrics.render({}, 1 << 20, 0, &shared, 0);
+  const std::string page = metrics.render({}, 1 << 20, RegistryStats{}, &shared, 0, {});
   for (const MetricFamily& f : metric_families()) {
     const std::string type_line = "# TYPE " + std::string(f.name) + " ";
     const auto at = page.find(type_line);
