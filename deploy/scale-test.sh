@@ -87,7 +87,7 @@ start_replica() {  # start_replica R PORT: replica R on 127.0.0.1:PORT (0: any),
   rm -f "$work/ready$r"
   "$soltexd" --listen "127.0.0.1:$port" --metrics-listen 127.0.0.1:0 --ready-file "$work/ready$r" \
     --memcached "$nodes" --memcached-timeout-ms 100 --trust-forwarded-for --threads 2 \
-    --shutdown-grace 2 --log-level warn >>"$work/soltexd$r.log" 2>&1 &
+    --shutdown-grace-s 2 --log-level warn >>"$work/soltexd$r.log" 2>&1 &
   replica_pid[$r]=$!
   pids+=("$!")
 }
@@ -116,7 +116,7 @@ echo "   memcached :${memcached_port[0]} :${memcached_port[1]}; soltexd :${grpc_
 render() {  # render NAME TARGET FINEST_LEVEL WIDTH HEIGHT [args...]: headless soltex-view -> $work/NAME.txt
   local name=$1 target=$2 level=$3 width=$4 height=$5; shift 5
   "$view" --headless --server "$target" --finest-level "$level" --width "$width" --height "$height" \
-    --threads 1 --max-seconds 60 --log-level warn --out "$work/$name.png" "$@" >"$work/$name.txt" 2>&1
+    --threads 1 --max-time-s 60 --log-level warn --out "$work/$name.png" "$@" >"$work/$name.txt" 2>&1
 }
 field() {  # field FILE WORD: the number before WORD on the bricks: line (0 when absent)
   local value
@@ -206,8 +206,8 @@ echo "-- 3. one memcached killed mid-load: no client-visible errors"
 errors_of() {  # errors_of JSON_FILE: every error soltex-load counted
   python3 -c 'import json,sys; r=json.load(open(sys.argv[1])); e=r["errors"]; print(sum(sum(v.values()) for v in e.values()) + r["unanswered"] + r["checksum_failures"])' "$1"
 }
-"$load" --target "127.0.0.1:$lb_port" --connections 4 --streams 8 --mix uniform --finest-level 10 \
-  --duration "$load_seconds" --verify --no-progress --format json --seed 7 >"$work/memcached-kill.json" &
+"$load" --server "127.0.0.1:$lb_port" --connections 4 --streams 8 --mix uniform --finest-level 10 \
+  --duration-s "$load_seconds" --verify --no-progress --format json --seed 7 >"$work/memcached-kill.json" &
 load_pid=$!
 sleep "$(python3 -c "print($load_seconds / 2)")"
 kill -9 "${memcached_pid[1]}"
@@ -223,11 +223,11 @@ check "bricks kept flowing" test "$bricks" -gt 0
 echo "-- 4. bricks/s through nginx: 1 replica vs 3 (hot set, warm caches; 2 shared cores)"
 lb1_port=$(free_port)
 start_nginx "$work/nginx1" "$lb1_port" "127.0.0.1:${grpc_port[0]}"
-hot=(--connections 4 --streams 16 --mix hot --hot-set 256 --in-flight 16 --warmup 1
-     --duration "$load_seconds" --no-progress --format json)
-"$load" --target "127.0.0.1:$lb1_port" "${hot[@]}" >"$work/one.json"
-"$load" --target "127.0.0.1:$lb_port" "${hot[@]}" >"$work/three.json"
-"$load" --target "127.0.0.1:$lb1_port" "${hot[@]}" >"$work/one-again.json"
+hot=(--connections 4 --streams 16 --mix hot --hot-set 256 --in-flight 16 --warmup-s 1
+     --duration-s "$load_seconds" --no-progress --format json)
+"$load" --server "127.0.0.1:$lb1_port" "${hot[@]}" >"$work/one.json"
+"$load" --server "127.0.0.1:$lb_port" "${hot[@]}" >"$work/three.json"
+"$load" --server "127.0.0.1:$lb1_port" "${hot[@]}" >"$work/one-again.json"
 rate() { python3 -c 'import json,sys; print(round(json.load(open(sys.argv[1]))["bricks_per_second"]))' "$1"; }
 one=$(rate "$work/one.json") three=$(rate "$work/three.json") again=$(rate "$work/one-again.json")
 summary="bricks/s through nginx, hot set: 1 replica $one and $again (before and after), 3 replicas $three (ratio $(python3 -c "print(round($three / (($one + $again) / 2), 2))"))"

@@ -36,8 +36,8 @@ rss_kb() { awk '/^VmRSS/ { print $2 }' "/proc/$server_pid/status"; }
 idle_kb=$(rss_kb)
 
 echo "== soak: 64 streams for ${seconds} s against soltexd with a ${cache_mb} MiB cache"
-"$load" --target "127.0.0.1:$port" --connections 8 --streams 64 --in-flight 16 --mix uniform \
-  --finest-level 10 --duration "$seconds" --verify --no-progress --format json >"$work/load.json" &
+"$load" --server "127.0.0.1:$port" --connections 8 --streams 64 --in-flight 16 --mix uniform \
+  --finest-level 10 --duration-s "$seconds" --verify --no-progress --format json >"$work/load.json" &
 load_pid=$!
 peak_kb=$idle_kb
 samples=()

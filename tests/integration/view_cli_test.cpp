@@ -84,8 +84,8 @@ std::pair<uint32_t, uint32_t> png_size(const std::filesystem::path& path) {
   return {be32(16), be32(20)};
 }
 
-const std::vector<std::string> kSmall = {"--headless", "--width",       "160", "--height",
-                                         "90",         "--max-seconds", "90"};
+const std::vector<std::string> kSmall = {"--headless", "--width",      "160", "--height",
+                                         "90",         "--max-time-s", "90"};
 
 std::vector<std::string> against(const SoltexdProcess& server,
                                  std::vector<std::string> extra = {}) {
@@ -138,7 +138,7 @@ TEST_F(ViewCli, BricksFailingForGoodExitThree) {
 
 TEST_F(ViewCli, RunningOutOfTimeExitsThree) {
   const ViewRun run =
-      view("timeout", {"--headless", "--local", "--finest-level", "10", "--max-seconds", "0.1"});
+      view("timeout", {"--headless", "--local", "--finest-level", "10", "--max-time-s", "0.1"});
   EXPECT_EQ(run.exit_code, 3) << run.output;
   EXPECT_NE(run.output.find("NOT converged within"), std::string::npos) << run.output;
 }
