@@ -18,6 +18,7 @@ packages=(
                                           # the Python client of docs/PROTOCOL.md (tests/python/)
   openssl                                 # certificates for the TLS tests
   python3-matplotlib                      # soltex-bench accuracy's plot (client/bench/plot_accuracy.py)
+  libmeshoptimizer-dev                    # mesh ordering and clean-up (client/scene)
 )
 
 missing=()

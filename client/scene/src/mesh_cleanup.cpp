@@ -1,9 +1,10 @@
 #include "mesh_cleanup.h"
 
+#include <meshoptimizer.h>
+
 #include <array>
 #include <bit>
 #include <glm/geometric.hpp>
-#include <unordered_map>
 
 namespace soltex {
 namespace {
@@ -24,24 +25,14 @@ Bits<Position> bits_of(const Position& p) {
           std::bit_cast<Word>(static_cast<Scalar>(p.z + Scalar(0)))};
 }
 
-struct BitsHash {
-  template <class Word>
-  std::size_t operator()(const std::array<Word, 3>& bits) const {
-    uint64_t h = 0x9E3779B97F4A7C15ull;
-    for (Word b : bits) h = (h ^ static_cast<uint64_t>(b)) * 0xBF58476D1CE4E5B9ull;
-    return static_cast<std::size_t>(h ^ (h >> 31));
-  }
-};
-
-// Moves vertex i to new_index_of[i] (UINT32_MAX: dropped) and renumbers the indices.
+// Moves vertex i to new_index_of[i] (~0u: dropped) and renumbers the indices.
 template <class Position>
 void compact_vertices(std::vector<Position>& positions, std::vector<uint32_t>& indices,
                       const std::vector<uint32_t>& new_index_of, std::size_t new_count) {
   std::vector<Position> kept(new_count);
-  for (std::size_t i = 0; i < positions.size(); ++i) {
-    if (new_index_of[i] != UINT32_MAX) kept[new_index_of[i]] = positions[i];
-  }
-  for (uint32_t& index : indices) index = new_index_of[index];
+  meshopt_remapVertexBuffer(kept.data(), positions.data(), positions.size(), sizeof(Position),
+                            new_index_of.data());
+  meshopt_remapIndexBuffer(indices.data(), indices.data(), indices.size(), new_index_of.data());
   positions = std::move(kept);
 }
 
@@ -50,15 +41,15 @@ void compact_vertices(std::vector<Position>& positions, std::vector<uint32_t>& i
 template <class Position>
 std::size_t merge_duplicate_vertices(std::vector<Position>& positions,
                                      std::vector<uint32_t>& indices) {
-  std::unordered_map<Bits<Position>, uint32_t, BitsHash> first_with_position;
-  first_with_position.reserve(positions.size());
+  // meshoptimizer compares vertices byte for byte; the bits with -0 folded into +0 make equal
+  // positions equal bytes. Without indices it numbers vertices by first appearance, so the
+  // first of each set of duplicates keeps its place.
+  std::vector<Bits<Position>> bits;
+  bits.reserve(positions.size());
+  for (const Position& p : positions) bits.push_back(bits_of(p));
   std::vector<uint32_t> new_index_of(positions.size());
-  uint32_t kept = 0;
-  for (std::size_t i = 0; i < positions.size(); ++i) {
-    const auto [it, inserted] = first_with_position.try_emplace(bits_of(positions[i]), kept);
-    if (inserted) ++kept;
-    new_index_of[i] = it->second;
-  }
+  const std::size_t kept = meshopt_generateVertexRemap(new_index_of.data(), nullptr, bits.size(),
+                                                       bits.data(), bits.size(), sizeof(bits[0]));
   const std::size_t merged = positions.size() - kept;
   if (merged > 0) compact_vertices(positions, indices, new_index_of, kept);
   return merged;
@@ -86,7 +77,7 @@ std::size_t drop_degenerate_triangles(const std::vector<Position>& positions,
 template <class Position>
 std::size_t remove_unreferenced_vertices(std::vector<Position>& positions,
                                          std::vector<uint32_t>& indices) {
-  std::vector<uint32_t> new_index_of(positions.size(), UINT32_MAX);
+  std::vector<uint32_t> new_index_of(positions.size(), ~0u);
   for (uint32_t index : indices) new_index_of[index] = 0;
   uint32_t next = 0;
   for (uint32_t& to : new_index_of) {

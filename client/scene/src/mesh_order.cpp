@@ -1,35 +1,46 @@
 #include "soltex/scene/mesh_order.h"
 
+#include <meshoptimizer.h>
+
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
-#include <limits>
-#include <numeric>
 #include <utility>
 #include <vector>
 
 namespace soltex {
 namespace {
 
-// 1024 cells per axis: a cell per triangle or finer up to about 10^9 triangles; triangles
-// sharing a cell keep their file order.
-constexpr int kBitsPerAxis = 10;
+constexpr uint32_t kUnused = ~0u;  // meshoptimizer's mark for a vertex no triangle uses
 
-// 0 .. 2^kBitsPerAxis - 1 for `value` across [low, low + extent]; 0 for NaN or a flat axis.
-uint32_t cell_of(float value, float low, float extent) {
-  constexpr float kCells = static_cast<float>(1u << kBitsPerAxis);
-  const float t = extent > 0.0f ? (value - low) / extent * kCells : 0.0f;
-  if (!(t > 0.0f)) return 0;  // also NaN
-  return static_cast<uint32_t>(std::min(t, kCells - 1.0f));
+// Positions as meshoptimizer reads them, every coordinate finite and small enough that sums of
+// three stay finite: it turns centroids into Morton codes with a float-to-int conversion, which
+// is undefined for NaN and infinity. NaN counts as the lowest coordinate on its axis, so its
+// triangles sort to the start of that axis; the positions themselves are not changed.
+std::vector<float> sortable_positions(const std::vector<glm::vec3>& positions) {
+  constexpr float kLargest = 1e37f;
+  std::vector<float> xyz;
+  xyz.reserve(3 * positions.size());
+  glm::vec3 low(kLargest);
+  for (const glm::vec3& p : positions) {
+    for (int axis = 0; axis < 3; ++axis) {
+      const float v = std::clamp(p[axis], -kLargest, kLargest);  // NaN stays NaN
+      xyz.push_back(v);
+      if (v < low[axis]) low[axis] = v;
+    }
+  }
+  for (std::size_t i = 0; i < xyz.size(); ++i) {
+    if (std::isnan(xyz[i])) xyz[i] = low[static_cast<int>(i % 3)];
+  }
+  return xyz;
 }
 
-// The bits of `v` (kBitsPerAxis of them) spread to every third bit.
-uint32_t spread_bits(uint32_t v) {
-  v &= 0x3ffu;
-  v = (v | (v << 16)) & 0x030000ffu;
-  v = (v | (v << 8)) & 0x0300f00fu;
-  v = (v | (v << 4)) & 0x030c30c3u;
-  v = (v | (v << 2)) & 0x09249249u;
-  return v;
+// `values` moved so that old vertex v lands at remap[v] (a permutation).
+template <class T>
+void apply_remap(std::vector<T>& values, const std::vector<uint32_t>& remap) {
+  std::vector<T> moved(values.size());
+  meshopt_remapVertexBuffer(moved.data(), values.data(), values.size(), sizeof(T), remap.data());
+  values = std::move(moved);
 }
 
 }  // namespace
@@ -40,57 +51,37 @@ void order_for_locality(Mesh& mesh) {
   // Fewer than two triangles have no order to improve; a ragged index list is left for the
   // rasterizer to refuse as it is.
   if (triangles < 2 || mesh.indices.size() % 3 != 0) return;
-  const BoundingBox box = bounds_of(mesh.positions);
-  const glm::vec3 extent = box.size();
 
-  std::vector<uint32_t> code(triangles);
+  // meshoptimizer reads every index as a vertex, so a triangle with an index out of range
+  // stays out of its hands: such triangles follow the others, unchanged, for the rasterizer to
+  // refuse.
+  std::vector<uint32_t> drawable, broken;
+  drawable.reserve(mesh.indices.size());
   for (std::size_t t = 0; t < triangles; ++t) {
-    glm::vec3 centroid(0.0f);
-    for (std::size_t k = 0; k < 3; ++k) {
-      const uint32_t index = mesh.indices[3 * t + k];
-      if (index < vertices) centroid += mesh.positions[index] / 3.0f;
-    }
-    code[t] = spread_bits(cell_of(centroid.x, box.min.x, extent.x)) |
-              spread_bits(cell_of(centroid.y, box.min.y, extent.y)) << 1 |
-              spread_bits(cell_of(centroid.z, box.min.z, extent.z)) << 2;
+    const uint32_t* corner = &mesh.indices[3 * t];
+    const bool in_range = corner[0] < vertices && corner[1] < vertices && corner[2] < vertices;
+    (in_range ? drawable : broken).insert((in_range ? drawable : broken).end(), corner, corner + 3);
   }
-  std::vector<uint32_t> order(triangles);
-  std::iota(order.begin(), order.end(), 0u);
-  std::stable_sort(order.begin(), order.end(),
-                   [&code](uint32_t a, uint32_t b) { return code[a] < code[b]; });
 
-  // New number of each old vertex, in the order the sorted triangles first use them.
-  constexpr uint32_t kUnset = std::numeric_limits<uint32_t>::max();
-  std::vector<uint32_t> renumber(vertices, kUnset);
-  std::vector<uint32_t> old_of_new;
-  old_of_new.reserve(vertices);
-  std::vector<uint32_t> indices;
-  indices.reserve(mesh.indices.size());
-  for (const uint32_t t : order) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      const uint32_t index = mesh.indices[3 * t + k];
-      if (index >= vertices) {
-        indices.push_back(index);  // out of range stays out of range: the rasterizer rejects it
-        continue;
-      }
-      if (renumber[index] == kUnset) {
-        renumber[index] = static_cast<uint32_t>(old_of_new.size());
-        old_of_new.push_back(index);
-      }
-      indices.push_back(renumber[index]);
-    }
+  // Triangles along the Morton curve of their centroids (a stable radix sort: triangles in one
+  // cell keep their order), each keeping its own corner order, so its winding.
+  const std::vector<float> xyz = sortable_positions(mesh.positions);
+  std::vector<uint32_t> indices(drawable.size());
+  meshopt_spatialSortTriangles(indices.data(), drawable.data(), drawable.size(), xyz.data(),
+                               vertices, 3 * sizeof(float));
+
+  // Vertices numbered by first use; those no drawable triangle uses follow in their old order,
+  // so the vertex count and the bounds stay as they were.
+  std::vector<uint32_t> remap(vertices);
+  uint32_t next = static_cast<uint32_t>(
+      meshopt_optimizeVertexFetchRemap(remap.data(), indices.data(), indices.size(), vertices));
+  for (uint32_t& to : remap) {
+    if (to == kUnused) to = next++;
   }
-  for (std::size_t v = 0; v < vertices; ++v) {
-    if (renumber[v] == kUnset) old_of_new.push_back(static_cast<uint32_t>(v));
-  }
-  const bool has_normals = mesh.normals.size() == vertices;
-  std::vector<glm::vec3> positions(vertices), normals(has_normals ? vertices : 0);
-  for (std::size_t n = 0; n < vertices; ++n) {
-    positions[n] = mesh.positions[old_of_new[n]];
-    if (has_normals) normals[n] = mesh.normals[old_of_new[n]];
-  }
-  mesh.positions = std::move(positions);
-  if (has_normals) mesh.normals = std::move(normals);
+  meshopt_remapIndexBuffer(indices.data(), indices.data(), indices.size(), remap.data());
+  indices.insert(indices.end(), broken.begin(), broken.end());
+  apply_remap(mesh.positions, remap);
+  if (mesh.normals.size() == vertices) apply_remap(mesh.normals, remap);
   mesh.indices = std::move(indices);
 }
 

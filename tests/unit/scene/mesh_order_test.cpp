@@ -164,5 +164,19 @@ TEST(OrderForLocality, OddMeshesAreLeftDrawable) {
             1);
 }
 
+TEST(OrderForLocality, InfiniteAndHugeCoordinatesKeepEveryTriangle) {
+  // meshoptimizer turns centroids into integers; these must neither overflow that nor lose a
+  // triangle, and the positions themselves stay as they were.
+  Mesh mesh;
+  const float inf = std::numeric_limits<float>::infinity();
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {inf, 0, 0}, {3e38f, -3e38f, 0}, {0, 0, -inf}};
+  mesh.normals.assign(mesh.positions.size(), glm::vec3(0, 0, 1));
+  mesh.indices = {3, 4, 5, 0, 1, 2, 4, 1, 2, 5, 0, 3};
+  const Mesh before = mesh;
+  order_for_locality(mesh);
+  EXPECT_EQ(triangles_of(mesh), triangles_of(before));
+  EXPECT_EQ(mesh.vertex_count(), before.vertex_count());
+}
+
 }  // namespace
 }  // namespace soltex
