@@ -7,7 +7,9 @@
 #   3. killing one memcached mid-load: no client-visible errors;
 #   4. bricks/s through nginx with 1 vs 3 replicas (on this 2-core machine every replica shares
 #      the same two cores, so this measures the balancer's and the replicas' overhead, not
-#      scaling).
+#      scaling);
+#   5. two clients behind nginx are limited separately: one holding its stream limit does not
+#      refuse the other (limits follow the name of each client's bearer token).
 # Every process listens on 127.0.0.1 on ports the kernel picks; everything is stopped on exit.
 # Usage: deploy/scale-test.sh            (builds nothing: run after the release build)
 # Environment: SOLTEX_BUILD_DIR (default build), SCALE_LOAD_SECONDS (default 5),
@@ -32,6 +34,7 @@ pids=()
 cleanup() {
   [ -f "$work/nginx/logs/nginx.pid" ] && nginx -p "$work/nginx" -c "$work/nginx/nginx.conf" -s stop 2>/dev/null || true
   [ -f "$work/nginx1/logs/nginx.pid" ] && nginx -p "$work/nginx1" -c "$work/nginx1/nginx.conf" -s stop 2>/dev/null || true
+  [ -f "$work/nginx5/logs/nginx.pid" ] && nginx -p "$work/nginx5" -c "$work/nginx5/nginx.conf" -s stop 2>/dev/null || true
   for pid in "${pids[@]}"; do kill -9 "$pid" 2>/dev/null || true; done
   wait 2>/dev/null || true
   [ -n "${SCALE_KEEP:-}" ] || rm -rf "$work"
@@ -82,11 +85,11 @@ done
 nodes="127.0.0.1:${memcached_port[0]},127.0.0.1:${memcached_port[1]}"
 
 grpc_port=() metrics_port=() alive=()
-start_replica() {  # start_replica R PORT: replica R on 127.0.0.1:PORT (0: any), in the background
+start_replica() {  # start_replica R PORT [ARGS...]: replica R on 127.0.0.1:PORT (0: any), in the background
   local r=$1 port=$2
   rm -f "$work/ready$r"
   "$soltexd" --listen "127.0.0.1:$port" --metrics-listen 127.0.0.1:0 --ready-file "$work/ready$r" \
-    --memcached "$nodes" --memcached-timeout-ms 100 --trust-forwarded-for --threads 2 \
+    --memcached "$nodes" --memcached-timeout-ms 100 --trusted-proxies 127.0.0.1 --threads 2 "${@:3}" \
     --shutdown-grace-s 2 --log-level warn >>"$work/soltexd$r.log" 2>&1 &
   replica_pid[$r]=$!
   pids+=("$!")
@@ -234,6 +237,44 @@ summary="bricks/s through nginx, hot set: 1 replica $one and $again (before and 
 echo "   $summary"
 check "no errors under either" test "$(errors_of "$work/one.json")$(errors_of "$work/three.json")" = "00"
 if [ -n "${SCALE_REPORT:-}" ]; then echo "$summary" >>"$SCALE_REPORT"; fi
+
+echo "-- 5. two clients behind nginx are limited separately (limits follow each client's token)"
+# A fourth replica with named tokens and at most 4 streams per client, alone behind its own
+# nginx so that every stream meets the same limit. nginx is the peer of every stream; soltexd
+# believes its x-forwarded-for (--trusted-proxies), but on loopback every client has the same
+# address, so the token's name is what tells the two apart.
+printf '# NAME TOKEN\nalice scale-alice-token\nbob scale-bob-token\n' >"$work/tokens"
+echo scale-alice-token >"$work/alice.token"
+echo scale-bob-token >"$work/bob.token"
+start_replica 3 0 --token-file "$work/tokens" --max-streams-per-client 4
+replica_ready 3
+lb5_port=$(free_port)
+start_nginx "$work/nginx5" "$lb5_port" "127.0.0.1:${grpc_port[3]}"
+limited=(--connections 1 --mix hot --hot-set 64 --in-flight 4 --duration-s 4 --no-progress --format json)
+# alice asks for 8 streams: 4 are served and held for the whole run, 4 refused.
+"$load" --server "127.0.0.1:$lb5_port" --token-file "$work/alice.token" --streams 8 "${limited[@]}" \
+  >"$work/alice.json" &
+alice_pid=$!
+for _ in $(seq 1 400); do  # until alice holds her 4
+  [ "$(metric 3 soltex_streams_open)" = 4 ] && break
+  sleep 0.01
+done
+held=$(metric 3 soltex_streams_open)
+"$load" --server "127.0.0.1:$lb5_port" --token-file "$work/bob.token" --streams 2 \
+  --connections 1 --mix hot --hot-set 64 --in-flight 4 --duration-s 1 --no-progress --format json \
+  >"$work/bob.json" || true
+wait "$alice_pid" || true
+streams_refused() {  # streams_refused JSON_FILE: streams that ended RESOURCE_EXHAUSTED
+  python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["errors"]["streams"].get("RESOURCE_EXHAUSTED", 0))' "$1"
+}
+bricks_of() { python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["bricks"])' "$1"; }
+alice_refused=$(streams_refused "$work/alice.json") bob_errors=$(errors_of "$work/bob.json")
+bob_bricks=$(bricks_of "$work/bob.json")
+echo "   alice: 8 streams asked, $alice_refused refused (limit 4), ${held%.*} open when bob started; bob: $bob_bricks bricks, $bob_errors errors"
+check "alice was held to her 4 streams" test "$alice_refused" -eq 4
+check "alice held all 4 when bob started" test "${held%.*}" -eq 4
+check "bob was served while alice held her limit" test "$bob_bricks" -gt 0 -a "$bob_errors" -eq 0
+check "the replica named alice by her token" grep -q "token:alice" "$work/soltexd3.log"
 
 if [ "$failures" -gt 0 ]; then
   echo "scale-test: $failures checks failed; logs:"
