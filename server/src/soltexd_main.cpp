@@ -114,12 +114,12 @@ int main(int argc, char** argv) {
   security->add_option("--token", config.token, "the bearer token itself (prefer --token-file)");
   security
       ->add_option("--max-streams-per-client", config.max_streams_per_client,
-                   "open brick streams one client address may hold")
+                   "open brick streams one client (token name, else address) may hold")
       ->check(CLI::Range(1u, 1u << 20))
       ->capture_default_str();
   security
       ->add_option("--max-queued-per-client", config.max_queued_per_client,
-                   "bricks one client address may have queued over all its streams")
+                   "bricks one client may have queued over all its streams")
       ->check(CLI::Range(1u, 1u << 30))
       ->capture_default_str();
   security->add_flag("--trust-forwarded-for", config.trust_forwarded_for)->group("");  // refused
