@@ -24,9 +24,17 @@ void ProgressBar::show(const std::string& text) {
 void ProgressBar::show(int done, const std::string& working_on) {
   const int total = std::max(total_, 1);
   const int filled = kBarWidth * std::clamp(done, 0, total) / total;
-  show("[" + std::string(static_cast<std::size_t>(filled), '#') +
-       std::string(static_cast<std::size_t>(kBarWidth - filled), '.') + "] " +
-       std::to_string(done) + "/" + std::to_string(total_) + " " + working_on);
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "[" + std::string(...).
+  std::string line = "[";
+  line.append(static_cast<std::size_t>(filled), '#')
+      .append(static_cast<std::size_t>(kBarWidth - filled), '.')
+      .append("] ")
+      .append(std::to_string(done))
+      .append("/")
+      .append(std::to_string(total_))
+      .append(" ")
+      .append(working_on);
+  show(line);
 }
 
 void ProgressBar::finish() {
