@@ -71,7 +71,7 @@ CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommandOptions& options) {
                    "timed frames per setting and round (default 2; 1 with --quick)")
       ->check(CLI::Range(1, 1000));
   command
-      ->add_option("--max-converge-seconds", options.max_converge_seconds,
+      ->add_option("--max-converge-s,--max-converge-seconds", options.max_converge_seconds,
                    "give up on a setting whose frame has not converged after this long")
       ->check(CLI::Range(1.0, 3600.0))
       ->capture_default_str();
