@@ -117,7 +117,7 @@ void write_markdown(const AccuracyRun& run, const std::string& command,
       << " dB, SSIM " << fixed(run.per_pixel_error.ssim, 4) << ", max Δ "
       << max_abs_text(run.per_pixel_error) << ", in " << frame_time_text(run.per_pixel_frame)
       << " ms a frame (CPU " << frame_time_text(run.per_pixel_frame_cpu, 2)
-      << " ms). The reference also smooths silhouettes, which no frame here does.\n"
+      << " ms). The reference also smooths silhouettes, which only the antialias rows do.\n"
       << "- **ms/frame:** median wall time of `FrameRenderer::render` with every brick resident, "
       << "over " << o.rounds << " rounds x " << o.frames_per_round
       << " frames, and in parentheses the quartiles (the middle half of the frames); each round "
