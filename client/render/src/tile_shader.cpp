@@ -106,7 +106,6 @@ void TileShader::shade_cached(const GBuffer& g, const Pixel& pixel, const Object
     const double spacing = std::ldexp(object.level0_spacing, static_cast<int>(std::ceil(lod)));
     p = inset(p, object.surface.normal(g.normal[pixel.index]), object.cached_inset * spacing);
   }
-  MissedBricks missed;
   SampleResult result;
   if (object.rgb_fast_path) {
     // The common case in two steps: locate and prefetch now, read at the flush.
@@ -119,11 +118,11 @@ void TileShader::shade_cached(const GBuffer& g, const Pixel& pixel, const Object
       if (lit_.batch.count == ShadeBatch::kCapacity) flush(image);
       return;
     }
-    result = sampler.sample_after_miss(p, level, options.filter, &missed);
+    result = sampler.sample_after_miss(p, level, options.filter, &missed_);
   } else {
-    result = sampler.sample(p, lod, options.filter, &missed);
+    result = sampler.sample(p, lod, options.filter, &missed_);
   }
-  for (const BrickKey& key : missed.view()) misses_.add(key);
+  for (const BrickKey& key : missed_.view()) misses_.add(key);
   if (!result.complete) ++counts_.fallback;
   if (result.level < 0) ++counts_.empty;
   if (options.false_colour_levels) {

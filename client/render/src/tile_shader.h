@@ -94,6 +94,7 @@ class TileShader {
   const FrameShading& frame_;
   std::vector<std::unique_ptr<TextureSampler>>& samplers_;
   MissTally misses_;
+  MissedBricks missed_;  // one pixel's, refilled by each lookup (kept: not zeroed per pixel)
   TileCounts counts_;
   const GBuffer* gbuffer_ = nullptr;  // the tile being shaded
   LitPixels lit_;                     // about 40 KB, uninitialised but for the count
