@@ -136,10 +136,11 @@ inline double marble(const MarbleParams& m, double filter_width, const glm::dvec
   const long double fraction = ripple - std::floor(ripple);
   const double phase = 2.0 * std::numbers::pi * static_cast<double>(fraction) +
                        m.amplitude * fractal(m.turbulence, filter_width, p).raw;
-  const double span = m.ripple == Ripple::axis
-                          ? m.frequency * filter_width
-                          : m.frequency * filter_width *
-                                (std::fabs(p.y * p.z) + std::fabs(p.x * p.z) + std::fabs(p.x * p.y));
+  const double span =
+      m.ripple == Ripple::axis
+          ? m.frequency * filter_width
+          : m.frequency * filter_width *
+                (std::fabs(p.y * p.z) + std::fabs(p.x * p.z) + std::fabs(p.x * p.y));
   const double h = std::numbers::pi * span;
   const double fade = h > 1e-4 ? std::sin(h) / h : 1.0;
   return 0.5 + 0.5 * std::sin(phase) * fade;

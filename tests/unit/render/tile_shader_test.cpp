@@ -74,7 +74,7 @@ struct Fixture {
   }
 };
 
-TEST(TileShader, EvaluatedFaceOnAnEdgeShowsTheInside) {
+TEST(TileShader, EvaluatedFaceLyingOnAnEdgeShowsTheInside) {
   Fixture f;
   const FrameShading frame = f.shading(true);
   TileShader shader(frame, f.samplers);

@@ -375,7 +375,7 @@ TEST(ParseObjPolygons, EarClipsACombOfManyTeeth) {
 
 // More than 255 vertices in one face: a library that counts them in a byte would hand the
 // rest to the next face.
-TEST(ParseObjPolygons, AFaceOfThousandsOfVerticesLeavesTheNextFaceIntact) {
+TEST(ParseObjPolygons, APolygonOfThousandsOfVerticesLeavesTheNextFaceIntact) {
   std::string text = star_obj(300);
   text += "v 5 5 1\nv 6 5 1\nv 5 6 1\nf -3 -2 -1\n";
   const LoadedObj obj = parse_obj(text, "two.obj");
