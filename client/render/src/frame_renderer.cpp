@@ -1,15 +1,11 @@
 #include "soltex/render/frame_renderer.h"
 
 #include <algorithm>
-#include <array>
-#include <atomic>
-#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
 #include <memory>
-#include <thread>
 #include <unordered_map>
 
 #include "soltex/common/overloaded.h"
