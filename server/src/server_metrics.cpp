@@ -216,12 +216,11 @@ std::string ServerMetrics::render(const BrickStoreStats& store, std::size_t stor
   value(F::faults_corrupted, faults_corrupted);
   write_access(e, access);
 
-  // The label keeps its name `code` (dashboards and tests select on it); the grpc_server_*
-  // families carry the grpc_code convention.
+  // gRPC's label name for a status code, as the grpc_server_* families use it.
   e.family(family(F::errors));
   for (std::size_t code = 1; code < errors_by_code.size(); ++code) {
     e.sample(static_cast<double>(load(errors_by_code[code])),
-             {{"code", grpc_code_name(static_cast<int>(code))}});
+             {{"grpc_code", grpc_code_name(static_cast<int>(code))}});
   }
   write_brick_latency(e, brick_latency_ns);
   return e.take();

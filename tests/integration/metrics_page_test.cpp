@@ -148,7 +148,7 @@ TEST(MetricsPage, ParsesAfterRealTrafficAndCountsWhatWasRefused) {
             metric_value(page, "soltex_bricks_served_total") +
                 metric_value(page, "soltex_bricks_cancelled_total"))
       << page;
-  EXPECT_EQ(metric_value(page, "soltex_errors_total{code=\"OUT_OF_RANGE\"}"), 1.0);
+  EXPECT_EQ(metric_value(page, "soltex_errors_total{grpc_code=\"OUT_OF_RANGE\"}"), 1.0);
 
   const std::string unary =
       R"(grpc_type="unary",grpc_service="soltex.v1.BrickService",grpc_method="RegisterTexture")";

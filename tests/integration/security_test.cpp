@@ -64,7 +64,7 @@ TEST(Security, EveryBrickServiceCallNeedsTheBearerToken) {
 
   // Probes carry no token: the health service stays open.
   EXPECT_EQ(health_status(server), 1);
-  EXPECT_EQ(metric_value(metrics(server), "soltex_errors_total{code=\"UNAUTHENTICATED\"}"), 4);
+  EXPECT_EQ(metric_value(metrics(server), "soltex_errors_total{grpc_code=\"UNAUTHENTICATED\"}"), 4);
 }
 
 TEST(Security, TlsWithClientCertificates) {

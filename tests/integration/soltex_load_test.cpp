@@ -37,7 +37,7 @@ double metric(const SoltexdProcess& server, const std::string& name) {
 }
 
 std::string errors_metric(const char* code) {
-  return std::string("soltex_errors_total{code=\"") + code + "\"}";
+  return std::string("soltex_errors_total{grpc_code=\"") + code + "\"}";
 }
 
 uint64_t stream_failures(const LoadResult& result) {

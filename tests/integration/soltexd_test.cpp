@@ -250,9 +250,9 @@ TEST(Soltexd, BadKeysGetTheirCodeAndTheStreamGoesOn) {
   EXPECT_EQ(served_levels, (std::set<uint32_t>{2, 3}));
 
   const std::string m = metrics(server);
-  EXPECT_EQ(metric_value(m, "soltex_errors_total{code=\"NOT_FOUND\"}"), 1.0);
-  EXPECT_EQ(metric_value(m, "soltex_errors_total{code=\"OUT_OF_RANGE\"}"), 2.0);
-  EXPECT_EQ(metric_value(m, "soltex_errors_total{code=\"RESOURCE_EXHAUSTED\"}"), 1.0);
+  EXPECT_EQ(metric_value(m, "soltex_errors_total{grpc_code=\"NOT_FOUND\"}"), 1.0);
+  EXPECT_EQ(metric_value(m, "soltex_errors_total{grpc_code=\"OUT_OF_RANGE\"}"), 2.0);
+  EXPECT_EQ(metric_value(m, "soltex_errors_total{grpc_code=\"RESOURCE_EXHAUSTED\"}"), 1.0);
 }
 
 TEST(Soltexd, InvalidRegistrationsAreRefusedWithTheFieldAndBound) {
