@@ -134,19 +134,17 @@ void FrameRenderer::prepare_readers(const PreparedScene& scene) {
 render::FrameShading FrameRenderer::frame_shading(const PreparedScene& scene,
                                                   const render::SurfaceUnprojection& unprojection,
                                                   const RenderOptions& options) const {
-  render::FrameShading shading{{}, prepare_lights(*scene.scene), unprojection, options, true};
-  // Quadrilinear needs the fraction and keeps the continuous level of detail.
-  shading.by_table = options.filter != SampleFilter::quadrilinear;
+  render::FrameShading shading{{}, prepare_lights(*scene.scene), unprojection, options};
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const PreparedObject& o = scene.objects[i];
     render::ObjectShading object;
     object.material = render::material_inputs(o);
     object.surface = render::TextureSurface(o);
     if (evaluated_per_pixel(o.texture, options.access)) object.evaluator = evaluators_[i].get();
-    if (shading.by_table) object.level_table = NearestLevelTable(o.layout, options.level_bias);
+    if (shading.by_table()) object.level_table = NearestLevelTable(o.layout, options.level_bias);
     object.level0_spacing = o.layout.filter_width(0);
     object.cached_inset = render::has_planar_edges(o.texture) ? render::kCachedInset : 0.0;
-    object.rgb_fast_path = shading.by_table && !options.false_colour_levels &&
+    object.rgb_fast_path = shading.by_table() && !options.false_colour_levels &&
                            !object.material.unlit && o.channels == 3;
     shading.objects.push_back(object);
   }

@@ -98,8 +98,8 @@ void TileShader::shade_cached(const GBuffer& g, const Pixel& pixel, const Object
                               TextureSampler& sampler, Image& image) {
   const RenderOptions& options = frame_.options;
   const float footprint = g.footprint[pixel.index];
-  const double lod = frame_.by_table ? static_cast<double>(object.level_table.level(footprint))
-                                     : sampler.level_of_detail(footprint) + options.level_bias;
+  const double lod = frame_.by_table() ? static_cast<double>(object.level_table.level(footprint))
+                                       : sampler.level_of_detail(footprint) + options.level_bias;
   glm::dvec3 p = g.texture_position[pixel.index];
   if (object.cached_inset > 0.0) {
     // The coarser of the levels a lookup may read sets the step (quadrilinear reads two).

@@ -38,7 +38,10 @@ struct FrameShading {
   PreparedLights lights;
   SurfaceUnprojection unprojection;
   RenderOptions options;
-  bool by_table = true;  // nearest and trilinear take their level from a table
+
+  // Nearest and trilinear take their level from a table; quadrilinear needs the fraction and
+  // keeps the continuous level of detail.
+  bool by_table() const { return options.filter != SampleFilter::quadrilinear; }
 };
 
 struct TileCounts {

@@ -60,8 +60,7 @@ struct Fixture {
     FrameShading frame{{},
                        prepare_lights(scene),
                        {glm::dmat4(1.0), glm::dvec3(0.0), kSide, kSide},
-                       RenderOptions{},
-                       true};
+                       RenderOptions{}};
     ObjectShading object;
     object.material = material_inputs(o);
     object.surface = TextureSurface(o);
