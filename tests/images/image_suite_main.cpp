@@ -12,6 +12,7 @@
 #include <map>
 #include <set>
 
+#include "headless_session.h"
 #include "image_case.h"
 #include "soltex/common/brick_cache.h"
 #include "soltex/net/local_brick_source.h"
@@ -33,7 +34,7 @@ struct Outcome {
 };
 
 // Draws until every brick a frame wants is resident (bricks are made in this process, exactly
-// as soltexd makes them).
+// as soltexd makes them), as soltex-view --headless does.
 struct Drawn {
   Image cached;
   Image reference;
@@ -49,17 +50,14 @@ Drawn draw(const ImageCase& c, const std::filesystem::path& scratch, bool with_r
   options.antialias = c.antialias;
   FrameRenderer renderer(cache, options);
   const int width = scene.image.width, height = scene.image.height;
+  // The loop soltex-view --headless runs.
+  view::HeadlessOptions converge;
+  converge.max_time = std::chrono::seconds(120);
+  view::HeadlessResult result = view::render_until_converged(renderer, prepared, scene.camera,
+                                                             width, height, source, converge);
+  if (result.converged_ms < 0.0) throw std::runtime_error("did not converge in 120 s");
   Drawn drawn;
-  for (int frame = 0;; ++frame) {
-    Frame f = renderer.render(prepared, scene.camera, width, height);
-    if (f.complete()) {
-      drawn.cached = std::move(f.image);
-      break;
-    }
-    if (frame > 64) throw std::runtime_error("did not converge in 64 frames");
-    source.want(std::move(f.misses));
-    source.wait_idle(std::chrono::seconds(60));
-  }
+  drawn.cached = std::move(result.image);
   if (with_reference) {
     drawn.reference = renderer.render_reference(prepared, scene.camera, width, height, 4);
   }
