@@ -131,6 +131,15 @@ void FrameRenderer::prepare_readers(const PreparedScene& scene) {
   sampler_textures_ = std::move(texture_ids);
 }
 
+std::vector<std::unique_ptr<render::TileShader>> FrameRenderer::tile_shaders(
+    const render::FrameShading& shading) {
+  std::vector<std::unique_ptr<render::TileShader>> shaders;
+  for (auto& worker_samplers : samplers_) {
+    shaders.push_back(std::make_unique<render::TileShader>(shading, worker_samplers));
+  }
+  return shaders;
+}
+
 render::FrameShading FrameRenderer::frame_shading(const PreparedScene& scene,
                                                   const render::SurfaceUnprojection& unprojection,
                                                   const RenderOptions& options) const {
@@ -181,10 +190,7 @@ Frame FrameRenderer::render_pixels(const PreparedScene& scene, const Camera& cam
   const render::FrameShading shading = frame_shading(
       scene, render::SurfaceUnprojection{glm::inverse(vp), camera.position, width, height},
       options);
-  std::vector<std::unique_ptr<render::TileShader>> shaders;
-  for (auto& worker_samplers : samplers_) {
-    shaders.push_back(std::make_unique<render::TileShader>(shading, worker_samplers));
-  }
+  std::vector<std::unique_ptr<render::TileShader>> shaders = tile_shaders(shading);
   const auto shade_raster_tile = [&](const GBuffer& g, int origin_x, int origin_y, int x0, int y0,
                                      int x1, int y1, int worker_index) {
     render::TileShader& shader = *shaders[static_cast<std::size_t>(worker_index)];
@@ -269,10 +275,7 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
   Image& sub_pixels = reference_image_;
   sub_pixels = Image(w, h);
   const int row_blocks = (h + kReferenceRows - 1) / kReferenceRows;
-  std::vector<std::unique_ptr<render::TileShader>> shaders;
-  for (auto& worker_samplers : samplers_) {
-    shaders.push_back(std::make_unique<render::TileShader>(shading, worker_samplers));
-  }
+  std::vector<std::unique_ptr<render::TileShader>> shaders = tile_shaders(shading);
   rasterizer_.parallel_for(static_cast<std::size_t>(row_blocks), [&](std::size_t block,
                                                                      int worker_index) {
     render::TileShader& shader = *shaders[static_cast<std::size_t>(worker_index)];

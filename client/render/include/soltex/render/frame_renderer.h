@@ -107,6 +107,9 @@ class FrameRenderer {
   render::FrameShading frame_shading(const PreparedScene& scene,
                                      const render::SurfaceUnprojection& unprojection,
                                      const RenderOptions& options) const;
+  // One tile shader per render thread, over that thread's samplers.
+  std::vector<std::unique_ptr<render::TileShader>> tile_shaders(
+      const render::FrameShading& shading);
   Frame render_pixels(const PreparedScene& scene, const Camera& camera, int width, int height,
                       const RenderOptions& options);
   void gather(std::vector<std::unique_ptr<render::TileShader>>& shaders, Frame& frame);
