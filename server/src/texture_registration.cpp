@@ -12,9 +12,6 @@
 namespace soltex::server {
 namespace {
 
-// The registry's own bound (texture_registry.cpp) as well.
-constexpr int kMaxSupersample = 4;
-
 MipSettings mip_from(const v1::RegisterTextureRequest& request) {
   const std::optional<MipMode> mode = mip_mode_from_proto(request.mip_mode());
   if (!mode) {

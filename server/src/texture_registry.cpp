@@ -45,8 +45,10 @@ std::size_t TextureRegistry::charge_of(const RegisteredTexture& texture, const s
 TexturePin TextureRegistry::register_texture(const TextureSpec& spec, const Volume& volume,
                                              int brick_size, const MipSettings& mip,
                                              const std::string& client) {
-  if (mip.mode == MipMode::supersampled && (mip.supersample < 1 || mip.supersample > 4)) {
-    throw SpecError("supersample", std::to_string(mip.supersample), "must be in [1, 4]");
+  if (mip.mode == MipMode::supersampled &&
+      (mip.supersample < 1 || mip.supersample > kMaxSupersample)) {
+    throw SpecError("supersample", std::to_string(mip.supersample),
+                    "must be in [1, " + std::to_string(kMaxSupersample) + "]");
   }
   // Validation and id computation happen outside the lock: they may throw and take time.
   auto texture = std::make_shared<const RegisteredTexture>(
@@ -64,7 +66,6 @@ TexturePin TextureRegistry::register_texture(const TextureSpec& spec, const Volu
   entry.owner = client;
   entry.bytes = bytes;
   entry.pins = 1;
-  ++pinned_;
   bytes_ += bytes;
   ++owners_[client].owned;
   return {this, std::move(texture)};
@@ -113,13 +114,11 @@ void TextureRegistry::evict(uint64_t id) {
 
 void TextureRegistry::make_pinned(Entry& entry) {
   if (entry.pins++ > 0) return;
-  ++pinned_;
   unpinned_.erase(entry.in_all);
   owners_[entry.owner].unpinned.erase(entry.in_owner);
 }
 
 void TextureRegistry::make_unpinned(uint64_t id, Entry& entry) {
-  --pinned_;
   unpinned_.push_front(id);
   entry.in_all = unpinned_.begin();
   LruList& own = owners_[entry.owner].unpinned;
@@ -154,7 +153,13 @@ std::size_t TextureRegistry::size() const {
 
 RegistryStats TextureRegistry::stats() const {
   std::lock_guard lock(mutex_);
-  return {textures_.size(),     pinned_, bytes_, limits_.max_bytes, evicted_, refused_full_,
+  // Every texture no stream pins is in the LRU list; the others are pinned.
+  return {textures_.size(),
+          textures_.size() - unpinned_.size(),
+          bytes_,
+          limits_.max_bytes,
+          evicted_,
+          refused_full_,
           refused_client_quota_};
 }
 

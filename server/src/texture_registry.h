@@ -25,6 +25,9 @@ struct RegisteredTexture {
 
 using TexturePtr = std::shared_ptr<const RegisteredTexture>;
 
+// The largest supersampling factor a texture may be registered with.
+inline constexpr int kMaxSupersample = 4;
+
 // Why a registration was refused.
 enum class RegistryRefusal { full, client_quota };
 
@@ -102,7 +105,6 @@ class TextureRegistry {
   TexturePtr find(uint64_t id) const;
   std::size_t size() const;
   RegistryStats stats() const;
-  const RegistryLimits& limits() const { return limits_; }
 
   // The memory a registered texture is charged with.
   static std::size_t charge_of(const RegisteredTexture& texture, const std::string& owner);
@@ -137,7 +139,6 @@ class TextureRegistry {
   std::unordered_map<std::string, Owner> owners_;
   LruList unpinned_;
   std::size_t bytes_ = 0;
-  std::size_t pinned_ = 0;
   uint64_t evicted_ = 0;
   uint64_t refused_full_ = 0;
   uint64_t refused_client_quota_ = 0;
