@@ -125,15 +125,18 @@ void GrpcCallMetrics::write(Exposition& e, const Families& families) const {
   const auto load = [](const std::atomic<uint64_t>& a) {
     return static_cast<double>(a.load(std::memory_order_relaxed));
   };
-  const auto each = [&](const MetricFamily& family, auto&& write_method) {
+  // One sample per method of the counter `member`.
+  const auto per_method = [&](const MetricFamily& family,
+                              const std::atomic<uint64_t> MethodCallCounters::*member) {
     e.family(family);
-    for (const MethodCallCounters& m : methods_) write_method(m);
+    for (const MethodCallCounters& m : methods_) {
+      e.sample(load(m.*member),
+               {{"grpc_type", m.type}, {"grpc_service", m.service}, {"grpc_method", m.method}});
+    }
   };
-  each(families.started, [&](const MethodCallCounters& m) {
-    e.sample(load(m.started),
-             {{"grpc_type", m.type}, {"grpc_service", m.service}, {"grpc_method", m.method}});
-  });
-  each(families.handled, [&](const MethodCallCounters& m) {
+  per_method(families.started, &MethodCallCounters::started);
+  e.family(families.handled);
+  for (const MethodCallCounters& m : methods_) {
     for (std::size_t code = 0; code < m.handled.size(); ++code) {
       if (m.handled[code].load(std::memory_order_relaxed) == 0) continue;
       e.sample(load(m.handled[code]), {{"grpc_type", m.type},
@@ -141,19 +144,10 @@ void GrpcCallMetrics::write(Exposition& e, const Families& families) const {
                                        {"grpc_method", m.method},
                                        {"grpc_code", kCodeNames[code]}});
     }
-  });
-  each(families.received, [&](const MethodCallCounters& m) {
-    e.sample(load(m.messages_received),
-             {{"grpc_type", m.type}, {"grpc_service", m.service}, {"grpc_method", m.method}});
-  });
-  each(families.sent, [&](const MethodCallCounters& m) {
-    e.sample(load(m.messages_sent),
-             {{"grpc_type", m.type}, {"grpc_service", m.service}, {"grpc_method", m.method}});
-  });
-  each(families.cut_short, [&](const MethodCallCounters& m) {
-    e.sample(load(m.cut_short),
-             {{"grpc_type", m.type}, {"grpc_service", m.service}, {"grpc_method", m.method}});
-  });
+  }
+  per_method(families.received, &MethodCallCounters::messages_received);
+  per_method(families.sent, &MethodCallCounters::messages_sent);
+  per_method(families.cut_short, &MethodCallCounters::cut_short);
 }
 
 std::unique_ptr<grpc::experimental::ServerInterceptorFactoryInterface>
