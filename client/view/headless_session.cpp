@@ -6,29 +6,6 @@
 #include "level_cap.h"
 
 namespace soltex::view {
-namespace {
-
-// A frame's misses as the cap lets them be fetched, and whether the frame is final at that
-// cap. Without a cap (or with one no texture reaches) that is the frame's own verdict.
-struct FrameNeeds {
-  std::vector<net::BrickWant> wants;
-  bool complete = false;
-};
-
-FrameNeeds needs_of(const Frame& frame, const LevelCap* cap, const BrickCache* cache,
-                    bool arrived_while_drawing) {
-  if (cap == nullptr) return {frame.misses, frame.complete()};
-  FrameNeeds needs;
-  needs.wants = not_resident(cap->apply(frame.misses), *cache);
-  // Every brick the cap allows is resident and none arrived during the frame: each pixel
-  // drew from the brick it draws from at this cap (a pixel asking for a finer level falls
-  // back to its ancestor at the cap).
-  needs.complete = needs.wants.empty() && !arrived_while_drawing;
-  return needs;
-}
-
-}  // namespace
-
 HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedScene& scene,
                                       const Camera& camera, int width, int height,
                                       net::BrickSource& source, const HeadlessOptions& options) {

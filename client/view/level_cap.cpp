@@ -65,6 +65,18 @@ std::vector<net::BrickWant> not_resident(std::vector<net::BrickWant> wants,
   return wants;
 }
 
+FrameNeeds needs_of(const Frame& frame, const LevelCap* cap, const BrickCache* cache,
+                    bool arrived_while_drawing) {
+  if (cap == nullptr) return {frame.misses, frame.complete()};
+  FrameNeeds needs;
+  needs.wants = not_resident(cap->apply(frame.misses), *cache);
+  // Every brick the cap allows is resident and none arrived during the frame: each pixel
+  // drew from the brick it draws from at this cap (a pixel asking for a finer level falls
+  // back to its ancestor at the cap).
+  needs.complete = needs.wants.empty() && !arrived_while_drawing;
+  return needs;
+}
+
 int next_cap(const LevelCap& cap, const std::vector<net::BrickWant>& misses,
              const BrickCache& cache, int max_step, double fill) {
   const int current = cap.cap_log2();

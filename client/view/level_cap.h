@@ -8,6 +8,7 @@
 #include "soltex/common/brick_cache.h"
 #include "soltex/common/brick_layout.h"
 #include "soltex/net/brick_source.h"
+#include "soltex/render/frame_renderer.h"
 #include "soltex/render/prepared_scene.h"
 
 namespace soltex::view {
@@ -61,6 +62,15 @@ class LevelCap {
 // Those of `wants` that `cache` does not hold.
 std::vector<net::BrickWant> not_resident(std::vector<net::BrickWant> wants,
                                          const BrickCache& cache);
+
+// A frame's misses as the cap lets them be fetched, and whether the frame is final at that
+// cap. Without a cap (null; `cache` is then not read) that is the frame's own verdict.
+struct FrameNeeds {
+  std::vector<net::BrickWant> wants;
+  bool complete = false;
+};
+FrameNeeds needs_of(const Frame& frame, const LevelCap* cap, const BrickCache* cache,
+                    bool arrived_while_drawing);
 
 // The cap to refine to from the current one, after a frame at the current cap has
 // converged: the finest cap in (current, current + max_step] (clamped to the prepared

@@ -453,14 +453,10 @@ void ViewerWindow::Impl::draw_frame(ViewerResult& result, Clock::time_point run_
   received_at_last_frame = source.stats().received;
   renderer->set_level_bias(level_bias());
   Frame frame = renderer->render(prepared, orbit.camera(), settings.width, settings.height);
-  if (cap.active()) {
-    std::vector<net::BrickWant> wants = not_resident(cap.apply(frame.misses), cache);
-    complete_at_cap = wants.empty() && source.stats().received == received_at_last_frame;
-    source.want(std::move(wants));
-  } else {
-    complete_at_cap = frame.complete();
-    source.want(frame.misses);
-  }
+  FrameNeeds needs = needs_of(frame, cap.active() ? &cap : nullptr, &cache,
+                              source.stats().received != received_at_last_frame);
+  complete_at_cap = needs.complete;
+  source.want(std::move(needs.wants));
   last_misses = std::move(frame.misses);
   present(frame.image);
   const auto end = Clock::now();
