@@ -35,6 +35,7 @@
 #include <string>
 #include <vector>
 
+#include "converge.h"
 #include "soltex/common/brick_cache.h"
 #include "soltex/net/local_brick_source.h"
 #include "soltex/render/frame_renderer.h"
@@ -93,17 +94,7 @@ struct WarmObject {
         evaluated(std::make_unique<soltex::FrameRenderer>(
             *cache,
             soltex::RenderOptions{.access = soltex::TextureAccess::evaluated, .threads = 1})) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    for (;;) {
-      soltex::Frame frame = cached->render(prepared, scene.camera, kWidth, kHeight);
-      const bool complete = frame.complete();
-      source->want(std::move(frame.misses));
-      if (complete && source->idle()) break;
-      if (std::chrono::steady_clock::now() > deadline) {
-        throw std::runtime_error("access_bench: the scene did not converge in 120 s");
-      }
-      source->wait_idle(std::chrono::milliseconds(50));
-    }
+    converge(*cached, prepared, scene.camera, kWidth, kHeight, *source, "access_bench");
   }
 
   soltex::Scene scene;

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "converge.h"
 #include "soltex/common/brick_cache.h"
 #include "soltex/net/local_brick_source.h"
 #include "soltex/raster/rasterizer.h"
@@ -52,17 +53,7 @@ struct WarmScene {
             scene, soltex::TextureResolution{8, variant == 4 ? 8 : 16, {}}, *source)),
         renderer(std::make_unique<soltex::FrameRenderer>(
             *cache, soltex::RenderOptions{.threads = threads})) {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-    for (;;) {
-      soltex::Frame frame = renderer->render(prepared, scene.camera, kWidth, kHeight);
-      const bool complete = frame.complete();
-      source->want(std::move(frame.misses));
-      if (complete && source->idle()) break;
-      if (std::chrono::steady_clock::now() > deadline) {
-        throw std::runtime_error("frame_bench: the scene did not converge in 120 s");
-      }
-      source->wait_idle(std::chrono::milliseconds(50));
-    }
+    converge(*renderer, prepared, scene.camera, kWidth, kHeight, *source, "frame_bench");
     const soltex::Image warm = renderer->render(prepared, scene.camera, kWidth, kHeight).image;
     psnr = soltex::psnr(warm, renderer->render_reference(prepared, scene.camera, kWidth, kHeight));
   }
