@@ -15,7 +15,6 @@ namespace soltex::view {
 
 struct HeadlessOptions {
   std::chrono::milliseconds max_time{30000};  // give up converging after this
-  bool exact = false;                         // fail unless every brick arrived
   // Converge first with no texture finer than 2^start_level_log2 samples per axis (the
   // capability's start), then refine to the prepared levels as far as `cache` holds them
   // (level_cap.h). 0, or no cache: draw at the prepared levels from the start.

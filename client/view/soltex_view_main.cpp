@@ -288,7 +288,6 @@ int main(int argc, char** argv) {
 
     view::HeadlessOptions options;
     options.max_time = std::chrono::milliseconds(static_cast<long>(max_seconds * 1000));
-    options.exact = exact;
     options.start_level_log2 = choice.start_level_log2;
     options.cache = cache.get();
     std::ofstream record_file;
