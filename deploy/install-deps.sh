@@ -19,6 +19,8 @@ packages=(
   openssl                                 # certificates for the TLS tests
   python3-matplotlib                      # soltex-bench accuracy's plot (client/bench/plot_accuracy.py)
   libmeshoptimizer-dev                    # mesh ordering and clean-up (client/scene)
+  libhwy-dev                              # Highway: SIMD kernels chosen at run time
+  libpugixml-dev                          # MaterialX documents (XML)
 )
 
 missing=()
