@@ -30,7 +30,7 @@ void split_cells_target(std::span<const glm::dvec3> points, const glm::dvec3& or
   const std::size_t lanes = hn::Lanes(d);
   // A whole number of vectors: the tail is read from a zero-padded copy (and its extra lanes
   // written past n, inside the chunk's arrays, which hold a multiple of any lane count).
-  static_assert(kSampleChunk % (HWY_MAX_BYTES / sizeof(double)) == 0);
+  static_assert(kSampleChunk % (HWY_MAX_BYTES / sizeof(int32_t)) == 0);
   HWY_ALIGN double tail[3 * HWY_MAX_BYTES / sizeof(double)] = {};
   const std::size_t n = points.size();
   const auto axis = [&](int a, auto v, std::size_t i) {
@@ -49,6 +49,30 @@ void split_cells_target(std::span<const glm::dvec3> points, const glm::dvec3& or
     axis(0, x, i);
     axis(1, y, i);
     axis(2, z, i);
+  }
+}
+
+void locate_cells_target(CellChunk& chunk, std::size_t n, const BrickGeometry& g) {
+  const hn::ScalableTag<int32_t> d;
+  const auto mask = hn::Set(d, g.mask);
+  const auto bricks = hn::Set(d, g.bricks);
+  const auto channels = hn::Set(d, g.channels);
+  const auto y_stride = hn::Set(d, static_cast<int32_t>(g.y_stride));
+  const auto z_stride = hn::Set(d, static_cast<int32_t>(g.z_stride));
+  // Whole vectors: the chunk's arrays hold a multiple of any lane count.
+  for (std::size_t i = 0; i < n; i += hn::Lanes(d)) {
+    const auto x = hn::LoadU(d, &chunk.cell[0][i]);
+    const auto y = hn::LoadU(d, &chunk.cell[1][i]);
+    const auto z = hn::LoadU(d, &chunk.cell[2][i]);
+    const auto brick = hn::Add(hn::Mul(hn::Add(hn::Mul(hn::ShiftRightSame(z, g.shift), bricks),
+                                               hn::ShiftRightSame(y, g.shift)),
+                                       bricks),
+                               hn::ShiftRightSame(x, g.shift));
+    const auto offset =
+        hn::Add(hn::Add(hn::Mul(hn::And(z, mask), z_stride), hn::Mul(hn::And(y, mask), y_stride)),
+                hn::Mul(hn::And(x, mask), channels));
+    hn::StoreU(brick, d, &chunk.brick[i]);
+    hn::StoreU(offset, d, &chunk.offset[i]);
   }
 }
 
@@ -76,11 +100,16 @@ HWY_AFTER_NAMESPACE();
 namespace soltex {
 
 HWY_EXPORT(split_cells_target);
+HWY_EXPORT(locate_cells_target);
 HWY_EXPORT(trilinear_rgb_target);
 
 void split_cells(std::span<const glm::dvec3> points, const glm::dvec3& origin,
                  const glm::dvec3& spacing, double scale, double cells, CellChunk& chunk) {
   HWY_DYNAMIC_DISPATCH(split_cells_target)(points, origin, spacing, scale, cells, chunk);
+}
+
+void locate_cells(CellChunk& chunk, std::size_t n, const BrickGeometry& geometry) {
+  HWY_DYNAMIC_DISPATCH(locate_cells_target)(chunk, n, geometry);
 }
 
 void trilinear_rgb(std::span<const uint8_t* const> corners, const CellChunk& chunk,

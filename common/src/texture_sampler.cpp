@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <bit>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -120,32 +122,56 @@ void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int le
   split_cells(points, min_, finest_spacing_, level_scale_[l], cells_[l], chunk);
   std::array<const uint8_t*, kSampleChunk> corners;
   bool missed = false;
+  const auto n = points.size();
+  const int bricks = layout_.bricks_per_axis(level);
   // Neighbouring points mostly share a brick: a run in one brick asks resident() once.
-  glm::ivec3 run_brick(-1);
   const uint8_t* run_samples = nullptr;
-  uint64_t run_hits = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const glm::ivec3 cell(chunk.cell[0][i], chunk.cell[1][i], chunk.cell[2][i]);
-    const glm::ivec3 brick(cell.x >> brick_shift_, cell.y >> brick_shift_, cell.z >> brick_shift_);
-    if ((brick.x == run_brick.x) & (brick.y == run_brick.y) & (brick.z == run_brick.z) &
-        (run_samples != nullptr)) {
-      ++run_hits;
-    } else {
-      const Current* found = resident(level, brick);
-      run_brick = brick;
-      run_samples = found == nullptr ? nullptr : found->samples;
+  uint64_t run_hits = 0, run_misses = 0;  // lookups a run answered, counted as resident() would
+  const auto brick_of = [&](std::size_t i) {
+    return glm::ivec3(chunk.cell[0][i] >> brick_shift_, chunk.cell[1][i] >> brick_shift_,
+                      chunk.cell[2][i] >> brick_shift_);
+  };
+  if (static_cast<int64_t>(bricks) * bricks * bricks <= INT32_MAX) {
+    // The flat brick index in one int32 compares a run in one instruction.
+    locate_cells(chunk, n, {brick_shift_, brick_mask_, bricks, 3, y_stride_, z_stride_});
+    int32_t run_brick = -1;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (chunk.brick[i] == run_brick) {
+        ++(run_samples == nullptr ? run_misses : run_hits);
+      } else {
+        const Current* found = resident(level, brick_of(i));
+        run_brick = chunk.brick[i];
+        run_samples = found == nullptr ? nullptr : found->samples;
+      }
+      corners[i] = run_samples == nullptr ? nullptr : run_samples + chunk.offset[i];
+      missed |= run_samples == nullptr;
     }
-    SampleResult& result = results[i];
+  } else {
+    glm::ivec3 run_brick(-1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const glm::ivec3 brick = brick_of(i);
+      if (brick == run_brick) {
+        ++(run_samples == nullptr ? run_misses : run_hits);
+      } else {
+        const Current* found = resident(level, brick);
+        run_brick = brick;
+        run_samples = found == nullptr ? nullptr : found->samples;
+      }
+      const glm::ivec3 local(chunk.cell[0][i] & brick_mask_, chunk.cell[1][i] & brick_mask_,
+                             chunk.cell[2][i] & brick_mask_);
+      corners[i] = run_samples == nullptr
+                       ? nullptr
+                       : run_samples + local.z * z_stride_ + local.y * y_stride_ + local.x * 3;
+      missed |= run_samples == nullptr;
+    }
+  }
+  accessor_.count_microcache_hit(run_hits);
+  accessor_.count_miss(run_misses);
+  for (SampleResult& result : results) {
     result.values[4] = 0.0f;  // the kernel writes the first four
     result.level = level;
     result.complete = true;
-    corners[i] = run_samples == nullptr
-                     ? nullptr
-                     : run_samples + (cell.z & brick_mask_) * z_stride_ +
-                           (cell.y & brick_mask_) * y_stride_ + (cell.x & brick_mask_) * 3;
-    missed |= run_samples == nullptr;
   }
-  accessor_.count_microcache_hit(run_hits);
   static_assert(sizeof(SampleResult) % sizeof(float) == 0);
   soltex::trilinear_rgb(std::span<const uint8_t* const>(corners.data(), points.size()), chunk,
                         y_stride_, z_stride_, results[0].values.data(),

@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <array>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <glm/geometric.hpp>
@@ -109,9 +110,10 @@ class DenseVolume {
     for (std::size_t first = 0; first < points.size(); first += soltex::kSampleChunk) {
       const std::size_t n = std::min(soltex::kSampleChunk, points.size() - first);
       soltex::split_cells(points.subspan(first, n), min_, spacing_, 1.0, cells_, chunk);
+      // The whole lattice as one brick: the offsets are the indices.
+      soltex::locate_cells(chunk, n, {31, INT32_MAX, 1, 3, y_stride, z_stride});
+      for (std::size_t i = 0; i < n; ++i) corners[i] = rgb_.data() + chunk.offset[i];
       for (std::size_t i = 0; i < n; ++i) {
-        corners[i] = rgb_.data() + chunk.cell[2][i] * z_stride + chunk.cell[1][i] * y_stride +
-                     chunk.cell[0][i] * 3;
         soltex::SampleResult& result = results[first + i];
         result.values[4] = 0.0f;
         result.level = 0;

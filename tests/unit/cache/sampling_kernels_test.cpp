@@ -95,6 +95,37 @@ TEST(SamplingKernels, SplitOnEveryTargetEqualsScalar) {
   EXPECT_FALSE(targets.empty());
 }
 
+// Brick index and offset inside the brick, as the scalar arithmetic gives them, for bricks of 8
+// and 16 and every channel count.
+TEST(SamplingKernels, LocateOnEveryTargetEqualsScalar) {
+  std::mt19937 rng(21);
+  for (const int shift : {3, 4}) {
+    for (int channels = 1; channels <= 5; ++channels) {
+      const int samples = (1 << shift) + 1;
+      const BrickGeometry g{shift,    (1 << shift) - 1,   64,
+                            channels, samples * channels, samples * samples * channels};
+      std::uniform_int_distribution<int32_t> cell(0, (64 << shift) - 1);
+      CellChunk chunk;
+      for (auto& axis : chunk.cell) {
+        for (int32_t& c : axis) c = cell(rng);
+      }
+      chunk.cell[0][0] = 0;
+      chunk.cell[1][1] = (64 << shift) - 1;
+      on_every_target([&] {
+        const std::size_t n = kSampleChunk - 3;
+        locate_cells(chunk, n, g);
+        for (std::size_t i = 0; i < n; ++i) {
+          const int32_t x = chunk.cell[0][i], y = chunk.cell[1][i], z = chunk.cell[2][i];
+          ASSERT_EQ(chunk.brick[i], ((z >> shift) * 64 + (y >> shift)) * 64 + (x >> shift)) << i;
+          ASSERT_EQ(chunk.offset[i],
+                    (z & g.mask) * g.z_stride + (y & g.mask) * g.y_stride + (x & g.mask) * channels)
+              << i;
+        }
+      });
+    }
+  }
+}
+
 // Every cell of a brick with every byte value around it, fractions including 0 and 1: the
 // three channels equal the scalar kernel's bits, the fourth float is +0, and a null corner
 // leaves its output alone.
