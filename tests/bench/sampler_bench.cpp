@@ -6,15 +6,21 @@
 // renderer would pick), visited in two orders:
 //   *_Scanline  row after row, adjacent rows next to each other, as a rasterizer visits them;
 //   *_Random    the same points shuffled.
-// At every point:
-//   Cached_Trilinear     TextureSampler::sample at level 0: brick lookup (the sampler's
-//                        last brick, then the accessor's microcache table, then the sharded
-//                        map), then trilinear RGB from the 8-bit brick;
-//   Cached_Quadrilinear  the same at level of detail 0.5 (levels 0 and 1 blended);
+// At every point, one image row (512 points) per call, into a row of SampleResults:
+//   Cached_Trilinear     TextureSampler::sample(points, 0, trilinear, results): per chunk of
+//                        64 points the runtime-dispatched cell split and brick location
+//                        (sampling_kernels.h), one brick lookup per run of points in one
+//                        brick (the sampler's last brick, its brick table, the accessor's
+//                        microcache table, the sharded map), the dispatched RGB kernel;
+//   Cached_Quadrilinear  the same at level of detail 0.5 (levels 0 and 1 blended; this
+//                        filter goes point by point);
 //   Dense_Trilinear      a dense 257^3 RGB uint8 array holding the same quantized voxels
-//                        (the vertex-centred lattice of 256^3 cells, 48.6 MiB), trilinear
-//                        with the same clamping and cell split (soltex::split_cell) and
-//                        the same kernel (soltex::trilinear_u8);
+//                        (the vertex-centred lattice of 256^3 cells, 48.6 MiB), through the
+//                        same dispatched kernels (the whole lattice as one brick), filling
+//                        the same SampleResults;
+//   CachedPoint_*, DensePoint_*  the per-point forms (TextureSampler::sample(p, ...), and
+//                        split_cell plus trilinear_u8 for the array): the build's static
+//                        target, scalar in a generic build;
 //   Marble_Direct        TextureEvaluator::sample of the marble, band-limited to level 0's
 //                        spacing, at the same points: what the cache saves.
 // The cache holds every level-0 and level-1 brick the plane touches (its budget is larger
