@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <glm/vec3.hpp>
 
+#include "soltex/common/check.h"
 #include "soltex/common/trilinear_u8_scalar.h"
 
 #undef HWY_TARGET_INCLUDE
@@ -105,16 +106,19 @@ HWY_EXPORT(trilinear_rgb_target);
 
 void split_cells(std::span<const glm::dvec3> points, const glm::dvec3& origin,
                  const glm::dvec3& spacing, double scale, double cells, CellChunk& chunk) {
+  SOLTEX_DCHECK(points.size() <= kSampleChunk);
   HWY_DYNAMIC_DISPATCH(split_cells_target)(points, origin, spacing, scale, cells, chunk);
 }
 
 void locate_cells(CellChunk& chunk, std::size_t n, const BrickGeometry& geometry) {
+  SOLTEX_DCHECK(n <= kSampleChunk);
   HWY_DYNAMIC_DISPATCH(locate_cells_target)(chunk, n, geometry);
 }
 
 void trilinear_rgb(std::span<const uint8_t* const> corners, const CellChunk& chunk,
                    std::ptrdiff_t y_stride, std::ptrdiff_t z_stride, float* out,
                    std::size_t out_stride) {
+  SOLTEX_DCHECK(corners.size() <= kSampleChunk && out_stride >= 4);
   HWY_DYNAMIC_DISPATCH(trilinear_rgb_target)(corners, chunk, y_stride, z_stride, out, out_stride);
 }
 
