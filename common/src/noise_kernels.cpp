@@ -1,0 +1,304 @@
+// Every attainable target, not only those above the build's baseline: the unit test runs each
+// one against the scalar path, and a portable (non-native) build dispatches among them.
+#ifndef HWY_COMPILE_ALL_ATTAINABLE
+#define HWY_COMPILE_ALL_ATTAINABLE
+#endif
+// Highway 1.0.3 counts AVX3_DL attainable only when asked (its baseline test reads an
+// undefined macro), so a -march=native build on such a CPU would otherwise fail to compile.
+#ifndef HWY_WANT_AVX3_DL
+#define HWY_WANT_AVX3_DL
+#endif
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "noise_kernels.cpp"
+#include "noise_kernels.h"
+
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "soltex/common/gradient_noise.h"
+#include "soltex/common/lattice.h"
+#include "soltex/common/noise_tables.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace soltex::noise_kernels::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+using DF = hn::ScalableTag<float>;
+using DI = hn::RebindToSigned<DF>;
+using VF = hn::Vec<DF>;
+using VI = hn::Vec<DI>;
+
+// Mul then Add, never fused: the build forbids contraction so that every target and the
+// scalar path round alike.
+template <class V>
+HWY_INLINE V Lerp(V a, V b, V t) {
+  return hn::Add(a, hn::Mul(t, hn::Sub(b, a)));
+}
+
+// fade(t) = t * t * t * (t * (t * 6 - 15) + 10), in gradient_noise.h's order.
+HWY_INLINE VF Fade(DF df, VF t) {
+  const VF poly = hn::Add(hn::Mul(t, hn::Sub(hn::Mul(t, hn::Set(df, 6.0f)), hn::Set(df, 15.0f))),
+                          hn::Set(df, 10.0f));
+  return hn::Mul(hn::Mul(hn::Mul(t, t), t), poly);
+}
+
+// detail::gradient_component for a vector of hashes already shifted left by one (2 * h).
+template <class D>
+HWY_INLINE hn::Vec<D> GradientComponent(D df, uint32_t packed,
+                                        hn::Vec<hn::RebindToSigned<D>> twice_h) {
+  const hn::RebindToSigned<D> di;
+  const hn::RebindToUnsigned<D> du;
+  const auto bits =
+      hn::And(hn::Shr(hn::Set(du, packed), hn::BitCast(du, twice_h)), hn::Set(du, 3u));
+  return hn::ConvertTo(df, hn::Sub(hn::BitCast(di, bits), hn::Set(di, 1)));
+}
+
+// perm[x + h] for the faces x of one vector. Faces of neighbouring cells are consecutive
+// lattice x values, so the lookups are mostly one contiguous load rather than a gather.
+template <class DI>
+class PermLookup {
+ public:
+  PermLookup(DI di, const int32_t* HWY_RESTRICT perm, const int32_t* HWY_RESTRICT face_x)
+      : di_(di),
+        perm_(perm),
+        x0_(face_x[0]),
+        x_(hn::LoadU(di, face_x)),
+        contiguous_(hn::AllTrue(di, hn::Eq(x_, hn::Iota(di, x0_)))) {}
+
+  HWY_INLINE hn::Vec<DI> operator()(int32_t h) const {
+    // face_x <= 256 and h <= 255 keep both forms inside the 512-entry table.
+    if (contiguous_) return hn::LoadU(di_, perm_ + x0_ + h);
+    return hn::GatherIndex(di_, perm_, hn::Add(x_, hn::Set(di_, h)));
+  }
+
+ private:
+  DI di_;
+  const int32_t* HWY_RESTRICT perm_;
+  int32_t x0_;
+  hn::Vec<DI> x_;
+  bool contiguous_;
+};
+
+// value_cell_edges' face, one face per lane.
+template <class D>
+void ValueFaces(D df, const NoiseTables& tables, const int32_t* HWY_RESTRICT face_x,
+                std::size_t faces, const RowHashes& h, float fy, float fz,
+                float* HWY_RESTRICT edge) {
+  const hn::RebindToSigned<D> di;
+  const float* HWY_RESTRICT value = tables.value.data();
+  const auto vy = hn::Set(df, fy), vz = hn::Set(df, fz);
+  for (std::size_t f = 0; f < faces; f += hn::Lanes(df)) {
+    const PermLookup perm(di, tables.perm.data(), face_x + f);
+    const auto corner = [&](int32_t hh) { return hn::GatherIndex(df, value, perm(hh)); };
+    const auto a = Lerp(corner(h.h00), corner(h.h10), vy);
+    const auto b = Lerp(corner(h.h01), corner(h.h11), vy);
+    hn::StoreU(Lerp(a, b, vz), df, edge + f);
+  }
+}
+
+// gradient_cell_edges' face, one face per lane: value(fx) = offset + slope * (fx - dx).
+template <class D>
+void GradientFaces(D df, const NoiseTables& tables, const int32_t* HWY_RESTRICT face_x,
+                   std::size_t faces, const GradientRow& row, float* HWY_RESTRICT slope,
+                   float* HWY_RESTRICT offset) {
+  const hn::RebindToSigned<D> di;
+  const auto fy0 = hn::Set(df, row.fy), fy1 = hn::Set(df, row.fy - 1.0f);
+  const auto fz0 = hn::Set(df, row.fz), fz1 = hn::Set(df, row.fz - 1.0f);
+  const auto v = hn::Set(df, row.v), w = hn::Set(df, row.w);
+  using VI = hn::Vec<decltype(di)>;
+  using V = hn::Vec<D>;
+  const auto gx = [&](VI h2) { return GradientComponent(df, detail::kPackedX, h2); };
+  const auto dot = [&](VI h2, V fy, V fz) {
+    return hn::Add(hn::Mul(GradientComponent(df, detail::kPackedY, h2), fy),
+                   hn::Mul(GradientComponent(df, detail::kPackedZ, h2), fz));
+  };
+  for (std::size_t f = 0; f < faces; f += hn::Lanes(df)) {
+    const PermLookup perm(di, tables.perm.data(), face_x + f);
+    // (perm[x + h] & 15) * 2: the shift GradientComponent needs.
+    const auto hash = [&](int32_t h) {
+      const VI masked = hn::And(perm(h), hn::Set(di, 15));
+      return hn::Add(masked, masked);
+    };
+    const VI h00 = hash(row.hashes.h00), h10 = hash(row.hashes.h10);
+    const VI h01 = hash(row.hashes.h01), h11 = hash(row.hashes.h11);
+    const V s0 = Lerp(gx(h00), gx(h10), v);
+    const V s1 = Lerp(gx(h01), gx(h11), v);
+    const V o0 = Lerp(dot(h00, fy0, fz0), dot(h10, fy1, fz0), v);
+    const V o1 = Lerp(dot(h01, fy0, fz1), dot(h11, fy1, fz1), v);
+    hn::StoreU(Lerp(s0, s1, w), df, slope + f);
+    hn::StoreU(Lerp(o0, o1, w), df, offset + f);
+  }
+}
+
+// Runs a face pass on vectors no wider than the face count needs: a row's coarse octaves touch
+// only a few faces, and a gather costs per lane.
+template <class Pass>
+HWY_INLINE void WithFaceWidth(std::size_t faces, const Pass& pass) {
+  if (faces <= hn::Lanes(hn::CappedTag<float, 4>())) {
+    pass(hn::CappedTag<float, 4>());
+  } else if (faces <= hn::Lanes(hn::CappedTag<float, 8>())) {
+    pass(hn::CappedTag<float, 8>());
+  } else {
+    pass(DF());
+  }
+}
+
+// The faces a vector of points needs, face[lo] (left) and face[lo + 1] (right). Points in
+// ascending x reach fewer faces than a vector has lanes: then two loads and in-register lane
+// lookups replace the gathers.
+class FaceFetch {
+ public:
+  explicit FaceFetch(const int32_t* HWY_RESTRICT face_lo)
+      : lo_(hn::LoadU(DI(), face_lo)),
+        base_(face_lo[0]),
+        rel_(hn::Sub(lo_, hn::Set(DI(), base_))),
+        local_(hn::AllTrue(
+            DI(), hn::And(hn::Gt(rel_, hn::Set(DI(), -1)), hn::Lt(rel_, hn::Set(DI(), kLanes))))) {}
+
+  HWY_INLINE VF left(const float* HWY_RESTRICT face) const { return get(face); }
+  HWY_INLINE VF right(const float* HWY_RESTRICT face) const { return get(face + 1); }
+
+ private:
+  HWY_INLINE VF get(const float* HWY_RESTRICT face) const {
+    if (local_) {
+      return hn::TableLookupLanes(hn::LoadU(DF(), face + base_), hn::IndicesFromVec(DF(), rel_));
+    }
+    return hn::GatherIndex(DF(), face, lo_);
+  }
+
+  static constexpr int32_t kLanes = static_cast<int32_t>(hn::MaxLanes(DF()));
+
+  VI lo_;
+  int32_t base_;
+  VI rel_;  // lo - base: lane indices when local_
+  bool local_;
+};
+
+template <bool kAbsolute>
+void ValuePoints(const OctaveColumnsView& c, std::size_t n, const float* HWY_RESTRICT edge,
+                 float weight, float mean, float* HWY_RESTRICT acc) {
+  const DF df;
+  const VF w = hn::Set(df, weight), m = hn::Set(df, mean);
+  for (std::size_t i = 0; i < n; i += hn::Lanes(df)) {
+    const FaceFetch face(c.face_lo + i);
+    VF noise = Lerp(face.left(edge), face.right(edge), hn::LoadU(df, c.frac + i));
+    if constexpr (kAbsolute) noise = hn::Abs(noise);
+    const VF term = hn::Add(hn::Mul(w, noise), m);
+    hn::StoreU(hn::Add(hn::LoadU(df, acc + i), term), df, acc + i);
+  }
+}
+
+template <bool kAbsolute>
+void GradientPoints(const OctaveColumnsView& c, std::size_t n, const float* HWY_RESTRICT slope,
+                    const float* HWY_RESTRICT offset, float weight, float mean,
+                    float* HWY_RESTRICT acc) {
+  const DF df;
+  const VF w = hn::Set(df, weight), m = hn::Set(df, mean), one = hn::Set(df, 1.0f);
+  for (std::size_t i = 0; i < n; i += hn::Lanes(df)) {
+    const FaceFetch face(c.face_lo + i);
+    const VF fx = hn::LoadU(df, c.frac + i);
+    // gradient_cell_finish
+    const VF a0 = hn::Add(face.left(offset), hn::Mul(face.left(slope), fx));
+    const VF a1 = hn::Add(face.right(offset), hn::Mul(face.right(slope), hn::Sub(fx, one)));
+    VF noise = Lerp(a0, a1, Fade(df, fx));
+    if constexpr (kAbsolute) noise = hn::Abs(noise);
+    const VF term = hn::Add(hn::Mul(w, noise), m);
+    hn::StoreU(hn::Add(hn::LoadU(df, acc + i), term), df, acc + i);
+  }
+}
+
+// One evaluated octave along the row, added into acc (padded length).
+void AddOctave(const OctavePlan& plan, const Octave& octave, const OctaveColumnsView& c,
+               std::size_t n, double y, double z, float* HWY_RESTRICT acc,
+               float* HWY_RESTRICT face_a, float* HWY_RESTRICT face_b) {
+  const NoiseTables& tables = noise_tables();
+  const LatticeSplit sy = split_lattice(y * octave.frequency);
+  const LatticeSplit sz = split_lattice(z * octave.frequency);
+  const float weight = octave.noise_weight, mean = octave.mean_term;
+  if (plan.basis == NoiseBasis::value) {
+    const RowHashes hashes = row_hashes(tables, sy.cell, sz.cell);
+    WithFaceWidth(c.faces, [&](auto d) {
+      ValueFaces(d, tables, c.face_x, c.faces, hashes, sy.frac, sz.frac, face_a);
+    });
+    if (plan.absolute) {
+      ValuePoints<true>(c, n, face_a, weight, mean, acc);
+    } else {
+      ValuePoints<false>(c, n, face_a, weight, mean, acc);
+    }
+    return;
+  }
+  const GradientRow row = gradient_row(tables, sy, sz);
+  WithFaceWidth(c.faces,
+                [&](auto d) { GradientFaces(d, tables, c.face_x, c.faces, row, face_a, face_b); });
+  if (plan.absolute) {
+    GradientPoints<true>(c, n, face_a, face_b, weight, mean, acc);
+  } else {
+    GradientPoints<false>(c, n, face_a, face_b, weight, mean, acc);
+  }
+}
+
+// acc holds padded(size) entries, face_a and face_b padded(faces) + kPad for the widest octave.
+void FractalRowKernel(const RowRequest& r, float* HWY_RESTRICT acc, float* HWY_RESTRICT face_a,
+                      float* HWY_RESTRICT face_b) {
+  const DF df;
+  const std::size_t n = padded(r.size);
+  std::fill(acc, acc + n, 0.0f);
+  for (int k = 0; k < r.plan->count; ++k) {
+    const Octave& octave = r.plan->octaves[k];
+    if (octave.noise_weight == 0.0f) {
+      const VF mean = hn::Set(df, octave.mean_term);
+      for (std::size_t i = 0; i < n; i += hn::Lanes(df)) {
+        hn::StoreU(hn::Add(hn::LoadU(df, acc + i), mean), df, acc + i);
+      }
+      continue;
+    }
+    AddOctave(*r.plan, octave, r.octaves[k], n, r.y, r.z, acc, face_a, face_b);
+  }
+  std::copy(acc, acc + r.size, r.out);
+}
+
+}  // namespace soltex::noise_kernels::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace soltex::noise_kernels {
+
+HWY_EXPORT(FractalRowKernel);
+
+namespace {
+// Row scratch, reused across calls on the same thread.
+struct RowScratch {
+  std::vector<float> acc, face_a, face_b;
+};
+}  // namespace
+
+void fractal_row(const RowRequest& request) {
+  if (request.size == 0) return;
+  std::size_t faces = 0;
+  for (int k = 0; k < request.plan->count; ++k) {
+    if (request.plan->octaves[k].noise_weight != 0.0f) {
+      faces = std::max(faces, request.octaves[k].faces);
+    }
+  }
+  thread_local RowScratch scratch;
+  const std::size_t points = padded(request.size), face_room = padded(faces) + kPad;
+  if (scratch.acc.size() < points) scratch.acc.resize(points);
+  if (scratch.face_a.size() < face_room) {
+    scratch.face_a.resize(face_room);
+    scratch.face_b.resize(face_room);
+  }
+  HWY_DYNAMIC_DISPATCH(FractalRowKernel)
+  (request, scratch.acc.data(), scratch.face_a.data(), scratch.face_b.data());
+}
+
+int64_t compiled_targets() {
+  return HWY_TARGETS;
+}
+
+}  // namespace soltex::noise_kernels
+#endif  // HWY_ONCE
