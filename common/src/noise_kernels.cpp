@@ -262,6 +262,10 @@ void FractalRowKernel(const RowRequest& r, float* HWY_RESTRICT acc, float* HWY_R
   std::copy(acc, acc + r.size, r.out);
 }
 
+int64_t TargetOfKernel() {
+  return HWY_TARGET;
+}
+
 }  // namespace soltex::noise_kernels::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -269,6 +273,7 @@ HWY_AFTER_NAMESPACE();
 namespace soltex::noise_kernels {
 
 HWY_EXPORT(FractalRowKernel);
+HWY_EXPORT(TargetOfKernel);
 
 namespace {
 // Row scratch, reused across calls on the same thread.
@@ -298,6 +303,10 @@ void fractal_row(const RowRequest& request) {
 
 int64_t compiled_targets() {
   return HWY_TARGETS;
+}
+
+int64_t dispatched_target() {
+  return HWY_DYNAMIC_DISPATCH(TargetOfKernel)();
 }
 
 }  // namespace soltex::noise_kernels

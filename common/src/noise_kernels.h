@@ -49,4 +49,7 @@ void fractal_row(const RowRequest& request);
 // run each of them.
 int64_t compiled_targets();
 
+// The target fractal_row dispatches to now (one HWY_* bit).
+int64_t dispatched_target();
+
 }  // namespace soltex::noise_kernels
