@@ -59,7 +59,11 @@ float basis_noise(NoiseBasis basis, const glm::dvec3& t) noexcept {
   return basis == NoiseBasis::value ? value_noise(t) : gradient_noise(t);
 }
 
-float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept {
+namespace {
+
+template <NoiseBasis kBasis, bool kAbsolute>
+float fractal_sum_of(const OctavePlan& plan, const glm::dvec3& p) noexcept {
+  const NoiseTables& tables = noise_tables();
   float sum = 0.0f;
   for (int k = 0; k < plan.count; ++k) {
     const Octave& octave = plan.octaves[k];
@@ -67,11 +71,23 @@ float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept {
       sum += octave.mean_term;
       continue;
     }
-    float noise = basis_noise(plan.basis, p * octave.frequency);
-    if (plan.absolute) noise = std::fabs(noise);
+    const glm::dvec3 t = p * octave.frequency;
+    float noise = kBasis == NoiseBasis::value ? value_noise(tables, t) : gradient_noise(tables, t);
+    if constexpr (kAbsolute) noise = std::fabs(noise);
     sum += octave_term(octave, noise);
   }
   return sum;
+}
+
+}  // namespace
+
+float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept {
+  if (plan.basis == NoiseBasis::value) {
+    return plan.absolute ? fractal_sum_of<NoiseBasis::value, true>(plan, p)
+                         : fractal_sum_of<NoiseBasis::value, false>(plan, p);
+  }
+  return plan.absolute ? fractal_sum_of<NoiseBasis::gradient, true>(plan, p)
+                       : fractal_sum_of<NoiseBasis::gradient, false>(plan, p);
 }
 
 FractalRows::FractalRows(const OctavePlan& plan, std::span<const double> x)

@@ -58,27 +58,31 @@ HWY_INLINE hn::Vec<D> GradientComponent(D df, uint32_t packed,
   return hn::ConvertTo(df, hn::Sub(hn::BitCast(di, bits), hn::Set(di, 1)));
 }
 
-// perm[x + h] for the faces x of one vector. Faces of neighbouring cells are consecutive
-// lattice x values, so the lookups are mostly one contiguous load rather than a gather.
-template <class DI>
-class PermLookup {
+// table[x + h] for the faces x of one vector (table: NoiseTables::perm or ::value_at). Faces of
+// neighbouring cells are consecutive lattice x values, so the lookups are mostly one contiguous
+// load rather than a gather.
+template <class D>
+class FaceTable {
  public:
-  PermLookup(DI di, const int32_t* HWY_RESTRICT perm, const int32_t* HWY_RESTRICT face_x)
-      : di_(di),
-        perm_(perm),
-        x0_(face_x[0]),
-        x_(hn::LoadU(di, face_x)),
-        contiguous_(hn::AllTrue(di, hn::Eq(x_, hn::Iota(di, x0_)))) {}
+  using DI = hn::RebindToSigned<D>;
+  using T = hn::TFromD<D>;
 
-  HWY_INLINE hn::Vec<DI> operator()(int32_t h) const {
-    // face_x <= 256 and h <= 255 keep both forms inside the 512-entry table.
-    if (contiguous_) return hn::LoadU(di_, perm_ + x0_ + h);
-    return hn::GatherIndex(di_, perm_, hn::Add(x_, hn::Set(di_, h)));
+  FaceTable(D d, const T* HWY_RESTRICT table, const int32_t* HWY_RESTRICT face_x)
+      : d_(d),
+        table_(table),
+        x0_(face_x[0]),
+        x_(hn::LoadU(DI(), face_x)),
+        contiguous_(hn::AllTrue(DI(), hn::Eq(x_, hn::Iota(DI(), x0_)))) {}
+
+  HWY_INLINE hn::Vec<D> operator()(int32_t h) const {
+    // face_x <= 256 and h <= 255 keep both forms inside the 512-entry tables.
+    if (contiguous_) return hn::LoadU(d_, table_ + x0_ + h);
+    return hn::GatherIndex(d_, table_, hn::Add(x_, hn::Set(DI(), h)));
   }
 
  private:
-  DI di_;
-  const int32_t* HWY_RESTRICT perm_;
+  D d_;
+  const T* HWY_RESTRICT table_;
   int32_t x0_;
   hn::Vec<DI> x_;
   bool contiguous_;
@@ -89,12 +93,9 @@ template <class D>
 void ValueFaces(D df, const NoiseTables& tables, const int32_t* HWY_RESTRICT face_x,
                 std::size_t faces, const RowHashes& h, float fy, float fz,
                 float* HWY_RESTRICT edge) {
-  const hn::RebindToSigned<D> di;
-  const float* HWY_RESTRICT value = tables.value.data();
   const auto vy = hn::Set(df, fy), vz = hn::Set(df, fz);
   for (std::size_t f = 0; f < faces; f += hn::Lanes(df)) {
-    const PermLookup perm(di, tables.perm.data(), face_x + f);
-    const auto corner = [&](int32_t hh) { return hn::GatherIndex(df, value, perm(hh)); };
+    const FaceTable corner(df, tables.value_at.data(), face_x + f);
     const auto a = Lerp(corner(h.h00), corner(h.h10), vy);
     const auto b = Lerp(corner(h.h01), corner(h.h11), vy);
     hn::StoreU(Lerp(a, b, vz), df, edge + f);
@@ -118,7 +119,7 @@ void GradientFaces(D df, const NoiseTables& tables, const int32_t* HWY_RESTRICT 
                    hn::Mul(GradientComponent(df, detail::kPackedZ, h2), fz));
   };
   for (std::size_t f = 0; f < faces; f += hn::Lanes(df)) {
-    const PermLookup perm(di, tables.perm.data(), face_x + f);
+    const FaceTable perm(di, tables.perm.data(), face_x + f);
     // (perm[x + h] & 15) * 2: the shift GradientComponent needs.
     const auto hash = [&](int32_t h) {
       const VI masked = hn::And(perm(h), hn::Set(di, 15));

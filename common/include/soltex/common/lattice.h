@@ -23,10 +23,12 @@ struct LatticeSplit {
 inline LatticeSplit split_lattice(double t) noexcept {
   t = std::fabs(t) <= 1.7976931348623157e308 ? t : 0.0;  // NaN compares false
   const double whole = std::floor(t);
-  // Both steps are exact in binary floating point: whole / 256 scales by a power of two, and
-  // the difference of two integers that lies in [0, 256) is representable.
-  const double wrapped = whole - 256.0 * std::floor(whole * (1.0 / 256.0));
-  return {static_cast<int>(wrapped), static_cast<float>(t - whole)};
+  // floor(t) mod 256 is the low byte of the integer in two's complement, also for negative t.
+  // Every double of magnitude 2^62 or more is a multiple of 1024, so its cell is 0, and the
+  // 64-bit conversion is only made where it is exact.
+  const int64_t integer = std::fabs(whole) < 0x1p62 ? static_cast<int64_t>(whole) : 0;
+  // t - whole lies in [0, 1) and is exact in double; one rounding to float.
+  return {static_cast<int>(integer & 255), static_cast<float>(t - whole)};
 }
 
 // fract(u) = u - floor(u), exact for finite u; non-finite u gives 0.
