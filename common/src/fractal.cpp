@@ -21,11 +21,6 @@ float basis_mean(const OctavePlan& plan) {
   return plan.absolute ? kGradientAbsMean : 0.0f;
 }
 
-// One octave's contribution; noise_kernels.cpp computes the same expression for rows.
-inline float octave_term(const Octave& octave, float noise) {
-  return octave.noise_weight * noise + octave.mean_term;
-}
-
 }  // namespace
 
 int OctavePlan::evaluated_octaves() const {
@@ -49,7 +44,11 @@ OctavePlan plan_octaves(const FractalParams& params, double filter_width) {
         small ? params.scale * static_cast<double>(uint32_t{1} << k) : std::ldexp(params.scale, k);
     const float weight = small ? 1.0f / static_cast<float>(uint32_t{1} << k) : std::ldexp(1.0f, -k);
     const float alpha = 1.0f - smoothstep(0.25f, 0.5f, static_cast<float>(frequency * width));
-    plan.octaves[plan.count++] = {frequency, weight * alpha, weight * (1.0f - alpha) * mean};
+    const Octave octave{frequency, weight * alpha, weight * (1.0f - alpha) * mean};
+    plan.lane_frequency[plan.count] = octave.frequency;
+    plan.lane_noise_weight[plan.count] = octave.noise_weight;
+    plan.lane_mean_term[plan.count] = octave.mean_term;
+    plan.octaves[plan.count++] = octave;
     plan.total_weight += weight;
   }
   return plan;
@@ -61,8 +60,8 @@ float basis_noise(NoiseBasis basis, const glm::dvec3& t) noexcept {
 
 namespace {
 
-template <NoiseBasis kBasis, bool kAbsolute>
-float fractal_sum_of(const OctavePlan& plan, const glm::dvec3& p) noexcept {
+template <bool kAbsolute>
+float scalar_value_fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept {
   const NoiseTables& tables = noise_tables();
   float sum = 0.0f;
   for (int k = 0; k < plan.count; ++k) {
@@ -71,23 +70,21 @@ float fractal_sum_of(const OctavePlan& plan, const glm::dvec3& p) noexcept {
       sum += octave.mean_term;
       continue;
     }
-    const glm::dvec3 t = p * octave.frequency;
-    float noise = kBasis == NoiseBasis::value ? value_noise(tables, t) : gradient_noise(tables, t);
+    float noise = value_noise(tables, p * octave.frequency);
     if constexpr (kAbsolute) noise = std::fabs(noise);
-    sum += octave_term(octave, noise);
+    sum += octave.noise_weight * noise + octave.mean_term;
   }
   return sum;
 }
 
 }  // namespace
 
+// The gradient basis evaluates one octave per vector lane (noise_kernels.cpp) and adds the
+// terms in octave order, as the loop here does.
 float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept {
-  if (plan.basis == NoiseBasis::value) {
-    return plan.absolute ? fractal_sum_of<NoiseBasis::value, true>(plan, p)
-                         : fractal_sum_of<NoiseBasis::value, false>(plan, p);
-  }
-  return plan.absolute ? fractal_sum_of<NoiseBasis::gradient, true>(plan, p)
-                       : fractal_sum_of<NoiseBasis::gradient, false>(plan, p);
+  if (plan.basis == NoiseBasis::gradient) return noise_kernels::gradient_fractal_sum(plan, p);
+  return plan.absolute ? scalar_value_fractal_sum<true>(plan, p)
+                       : scalar_value_fractal_sum<false>(plan, p);
 }
 
 FractalRows::FractalRows(const OctavePlan& plan, std::span<const double> x)

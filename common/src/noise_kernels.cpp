@@ -20,6 +20,7 @@
 #include <cmath>
 #include <vector>
 
+#include "soltex/common/check.h"
 #include "soltex/common/gradient_noise.h"
 #include "soltex/common/lattice.h"
 #include "soltex/common/noise_tables.h"
@@ -41,9 +42,10 @@ HWY_INLINE V Lerp(V a, V b, V t) {
 }
 
 // fade(t) = t * t * t * (t * (t * 6 - 15) + 10), in gradient_noise.h's order.
-HWY_INLINE VF Fade(DF df, VF t) {
-  const VF poly = hn::Add(hn::Mul(t, hn::Sub(hn::Mul(t, hn::Set(df, 6.0f)), hn::Set(df, 15.0f))),
-                          hn::Set(df, 10.0f));
+template <class D, class V = hn::Vec<D>>
+HWY_INLINE V Fade(D df, V t) {
+  const V poly = hn::Add(hn::Mul(t, hn::Sub(hn::Mul(t, hn::Set(df, 6.0f)), hn::Set(df, 15.0f))),
+                         hn::Set(df, 10.0f));
   return hn::Mul(hn::Mul(hn::Mul(t, t), t), poly);
 }
 
@@ -102,37 +104,55 @@ void ValueFaces(D df, const NoiseTables& tables, const int32_t* HWY_RESTRICT fac
   }
 }
 
-// gradient_cell_edges' face, one face per lane: value(fx) = offset + slope * (fx - dx).
+// The y-z quantities of gradient_row, per lane.
 template <class D>
-void GradientFaces(D df, const NoiseTables& tables, const int32_t* HWY_RESTRICT face_x,
-                   std::size_t faces, const GradientRow& row, float* HWY_RESTRICT slope,
-                   float* HWY_RESTRICT offset) {
+struct GradientRowVec {
+  hn::Vec<D> fy0, fy1, fz0, fz1;  // fractions and fractions - 1
+  hn::Vec<D> v, w;                // fade(fy), fade(fz)
+};
+
+// gradient_cell_edges' face from its four corner hashes perm[x + h<dy><dz>] (unmasked):
+// value(fx) = offset + slope * (fx - dx).
+template <class D, class VI = hn::Vec<hn::RebindToSigned<D>>>
+HWY_INLINE void GradientFace(D df, const GradientRowVec<D>& row, VI p00, VI p10, VI p01, VI p11,
+                             hn::Vec<D>& slope, hn::Vec<D>& offset) {
   const hn::RebindToSigned<D> di;
-  const auto fy0 = hn::Set(df, row.fy), fy1 = hn::Set(df, row.fy - 1.0f);
-  const auto fz0 = hn::Set(df, row.fz), fz1 = hn::Set(df, row.fz - 1.0f);
-  const auto v = hn::Set(df, row.v), w = hn::Set(df, row.w);
-  using VI = hn::Vec<decltype(di)>;
   using V = hn::Vec<D>;
+  // (hash & 15) * 2: the shift GradientComponent needs.
+  const auto twice = [&](VI hash) {
+    const VI masked = hn::And(hash, hn::Set(di, 15));
+    return hn::Add(masked, masked);
+  };
+  const VI h00 = twice(p00), h10 = twice(p10), h01 = twice(p01), h11 = twice(p11);
   const auto gx = [&](VI h2) { return GradientComponent(df, detail::kPackedX, h2); };
   const auto dot = [&](VI h2, V fy, V fz) {
     return hn::Add(hn::Mul(GradientComponent(df, detail::kPackedY, h2), fy),
                    hn::Mul(GradientComponent(df, detail::kPackedZ, h2), fz));
   };
+  const V s0 = Lerp(gx(h00), gx(h10), row.v);
+  const V s1 = Lerp(gx(h01), gx(h11), row.v);
+  const V o0 = Lerp(dot(h00, row.fy0, row.fz0), dot(h10, row.fy1, row.fz0), row.v);
+  const V o1 = Lerp(dot(h01, row.fy0, row.fz1), dot(h11, row.fy1, row.fz1), row.v);
+  slope = Lerp(s0, s1, row.w);
+  offset = Lerp(o0, o1, row.w);
+}
+
+// gradient_cell_edges' face, one face per lane.
+template <class D>
+void GradientFaces(D df, const NoiseTables& tables, const int32_t* HWY_RESTRICT face_x,
+                   std::size_t faces, const GradientRow& row, float* HWY_RESTRICT slope,
+                   float* HWY_RESTRICT offset) {
+  const hn::RebindToSigned<D> di;
+  const GradientRowVec<D> r{hn::Set(df, row.fy), hn::Set(df, row.fy - 1.0f),
+                            hn::Set(df, row.fz), hn::Set(df, row.fz - 1.0f),
+                            hn::Set(df, row.v),  hn::Set(df, row.w)};
   for (std::size_t f = 0; f < faces; f += hn::Lanes(df)) {
     const FaceTable perm(di, tables.perm.data(), face_x + f);
-    // (perm[x + h] & 15) * 2: the shift GradientComponent needs.
-    const auto hash = [&](int32_t h) {
-      const VI masked = hn::And(perm(h), hn::Set(di, 15));
-      return hn::Add(masked, masked);
-    };
-    const VI h00 = hash(row.hashes.h00), h10 = hash(row.hashes.h10);
-    const VI h01 = hash(row.hashes.h01), h11 = hash(row.hashes.h11);
-    const V s0 = Lerp(gx(h00), gx(h10), v);
-    const V s1 = Lerp(gx(h01), gx(h11), v);
-    const V o0 = Lerp(dot(h00, fy0, fz0), dot(h10, fy1, fz0), v);
-    const V o1 = Lerp(dot(h01, fy0, fz1), dot(h11, fy1, fz1), v);
-    hn::StoreU(Lerp(s0, s1, w), df, slope + f);
-    hn::StoreU(Lerp(o0, o1, w), df, offset + f);
+    hn::Vec<D> face_slope, face_offset;
+    GradientFace(df, r, perm(row.hashes.h00), perm(row.hashes.h10), perm(row.hashes.h01),
+                 perm(row.hashes.h11), face_slope, face_offset);
+    hn::StoreU(face_slope, df, slope + f);
+    hn::StoreU(face_offset, df, offset + f);
   }
 }
 
@@ -263,6 +283,86 @@ void FractalRowKernel(const RowRequest& r, float* HWY_RESTRICT acc, float* HWY_R
   std::copy(acc, acc + r.size, r.out);
 }
 
+// ---- One point, one octave per lane ------------------------------------------------------
+//
+// fractal_sum's octaves are independent noise evaluations at one point: lanes of doubles carry
+// the octaves' lattice coordinates, and lanes of floats (as many) their noise.
+
+template <class D64>
+struct SplitVec {
+  hn::Vec<hn::Rebind<int32_t, D64>> cell;
+  hn::Vec<hn::Rebind<float, D64>> frac;
+};
+
+// split_lattice per lane: the same cell and fraction. floor(t) mod 256 comes from
+// whole - 256 * floor(whole / 256), exact in double, so no 64-bit integer conversion is needed.
+template <class D64>
+HWY_INLINE SplitVec<D64> SplitLattice(D64 dd, hn::Vec<D64> t) {
+  t = hn::IfThenElseZero(hn::Lt(hn::Abs(t), hn::Set(dd, 0x1p62)), t);
+  const auto whole = hn::Floor(t);
+  const auto high = hn::Floor(hn::Mul(whole, hn::Set(dd, 1.0 / 256.0)));
+  const auto wrapped = hn::Sub(whole, hn::Mul(hn::Set(dd, 256.0), high));
+  return {hn::DemoteTo(hn::Rebind<int32_t, D64>(), wrapped),
+          hn::DemoteTo(hn::Rebind<float, D64>(), hn::Sub(t, whole))};
+}
+
+// Gradient noise at lattice points (tx, ty, tz), one per lane: gradient_noise's operations.
+template <class D64>
+HWY_INLINE hn::Vec<hn::Rebind<float, D64>> GradientNoise(D64 dd, hn::Vec<D64> tx, hn::Vec<D64> ty,
+                                                         hn::Vec<D64> tz) {
+  using DF32 = hn::Rebind<float, D64>;
+  using DI32 = hn::Rebind<int32_t, D64>;
+  using VI = hn::Vec<DI32>;
+  const DF32 df;
+  const DI32 di;
+  const int32_t* HWY_RESTRICT perm = noise_tables().perm.data();
+  const SplitVec<D64> x = SplitLattice(dd, tx), y = SplitLattice(dd, ty), z = SplitLattice(dd, tz);
+  const auto p = [&](VI cell, VI h) { return hn::GatherIndex(di, perm, hn::Add(cell, h)); };
+  const VI one = hn::Set(di, 1);
+  // row_hashes
+  const VI pz0 = hn::GatherIndex(di, perm, z.cell), pz1 = p(z.cell, one);
+  const VI y1 = hn::Add(y.cell, one);
+  const VI h00 = p(y.cell, pz0), h10 = p(y1, pz0), h01 = p(y.cell, pz1), h11 = p(y1, pz1);
+  const auto one_f = hn::Set(df, 1.0f);
+  const GradientRowVec<DF32> row{y.frac,           hn::Sub(y.frac, one_f),
+                                 z.frac,           hn::Sub(z.frac, one_f),
+                                 Fade(df, y.frac), Fade(df, z.frac)};
+  const VI x1 = hn::Add(x.cell, one);
+  hn::Vec<DF32> slope0, offset0, slope1, offset1;
+  GradientFace(df, row, p(x.cell, h00), p(x.cell, h10), p(x.cell, h01), p(x.cell, h11), slope0,
+               offset0);
+  GradientFace(df, row, p(x1, h00), p(x1, h10), p(x1, h01), p(x1, h11), slope1, offset1);
+  // gradient_cell_finish
+  const auto a0 = hn::Add(offset0, hn::Mul(slope0, x.frac));
+  const auto a1 = hn::Add(offset1, hn::Mul(slope1, hn::Sub(x.frac, one_f)));
+  return Lerp(a0, a1, Fade(df, x.frac));
+}
+
+// fractal_sum in the gradient basis: the octave terms in lanes, then summed in octave order as
+// the definition does.
+float GradientFractalSumKernel(const OctavePlan& plan, const glm::dvec3& point) {
+  using D64 = hn::ScalableTag<double>;
+  const D64 dd;
+  const hn::Rebind<float, D64> df;
+  static_assert(OctavePlan::kLaneRoom >= SpecLimits::kMaxOctaveCount + kPad);
+  HWY_ALIGN float term[OctavePlan::kLaneRoom];
+  const std::size_t count = static_cast<std::size_t>(plan.count);
+  for (std::size_t k = 0; k < count; k += hn::Lanes(dd)) {
+    const auto f = hn::Load(dd, plan.lane_frequency.data() + k);
+    auto noise = GradientNoise(dd, hn::Mul(hn::Set(dd, point.x), f),
+                               hn::Mul(hn::Set(dd, point.y), f), hn::Mul(hn::Set(dd, point.z), f));
+    if (plan.absolute) noise = hn::Abs(noise);
+    const auto w = hn::Load(df, plan.lane_noise_weight.data() + k);
+    const auto m = hn::Load(df, plan.lane_mean_term.data() + k);
+    // octave_term; a faded-out octave adds its mean alone, as fractal_sum's definition says.
+    const auto t = hn::IfThenElse(hn::Eq(w, hn::Zero(df)), m, hn::Add(hn::Mul(w, noise), m));
+    hn::Store(t, df, term + k);
+  }
+  float sum = 0.0f;
+  for (std::size_t k = 0; k < count; ++k) sum += term[k];
+  return sum;
+}
+
 int64_t TargetOfKernel() {
   return HWY_TARGET;
 }
@@ -275,6 +375,7 @@ namespace soltex::noise_kernels {
 
 HWY_EXPORT(FractalRowKernel);
 HWY_EXPORT(TargetOfKernel);
+HWY_EXPORT(GradientFractalSumKernel);
 
 namespace {
 // Row scratch, reused across calls on the same thread.
@@ -304,6 +405,15 @@ void fractal_row(const RowRequest& request) {
 
 int64_t compiled_targets() {
   return HWY_TARGETS;
+}
+
+float gradient_fractal_sum(const OctavePlan& plan, const glm::dvec3& p) {
+  SOLTEX_DCHECK(plan.basis == NoiseBasis::gradient);
+  return HWY_STATIC_DISPATCH(GradientFractalSumKernel)(plan, p);
+}
+
+float gradient_fractal_sum_dispatched(const OctavePlan& plan, const glm::dvec3& p) {
+  return HWY_DYNAMIC_DISPATCH(GradientFractalSumKernel)(plan, p);
 }
 
 int64_t dispatched_target() {

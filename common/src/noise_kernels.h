@@ -45,6 +45,15 @@ struct RowRequest {
 // out[i] = fractal_sum(plan, (x[i], y, z)) bit for bit.
 void fractal_row(const RowRequest& request);
 
+// fractal_sum(plan, p) for a gradient-basis plan, one octave per lane, compiled for the build's
+// baseline target and called without run-time dispatch (one point is too small a batch to
+// dispatch per call). The value basis stays scalar: its corner lookups are two dependent table
+// reads per lane, and measured slower as gathers than as scalar loads.
+float gradient_fractal_sum(const OctavePlan& plan, const glm::dvec3& p);
+
+// The same through run-time dispatch, so that tests can run it on every target.
+float gradient_fractal_sum_dispatched(const OctavePlan& plan, const glm::dvec3& p);
+
 // The Highway targets compiled into the kernels (a HWY_TARGETS-style bit mask), for tests that
 // run each of them.
 int64_t compiled_targets();

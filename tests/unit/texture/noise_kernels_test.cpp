@@ -34,6 +34,22 @@ std::vector<int64_t> targets_to_run() {
   return targets;
 }
 
+// fractal_sum's definition, octave by octave through the scalar noise functions.
+float scalar_fractal_sum(const OctavePlan& plan, const glm::dvec3& p) {
+  float sum = 0.0f;
+  for (int k = 0; k < plan.count; ++k) {
+    const Octave& octave = plan.octaves[k];
+    if (octave.noise_weight == 0.0f) {
+      sum += octave.mean_term;
+      continue;
+    }
+    float noise = basis_noise(plan.basis, p * octave.frequency);
+    if (plan.absolute) noise = std::fabs(noise);
+    sum += octave.noise_weight * noise + octave.mean_term;
+  }
+  return sum;
+}
+
 bool same_bits(float a, float b) {
   return std::memcmp(&a, &b, sizeof a) == 0;
 }
@@ -95,14 +111,37 @@ TEST(NoiseKernels, EveryTargetMatchesTheScalarPathBitForBit) {
             for (const auto& [y, z] : yz) {
               fractal_rows.sum(y, z, out);
               for (std::size_t i = 0; i < x.size(); ++i) {
-                const float expected = fractal_sum(plan, glm::dvec3(x[i], y, z));
+                const glm::dvec3 p(x[i], y, z);
+                const float expected = scalar_fractal_sum(plan, p);
                 ASSERT_TRUE(same_bits(out[i], expected))
-                    << hwy::TargetName(target) << " basis " << int(basis) << " x " << x[i] << " y "
-                    << y << " z " << z << ": " << out[i] << " != " << expected;
+                    << "row " << hwy::TargetName(target) << " basis " << int(basis) << " x " << x[i]
+                    << " y " << y << " z " << z << ": " << out[i] << " != " << expected;
+                if (basis != NoiseBasis::gradient) continue;
+                const float point = noise_kernels::gradient_fractal_sum_dispatched(plan, p);
+                ASSERT_TRUE(same_bits(point, expected))
+                    << "point " << hwy::TargetName(target) << " basis " << int(basis) << " x "
+                    << x[i] << " y " << y << " z " << z << ": " << point << " != " << expected;
               }
             }
           }
         }
+      }
+    }
+  }
+}
+
+TEST(NoiseKernels, SinglePointFractalIsTheScalarDefinition) {
+  // fractal_sum runs the build's own target without dispatch; up to the 16-octave limit, so
+  // that octaves fill more than one vector.
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1e3, 1e3);
+  for (NoiseBasis basis : {NoiseBasis::value, NoiseBasis::gradient}) {
+    for (bool signed_octaves : {false, true}) {
+      const OctavePlan plan = plan_octaves(params(basis, signed_octaves, -3, 12), 0.01);
+      for (int i = 0; i < 2000; ++i) {
+        const glm::dvec3 p(u(rng), u(rng), u(rng));
+        ASSERT_TRUE(same_bits(fractal_sum(plan, p), scalar_fractal_sum(plan, p)))
+            << p.x << " " << p.y << " " << p.z;
       }
     }
   }

@@ -35,7 +35,13 @@ struct OctavePlan {
   bool absolute = true;  // fold each octave with |.| (gradient basis only)
   int count = 0;
   std::array<Octave, SpecLimits::kMaxOctaveCount> octaves{};
-  float total_weight = 0.0f;      // sum of (1/2)^k: the largest possible raw sum for value noise
+  float total_weight = 0.0f;  // sum of (1/2)^k: the largest possible raw sum for value noise
+  // The octaves again, one array per field and zero-padded past `count`, for the single-point
+  // kernel, which loads them as vectors (one octave per lane).
+  static constexpr int kLaneRoom = 2 * SpecLimits::kMaxOctaveCount;
+  alignas(64) std::array<double, kLaneRoom> lane_frequency{};
+  alignas(64) std::array<float, kLaneRoom> lane_noise_weight{};
+  alignas(64) std::array<float, kLaneRoom> lane_mean_term{};
   int evaluated_octaves() const;  // octaves with a nonzero noise weight
 };
 

@@ -21,14 +21,14 @@ struct LatticeSplit {
 // Non-finite t (NaN, +-Inf) is treated as 0: a defined value, never an out-of-range index.
 // Branch-free (a select, not a jump) so that loops over many coordinates vectorise.
 inline LatticeSplit split_lattice(double t) noexcept {
-  t = std::fabs(t) <= 1.7976931348623157e308 ? t : 0.0;  // NaN compares false
+  // Every double of magnitude 2^62 or more is a multiple of 1024: cell 0, fraction 0, which is
+  // also what non-finite t gets. One select (NaN compares false) keeps the rest exact: the
+  // 64-bit conversion of floor(t) is in range, floor(t) mod 256 is the low byte of that
+  // integer in two's complement (also for negative t), and t - floor(t), in [0, 1), is exact
+  // in double before its one rounding to float.
+  t = std::fabs(t) < 0x1p62 ? t : 0.0;
   const double whole = std::floor(t);
-  // floor(t) mod 256 is the low byte of the integer in two's complement, also for negative t.
-  // Every double of magnitude 2^62 or more is a multiple of 1024, so its cell is 0, and the
-  // 64-bit conversion is only made where it is exact.
-  const int64_t integer = std::fabs(whole) < 0x1p62 ? static_cast<int64_t>(whole) : 0;
-  // t - whole lies in [0, 1) and is exact in double; one rounding to float.
-  return {static_cast<int>(integer & 255), static_cast<float>(t - whole)};
+  return {static_cast<int>(static_cast<int64_t>(whole) & 255), static_cast<float>(t - whole)};
 }
 
 // fract(u) = u - floor(u), exact for finite u; non-finite u gives 0.
