@@ -113,6 +113,10 @@ FractalRows::FractalRows(const OctavePlan& plan, std::span<const double> x)
       columns.face_lo[i] = static_cast<int32_t>(columns.face_x.size() - 1);
       columns.face_x.push_back(split.cell + 1);
     }
+    // Padding points repeat the last point's faces, so that a final partial vector still
+    // finds its faces by lane lookup rather than by gather.
+    std::fill(columns.face_lo.begin() + static_cast<std::ptrdiff_t>(size_), columns.face_lo.end(),
+              columns.face_lo[size_ - 1]);
     columns.faces = columns.face_x.size();
     // Padding continues the last face's x (up to 256, the table's reach) so that a final
     // partial vector of consecutive faces still loads its hashes contiguously.
