@@ -6,8 +6,8 @@
 // Splitting a texture-space coordinate into an integer lattice cell and a fraction.
 //
 // Every split goes through floor() in double precision, never an int cast ((int)-0.5 == 0),
-// and the cell is reduced by the lattice period before it is ever converted to int, so any
-// finite input, however large, yields a valid table index.
+// and only a floor the 64-bit integers hold exactly is converted before the reduction by the
+// lattice period, so any finite input, however large, yields a valid table index.
 namespace soltex {
 
 // The noise lattices repeat every 256 cells along each axis (256-entry tables).
