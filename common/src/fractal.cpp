@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "noise_kernels.h"
+#include "soltex/common/check.h"
 #include "soltex/common/gradient_noise.h"
 #include "soltex/common/value_noise.h"
 
@@ -17,104 +19,6 @@ float smoothstep(float lo, float hi, float x) {
 float basis_mean(const OctavePlan& plan) {
   if (plan.basis == NoiseBasis::value) return noise_tables().value_mean;
   return plan.absolute ? kGradientAbsMean : 0.0f;
-}
-
-// One octave's contribution, the same expression in the point and row paths.
-inline float octave_term(const Octave& octave, float noise) {
-  return octave.noise_weight * noise + octave.mean_term;
-}
-
-// Per-run cell coefficients of one row, reused across calls on the same thread.
-struct RunScratch {
-  std::vector<float> a, b, c, d;
-
-  void reserve(std::size_t runs) {
-    if (a.size() < runs) {
-      a.resize(runs);
-      b.resize(runs);
-      c.resize(runs);
-      d.resize(runs);
-    }
-  }
-};
-
-RunScratch& run_scratch(std::size_t runs) {
-  thread_local RunScratch scratch;
-  scratch.reserve(runs);
-  return scratch;
-}
-
-// The loops below take __restrict pointers: without them the compiler must assume a store to
-// the coefficient arrays may change the noise tables and refuses to vectorise the gathers.
-
-void value_runs(const float* __restrict value, const int32_t* __restrict perm,
-                const int32_t* __restrict run_cell, std::size_t runs, const RowHashes& hashes,
-                float fy, float fz, float* __restrict e0, float* __restrict e1) {
-  for (std::size_t r = 0; r < runs; ++r) {
-    const ValueCellEdges edges = value_cell_edges(value, perm, run_cell[r], hashes, fy, fz);
-    e0[r] = edges.e0;
-    e1[r] = edges.e1;
-  }
-}
-
-template <bool kAbsolute>
-void value_finish(const Octave& octave, const int32_t* __restrict run_of,
-                  const float* __restrict frac, const float* __restrict e0,
-                  const float* __restrict e1, std::size_t n, float* __restrict acc) {
-  const Octave o = octave;
-  for (std::size_t i = 0; i < n; ++i) {
-    const int32_t r = run_of[i];
-    float noise = value_cell_finish(e0[r], e1[r], frac[i]);
-    if constexpr (kAbsolute) noise = std::fabs(noise);
-    acc[i] += octave_term(o, noise);
-  }
-}
-
-void gradient_runs(const NoiseTables& tables, const int32_t* __restrict run_cell, std::size_t runs,
-                   const GradientRow& row, float* __restrict slope0, float* __restrict offset0,
-                   float* __restrict slope1, float* __restrict offset1) {
-  for (std::size_t r = 0; r < runs; ++r) {
-    const GradientCellEdges e = gradient_cell_edges(tables, run_cell[r], row);
-    slope0[r] = e.slope0;
-    offset0[r] = e.offset0;
-    slope1[r] = e.slope1;
-    offset1[r] = e.offset1;
-  }
-}
-
-template <bool kAbsolute>
-void gradient_finish(const Octave& octave, const int32_t* __restrict run_of,
-                     const float* __restrict frac, const float* __restrict slope0,
-                     const float* __restrict offset0, const float* __restrict slope1,
-                     const float* __restrict offset1, std::size_t n, float* __restrict acc) {
-  const Octave o = octave;
-  for (std::size_t i = 0; i < n; ++i) {
-    const int32_t r = run_of[i];
-    float noise = gradient_cell_finish(slope0[r], offset0[r], slope1[r], offset1[r], frac[i]);
-    if constexpr (kAbsolute) noise = std::fabs(noise);
-    acc[i] += octave_term(o, noise);
-  }
-}
-
-// One octave along one row: corner work per cell run, then the finish per point.
-template <bool kAbsolute>
-void add_octave(NoiseBasis basis, const Octave& octave, const int32_t* run_of, const float* frac,
-                const int32_t* run_cell, std::size_t runs, std::size_t n, double y, double z,
-                float* acc) {
-  const NoiseTables& tables = noise_tables();
-  const LatticeSplit sy = split_lattice(y * octave.frequency);
-  const LatticeSplit sz = split_lattice(z * octave.frequency);
-  RunScratch& s = run_scratch(runs);
-  if (basis == NoiseBasis::value) {
-    value_runs(tables.value.data(), tables.perm.data(), run_cell, runs,
-               row_hashes(tables, sy.cell, sz.cell), sy.frac, sz.frac, s.a.data(), s.b.data());
-    value_finish<kAbsolute>(octave, run_of, frac, s.a.data(), s.b.data(), n, acc);
-  } else {
-    gradient_runs(tables, run_cell, runs, gradient_row(tables, sy, sz), s.a.data(), s.b.data(),
-                  s.c.data(), s.d.data());
-    gradient_finish<kAbsolute>(octave, run_of, frac, s.a.data(), s.b.data(), s.c.data(), s.d.data(),
-                               n, acc);
-  }
 }
 
 }  // namespace
@@ -140,7 +44,11 @@ OctavePlan plan_octaves(const FractalParams& params, double filter_width) {
         small ? params.scale * static_cast<double>(uint32_t{1} << k) : std::ldexp(params.scale, k);
     const float weight = small ? 1.0f / static_cast<float>(uint32_t{1} << k) : std::ldexp(1.0f, -k);
     const float alpha = 1.0f - smoothstep(0.25f, 0.5f, static_cast<float>(frequency * width));
-    plan.octaves[plan.count++] = {frequency, weight * alpha, weight * (1.0f - alpha) * mean};
+    const Octave octave{frequency, weight * alpha, weight * (1.0f - alpha) * mean};
+    plan.lane_frequency[plan.count] = octave.frequency;
+    plan.lane_noise_weight[plan.count] = octave.noise_weight;
+    plan.lane_mean_term[plan.count] = octave.mean_term;
+    plan.octaves[plan.count++] = octave;
     plan.total_weight += weight;
   }
   return plan;
@@ -150,7 +58,11 @@ float basis_noise(NoiseBasis basis, const glm::dvec3& t) noexcept {
   return basis == NoiseBasis::value ? value_noise(t) : gradient_noise(t);
 }
 
-float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept {
+namespace {
+
+template <bool kAbsolute>
+float scalar_value_fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept {
+  const NoiseTables& tables = noise_tables();
   float sum = 0.0f;
   for (int k = 0; k < plan.count; ++k) {
     const Octave& octave = plan.octaves[k];
@@ -158,54 +70,70 @@ float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept {
       sum += octave.mean_term;
       continue;
     }
-    float noise = basis_noise(plan.basis, p * octave.frequency);
-    if (plan.absolute) noise = std::fabs(noise);
-    sum += octave_term(octave, noise);
+    float noise = value_noise(tables, p * octave.frequency);
+    if constexpr (kAbsolute) noise = std::fabs(noise);
+    sum += octave.noise_weight * noise + octave.mean_term;
   }
   return sum;
 }
 
+}  // namespace
+
+// The gradient basis evaluates one octave per vector lane (noise_kernels.cpp) and adds the
+// terms in octave order, as the loop here does.
+float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept {
+  if (plan.basis == NoiseBasis::gradient) return noise_kernels::gradient_fractal_sum(plan, p);
+  return plan.absolute ? scalar_value_fractal_sum<true>(plan, p)
+                       : scalar_value_fractal_sum<false>(plan, p);
+}
+
 FractalRows::FractalRows(const OctavePlan& plan, std::span<const double> x)
     : plan_(plan), size_(x.size()), octaves_(static_cast<std::size_t>(plan.count)) {
-  std::vector<int32_t> cell(size_);
+  const std::size_t points = noise_kernels::padded(size_);
   for (int k = 0; k < plan_.count; ++k) {
     OctaveColumns& columns = octaves_[static_cast<std::size_t>(k)];
-    if (plan_.octaves[k].noise_weight == 0.0f) continue;  // faded out: no noise to evaluate
+    if (plan_.octaves[k].noise_weight == 0.0f || size_ == 0) continue;  // no noise to evaluate
     const double frequency = plan_.octaves[k].frequency;
-    columns.frac.resize(size_);
-    columns.run_of.resize(size_);
+    columns.frac.assign(points, 0.0f);
+    columns.face_lo.assign(points, 0);
+    // Each cell contributes its left face (unless the previous point's cell ended on it) and
+    // its right face, so a point's right face always directly follows its left one.
+    int previous_cell = -1;
     for (std::size_t i = 0; i < size_; ++i) {
       const LatticeSplit split = split_lattice(x[i] * frequency);
-      cell[i] = split.cell;
       columns.frac[i] = split.frac;
+      if (split.cell == previous_cell) {
+        columns.face_lo[i] = columns.face_lo[i - 1];
+        continue;
+      }
+      previous_cell = split.cell;
+      if (columns.face_x.empty() || columns.face_x.back() != split.cell) {
+        columns.face_x.push_back(split.cell);
+      }
+      columns.face_lo[i] = static_cast<int32_t>(columns.face_x.size() - 1);
+      columns.face_x.push_back(split.cell + 1);
     }
-    for (std::size_t i = 0; i < size_; ++i) {
-      if (i == 0 || cell[i] != cell[i - 1]) columns.run_cell.push_back(cell[i]);
-      columns.run_of[i] = static_cast<int32_t>(columns.run_cell.size() - 1);
+    // Padding points repeat the last point's faces, so that a final partial vector still
+    // finds its faces by lane lookup rather than by gather.
+    std::fill(columns.face_lo.begin() + static_cast<std::ptrdiff_t>(size_), columns.face_lo.end(),
+              columns.face_lo[size_ - 1]);
+    columns.faces = columns.face_x.size();
+    // Padding continues the last face's x (up to 256, the table's reach) so that a final
+    // partial vector of consecutive faces still loads its hashes contiguously.
+    while (columns.face_x.size() < noise_kernels::padded(columns.faces)) {
+      columns.face_x.push_back(std::min(columns.face_x.back() + 1, kLatticePeriod));
     }
   }
 }
 
 void FractalRows::sum(double y, double z, std::span<float> out) const {
-  float* acc = out.data();
-  std::fill(acc, acc + size_, 0.0f);
-  for (int k = 0; k < plan_.count; ++k) {
-    const Octave& octave = plan_.octaves[k];
-    if (octave.noise_weight == 0.0f) {
-      for (std::size_t i = 0; i < size_; ++i) acc[i] += octave.mean_term;
-      continue;
-    }
-    const OctaveColumns& c = octaves_[static_cast<std::size_t>(k)];
-    const std::size_t runs = c.run_cell.size();
-    const int32_t* run_of = c.run_of.data();
-    const float* frac = c.frac.data();
-    const int32_t* run_cell = c.run_cell.data();
-    if (plan_.absolute) {
-      add_octave<true>(plan_.basis, octave, run_of, frac, run_cell, runs, size_, y, z, acc);
-    } else {
-      add_octave<false>(plan_.basis, octave, run_of, frac, run_cell, runs, size_, y, z, acc);
-    }
+  SOLTEX_DCHECK(out.size() >= size_);
+  std::array<noise_kernels::OctaveColumnsView, SpecLimits::kMaxOctaveCount> views{};
+  for (std::size_t k = 0; k < octaves_.size(); ++k) {
+    const OctaveColumns& c = octaves_[k];
+    views[k] = {c.frac.data(), c.face_lo.data(), c.face_x.data(), c.faces};
   }
+  noise_kernels::fractal_row({&plan_, views.data(), size_, y, z, out.data()});
 }
 
 void fractal_sum_row(const OctavePlan& plan, std::span<const double> x, double y, double z,

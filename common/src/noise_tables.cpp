@@ -3,6 +3,8 @@
 #include <numeric>
 #include <utility>
 
+#include "soltex/common/gradient_noise.h"
+
 namespace soltex {
 namespace {
 
@@ -49,7 +51,14 @@ NoiseTables make_noise_tables(uint64_t seed) {
   std::array<uint8_t, 256> perm{};
   std::iota(perm.begin(), perm.end(), 0);
   for (uint32_t i = 255; i > 0; --i) std::swap(perm[i], perm[random.below(i + 1)]);
-  for (int i = 0; i < 512; ++i) tables.perm[i] = perm[i & 255];
+  for (int i = 0; i < 512; ++i) {
+    tables.perm[i] = perm[i & 255];
+    tables.value_at[i] = tables.value[tables.perm[i]];
+    const int h = tables.perm[i] & 15;
+    tables.gradient_at[i] = {static_cast<float>(detail::kGradX[h]),
+                             static_cast<float>(detail::kGradY[h]),
+                             static_cast<float>(detail::kGradZ[h]), 0.0f};
+  }
   return tables;
 }
 

@@ -35,7 +35,13 @@ struct OctavePlan {
   bool absolute = true;  // fold each octave with |.| (gradient basis only)
   int count = 0;
   std::array<Octave, SpecLimits::kMaxOctaveCount> octaves{};
-  float total_weight = 0.0f;      // sum of (1/2)^k: the largest possible raw sum for value noise
+  float total_weight = 0.0f;  // sum of (1/2)^k: the largest possible raw sum for value noise
+  // The octaves again, one array per field and zero-padded past `count`, for the single-point
+  // kernel, which loads them as vectors (one octave per lane).
+  static constexpr int kLaneRoom = 2 * SpecLimits::kMaxOctaveCount;
+  alignas(64) std::array<double, kLaneRoom> lane_frequency{};
+  alignas(64) std::array<float, kLaneRoom> lane_noise_weight{};
+  alignas(64) std::array<float, kLaneRoom> lane_mean_term{};
   int evaluated_octaves() const;  // octaves with a nonzero noise weight
 };
 
@@ -46,10 +52,11 @@ OctavePlan plan_octaves(const FractalParams& params, double filter_width);
 float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept;
 
 // Fractal sums over rows of points that share their x coordinates (every row of a grid).
-// The x half of the work — lattice cells, fractions and the runs of points that fall into one
-// cell, per octave — is done once here; sum() then does, per row and octave, the corner work
-// once per cell run and the finish once per point, in loops the compiler vectorises. The
-// results equal fractal_sum at (x[i], y, z) bit for bit.
+// The x half of the work — lattice cells, fractions, and per octave the list of lattice x-faces
+// the points' cells touch — is done once here; sum() then evaluates, per row and octave, the
+// y-z noise once per face and the finish once per point, in vector kernels chosen at run time
+// for the CPU (common/src/noise_kernels.h). The results equal fractal_sum at (x[i], y, z) bit
+// for bit on every target.
 class FractalRows {
  public:
   FractalRows(const OctavePlan& plan, std::span<const double> x);
@@ -60,10 +67,12 @@ class FractalRows {
   void sum(double y, double z, std::span<float> out) const;
 
  private:
+  // Arrays padded with valid entries to the widest vector (see noise_kernels.h).
   struct OctaveColumns {
-    std::vector<int32_t> run_of;    // per point: index of its cell run
-    std::vector<float> frac;        // per point: x fraction
-    std::vector<int32_t> run_cell;  // per run: lattice cell along x, in [0, 255]
+    std::vector<float> frac;       // per point: x fraction
+    std::vector<int32_t> face_lo;  // per point: its cell's left face; the right one is next
+    std::vector<int32_t> face_x;   // per face: lattice x in [0, 256]
+    std::size_t faces = 0;         // unpadded face count
   };
 
   OctavePlan plan_;

@@ -26,7 +26,7 @@ inline constexpr int kGradY[16] = {1, 1, -1, -1, 0, 0, 0, 0, 1, -1, 1, -1, 1, 1,
 inline constexpr int kGradZ[16] = {0, 0, 0, 0, 1, 1, -1, -1, 1, 1, -1, -1, 0, 0, 1, -1};
 
 // Each table packed two bits per entry (component + 1), so a lookup is a shift and a mask:
-// vectorised loops then need no gather for the gradients.
+// the vector kernels then need no gather for the gradients.
 constexpr uint32_t pack_gradients(const int (&component)[16]) {
   uint32_t packed = 0;
   for (int h = 0; h < 16; ++h) packed |= static_cast<uint32_t>(component[h] + 1) << (2 * h);
@@ -36,9 +36,6 @@ inline constexpr uint32_t kPackedX = pack_gradients(kGradX);
 inline constexpr uint32_t kPackedY = pack_gradients(kGradY);
 inline constexpr uint32_t kPackedZ = pack_gradients(kGradZ);
 
-inline float gradient_component(uint32_t packed, int h) {
-  return static_cast<float>(static_cast<int>((packed >> (2 * h)) & 3u) - 1);
-}
 }  // namespace detail
 
 // What a row along x shares: the y-z hashes, fractions and fade weights.
@@ -60,21 +57,20 @@ struct GradientCellEdges {
 
 inline GradientCellEdges gradient_cell_edges(const NoiseTables& tables, int ix,
                                              const GradientRow& row) noexcept {
-  const int32_t* p = tables.perm.data();
+  const LatticeGradient* g = tables.gradient_at.data();
   const float fy0 = row.fy, fy1 = row.fy - 1.0f;
   const float fz0 = row.fz, fz1 = row.fz - 1.0f;
   const auto face = [&](int x, float& slope, float& offset) {
-    const int h00 = p[x + row.hashes.h00] & 15, h10 = p[x + row.hashes.h10] & 15;
-    const int h01 = p[x + row.hashes.h01] & 15, h11 = p[x + row.hashes.h11] & 15;
-    const auto gx = [](int h) { return detail::gradient_component(detail::kPackedX, h); };
-    const auto gy = [](int h) { return detail::gradient_component(detail::kPackedY, h); };
-    const auto gz = [](int h) { return detail::gradient_component(detail::kPackedZ, h); };
-    const float o00 = gy(h00) * fy0 + gz(h00) * fz0;
-    const float o10 = gy(h10) * fy1 + gz(h10) * fz0;
-    const float o01 = gy(h01) * fy0 + gz(h01) * fz1;
-    const float o11 = gy(h11) * fy1 + gz(h11) * fz1;
-    const float s0 = gx(h00) + row.v * (gx(h10) - gx(h00));
-    const float s1 = gx(h01) + row.v * (gx(h11) - gx(h01));
+    const LatticeGradient& g00 = g[x + row.hashes.h00];
+    const LatticeGradient& g10 = g[x + row.hashes.h10];
+    const LatticeGradient& g01 = g[x + row.hashes.h01];
+    const LatticeGradient& g11 = g[x + row.hashes.h11];
+    const float o00 = g00.y * fy0 + g00.z * fz0;
+    const float o10 = g10.y * fy1 + g10.z * fz0;
+    const float o01 = g01.y * fy0 + g01.z * fz1;
+    const float o11 = g11.y * fy1 + g11.z * fz1;
+    const float s0 = g00.x + row.v * (g10.x - g00.x);
+    const float s1 = g01.x + row.v * (g11.x - g01.x);
     const float o0 = o00 + row.v * (o10 - o00);
     const float o1 = o01 + row.v * (o11 - o01);
     slope = s0 + row.w * (s1 - s0);

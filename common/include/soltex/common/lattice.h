@@ -6,8 +6,8 @@
 // Splitting a texture-space coordinate into an integer lattice cell and a fraction.
 //
 // Every split goes through floor() in double precision, never an int cast ((int)-0.5 == 0),
-// and the cell is reduced by the lattice period before it is ever converted to int, so any
-// finite input, however large, yields a valid table index.
+// and only a floor the 64-bit integers hold exactly is converted before the reduction by the
+// lattice period, so any finite input, however large, yields a valid table index.
 namespace soltex {
 
 // The noise lattices repeat every 256 cells along each axis (256-entry tables).
@@ -21,12 +21,14 @@ struct LatticeSplit {
 // Non-finite t (NaN, +-Inf) is treated as 0: a defined value, never an out-of-range index.
 // Branch-free (a select, not a jump) so that loops over many coordinates vectorise.
 inline LatticeSplit split_lattice(double t) noexcept {
-  t = std::fabs(t) <= 1.7976931348623157e308 ? t : 0.0;  // NaN compares false
+  // Every double of magnitude 2^62 or more is a multiple of 1024: cell 0, fraction 0, which is
+  // also what non-finite t gets. One select (NaN compares false) keeps the rest exact: the
+  // 64-bit conversion of floor(t) is in range, floor(t) mod 256 is the low byte of that
+  // integer in two's complement (also for negative t), and t - floor(t), in [0, 1), is exact
+  // in double before its one rounding to float.
+  t = std::fabs(t) < 0x1p62 ? t : 0.0;
   const double whole = std::floor(t);
-  // Both steps are exact in binary floating point: whole / 256 scales by a power of two, and
-  // the difference of two integers that lies in [0, 256) is representable.
-  const double wrapped = whole - 256.0 * std::floor(whole * (1.0 / 256.0));
-  return {static_cast<int>(wrapped), static_cast<float>(t - whole)};
+  return {static_cast<int>(static_cast<int64_t>(whole) & 255), static_cast<float>(t - whole)};
 }
 
 // fract(u) = u - floor(u), exact for finite u; non-finite u gives 0.

@@ -5,6 +5,12 @@
 
 namespace soltex {
 
+// One of gradient noise's sixteen lattice gradients (gradient_noise.h), as floats; padded to
+// 16 bytes so that an entry's address is a shift.
+struct LatticeGradient {
+  float x, y, z, unused;
+};
+
 // The random tables behind both noise bases, generated once from a fixed seed so every
 // process and build sees the same textures.
 struct NoiseTables {
@@ -17,6 +23,11 @@ struct NoiseTables {
   // The mean of `value`; also the exact mean of value noise over one period, since every
   // lattice value weighs the same in the integral of a trilinear interpolant.
   float value_mean;
+  // Derived from the two above for the single-point path, which then reads a corner with one
+  // load instead of two dependent ones: value_at[i] = value[perm[i]], gradient_at[i] = the
+  // gradient for hash perm[i] & 15.
+  std::array<float, 512> value_at;
+  std::array<LatticeGradient, 512> gradient_at;
 
   int index(int ix, int iy, int iz) const { return perm[ix + perm[iy + perm[iz]]]; }
 };

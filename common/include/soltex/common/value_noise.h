@@ -20,13 +20,13 @@ struct ValueCellEdges {
   float e1;
 };
 
-// `v` and `p` are NoiseTables::value and ::perm; passed as pointers so that a vectorised caller
-// can declare them free of aliasing with its outputs.
-inline ValueCellEdges value_cell_edges(const float* v, const int32_t* p, int ix, const RowHashes& h,
-                                       float fy, float fz) noexcept {
+// `v` is NoiseTables::value_at (the value at each permutation entry); passed as a pointer so
+// that a vectorised caller can declare it free of aliasing with its outputs.
+inline ValueCellEdges value_cell_edges(const float* v, int ix, const RowHashes& h, float fy,
+                                       float fz) noexcept {
   const auto face = [&](int x) {
-    const float c00 = v[p[x + h.h00]], c10 = v[p[x + h.h10]];
-    const float c01 = v[p[x + h.h01]], c11 = v[p[x + h.h11]];
+    const float c00 = v[x + h.h00], c10 = v[x + h.h10];
+    const float c01 = v[x + h.h01], c11 = v[x + h.h11];
     const float a = c00 + fy * (c10 - c00);
     const float b = c01 + fy * (c11 - c01);
     return a + fz * (b - a);
@@ -43,7 +43,7 @@ inline float value_noise(const NoiseTables& tables, const glm::dvec3& t) noexcep
   const LatticeSplit x = split_lattice(t.x);
   const LatticeSplit y = split_lattice(t.y);
   const LatticeSplit z = split_lattice(t.z);
-  const ValueCellEdges edges = value_cell_edges(tables.value.data(), tables.perm.data(), x.cell,
+  const ValueCellEdges edges = value_cell_edges(tables.value_at.data(), x.cell,
                                                 row_hashes(tables, y.cell, z.cell), y.frac, z.frac);
   return value_cell_finish(edges.e0, edges.e1, x.frac);
 }

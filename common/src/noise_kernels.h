@@ -1,0 +1,64 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "soltex/common/fractal.h"
+
+// The vector kernels behind FractalRows::sum, compiled for every x86 target Highway knows
+// (SSSE3, SSE4, AVX2, AVX-512) plus its scalar fallback, and chosen at run time once per row.
+//
+// One octave of one row works in two passes:
+//   faces:  the y-z interpolated noise on every distinct lattice x-face the row's points touch
+//           (one face per vector lane, the lattice hashes fetched by gather);
+//   points: one point per lane, gathering its cell's two faces and finishing along x.
+// A point in the cell whose left face is face f has its right face at f + 1: the face list is
+// built that way, so a point needs one index, and adjacent cells share the face between them.
+// Every target executes the scalar path's operations in the scalar path's order, so all give
+// the bits fractal_sum gives.
+namespace soltex::noise_kernels {
+
+// Every per-point and per-face array is padded to a multiple of this many entries (the widest
+// vector, 16 floats), the padding holding valid indices, so kernels never need a tail loop.
+inline constexpr std::size_t kPad = 16;
+
+inline constexpr std::size_t padded(std::size_t n) {
+  return (n + kPad - 1) / kPad * kPad;
+}
+
+// One evaluated octave's x columns (see FractalRows).
+struct OctaveColumnsView {
+  const float* frac;       // per point: x fraction
+  const int32_t* face_lo;  // per point: index of its cell's left face
+  const int32_t* face_x;   // per face: lattice x in [0, 256]
+  std::size_t faces;       // unpadded face count
+};
+
+struct RowRequest {
+  const OctavePlan* plan;
+  const OctaveColumnsView* octaves;  // plan->count entries; faded-out octaves are not read
+  std::size_t size;                  // points in the row
+  double y, z;
+  float* out;  // size entries
+};
+
+// out[i] = fractal_sum(plan, (x[i], y, z)) bit for bit.
+void fractal_row(const RowRequest& request);
+
+// fractal_sum(plan, p) for a gradient-basis plan, one octave per lane, compiled for the build's
+// baseline target and called without run-time dispatch (one point is too small a batch to
+// dispatch per call). The value basis stays scalar: its corner lookups are two dependent table
+// reads per lane, and measured slower as gathers than as scalar loads.
+float gradient_fractal_sum(const OctavePlan& plan, const glm::dvec3& p);
+
+// The same through run-time dispatch, so that tests can run it on every target.
+float gradient_fractal_sum_dispatched(const OctavePlan& plan, const glm::dvec3& p);
+
+// The Highway targets compiled into the kernels (a HWY_TARGETS-style bit mask), for tests that
+// run each of them.
+int64_t compiled_targets();
+
+// The target fractal_row dispatches to now (one HWY_* bit).
+int64_t dispatched_target();
+
+}  // namespace soltex::noise_kernels
