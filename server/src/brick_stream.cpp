@@ -191,8 +191,20 @@ std::size_t BrickStream::accept_request() {
                     " bricks, max_queued_per_stream)");
       continue;
     }
+    const BrickKey key{k.texture_id(), level, {k.x(), k.y(), k.z()}};
+    if (EncodedBrickPtr hit = context_.producer.cached(key, codec_)) {
+      // A cache hit needs no worker: it goes straight to the outbox, where the request's other
+      // hits join it in one message, without a thread hand-off per brick.
+      if (queue_.cancel(key)) {
+        count_queued(-1);  // asked for before and still queued: sent now instead
+      } else {
+        context_.metrics.bricks_requested.fetch_add(1, std::memory_order_relaxed);
+      }
+      outbox_.push_back({std::move(hit), std::nullopt, std::nullopt, now, now});
+      continue;
+    }
     WorkItem item;
-    item.key = {k.texture_id(), level, {k.x(), k.y(), k.z()}};
+    item.key = key;
     item.priority = want.priority();
     item.codec = codec_;
     item.texture = texture;
@@ -210,6 +222,8 @@ std::function<void()> BrickStream::take() {
   std::optional<WorkItem> item = queue_.pop();
   if (!item) return {};
   count_queued(-1);
+  context_.metrics.record(BrickStage::queue_wait,
+                          std::chrono::steady_clock::now() - item->enqueued);
   return [self = shared_from_this(), item = std::move(*item)] {
     self->context_.producer.produce(
         item, [self, item](const EncodedBrickPtr& brick) { self->deliver(item, brick); });
@@ -281,6 +295,7 @@ void BrickStream::pump() {
   if (can_write && !held) {
     batch_.Clear();
     batch_enqueued_.clear();
+    batch_ready_.clear();
     std::size_t bytes = 0;
     while (!outbox_.empty()) {
       Outgoing& next = outbox_.front();
@@ -291,13 +306,20 @@ void BrickStream::pump() {
           break;
         }
         v1::Brick* b = batch_.add_bricks();
-        *b->mutable_key() = to_proto(next.brick->key);
+        const BrickKey& key = next.brick->key;
+        v1::BrickKey* k = b->mutable_key();
+        k->set_texture_id(key.texture);
+        k->set_level(static_cast<uint32_t>(key.level));
+        k->set_x(key.brick.x);
+        k->set_y(key.brick.y);
+        k->set_z(key.brick.z);
         b->set_codec(to_proto(next.brick->codec));
         b->set_payload(next.brick->payload);
         context_.faults.corrupt_if_due(*b->mutable_payload());
         b->set_checksum(next.brick->checksum);
         bytes += next.brick->payload.size();
         batch_enqueued_.push_back(next.enqueued);
+        batch_ready_.push_back(next.ready);
       } else if (next.error) {
         *batch_.add_errors() = std::move(*next.error);
       } else {
@@ -318,6 +340,10 @@ void BrickStream::pump() {
       context_.metrics.brick_latency_ns.record(static_cast<uint64_t>(
           std::chrono::duration_cast<std::chrono::nanoseconds>(now - enqueued).count()));
     }
+    for (const auto& ready : batch_ready_) {
+      context_.metrics.record(BrickStage::outbox_wait, now - ready);
+    }
+    write_started_ = now;
     reactor_->StartWrite(&batch_);
   }
 
@@ -356,6 +382,7 @@ void BrickStream::pump() {
 
 void BrickStream::on_write_done(bool ok) {
   std::lock_guard lock(mutex_);
+  context_.metrics.record(BrickStage::write, std::chrono::steady_clock::now() - write_started_);
   writing_ = false;
   if (!ok) cancelled_ = true;  // the client is gone; OnCancel or OnDone follows
   pump();

@@ -113,6 +113,8 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   v1::BrickRequest request_;
   v1::BrickBatch batch_;
   std::vector<std::chrono::steady_clock::time_point> batch_enqueued_;
+  std::vector<std::chrono::steady_clock::time_point> batch_ready_;
+  std::chrono::steady_clock::time_point write_started_;
   std::deque<Outgoing> outbox_;
   Codec codec_ = Codec::zstd;
   bool reading_ = false;
