@@ -76,16 +76,15 @@ EncodedBrickPtr BrickProducer::evaluate(const WorkItem& item) {
   evaluate_brick(texture.evaluator, texture.layout, item.key.level, item.key.brick, texture.mip,
                  samples);
   const auto evaluated = std::chrono::steady_clock::now();
-  const std::vector<uint8_t> quantized = quantize(samples);
-  const std::vector<uint8_t> encoded =
-      encode_brick(quantized, texture.layout.brick_size(), channels,
-                   CodecOptions{item.codec, zstd_level_, true});
+  std::string encoded = encode_brick_samples(samples, texture.layout.brick_size(), channels,
+                                             CodecOptions{item.codec, zstd_level_, true});
+  const uint64_t checksum = encoded_brick_checksum(
+      std::span(reinterpret_cast<const uint8_t*>(encoded.data()), encoded.size()));
   metrics_.record(BrickStage::evaluate, evaluated - start);
   metrics_.record(BrickStage::encode, std::chrono::steady_clock::now() - evaluated);
   metrics_.bricks_evaluated.fetch_add(1, std::memory_order_relaxed);
   return std::make_shared<const EncodedBrick>(
-      EncodedBrick{item.key, item.codec, std::string(encoded.begin(), encoded.end()),
-                   encoded_brick_checksum(encoded)});
+      EncodedBrick{item.key, item.codec, std::move(encoded), checksum});
 }
 
 }  // namespace soltex::server
