@@ -2,6 +2,9 @@
 
 #include <lz4.h>
 #include <xxhash.h>
+// ZSTD_c_literalCompressionMode is in zstd's experimental section (Debian's libzstd 1.5.4
+// exports it; the parameter is checked at run time).
+#define ZSTD_STATIC_LINKING_ONLY
 #include <zstd.h>
 
 #include <cstdio>
@@ -78,6 +81,15 @@ ZSTD_DCtx* thread_decompressor() {
   return context.get();
 }
 
+void set_zstd_parameter(ZSTD_CCtx* context, ZSTD_cParameter parameter, int value) {
+  const std::size_t result = ZSTD_CCtx_setParameter(context, parameter, value);
+  if (ZSTD_isError(result)) {
+    throw std::runtime_error(std::string("encode_brick: zstd parameter ") +
+                             std::to_string(static_cast<int>(parameter)) + " = " +
+                             std::to_string(value) + " refused: " + ZSTD_getErrorName(result));
+  }
+}
+
 void check_shape(int brick_size, int channels) {
   if (brick_size != kMinBrickSize && brick_size != kMaxBrickSize) {
     throw std::invalid_argument("encode_brick: brick_size = " + std::to_string(brick_size) +
@@ -104,8 +116,14 @@ std::size_t compress(Codec codec, int zstd_level, std::span<const uint8_t> input
       return static_cast<std::size_t>(written);
     }
     case Codec::zstd: {
-      const std::size_t written = ZSTD_compressCCtx(thread_compressor(), out, capacity,
-                                                    input.data(), input.size(), zstd_level);
+      ZSTD_CCtx* context = thread_compressor();
+      // Literals are always entropy coded: after the predictor a brick is mostly literals, and
+      // their Huffman coding is most of what zstd gains over lz4. Negative levels then only
+      // make the match search cheaper (docs/PERFORMANCE.md, "Brick codec").
+      set_zstd_parameter(context, ZSTD_c_compressionLevel, zstd_level);
+      set_zstd_parameter(context, ZSTD_c_literalCompressionMode, ZSTD_ps_enable);
+      const std::size_t written =
+          ZSTD_compress2(context, out, capacity, input.data(), input.size());
       if (ZSTD_isError(written)) {
         throw std::runtime_error(std::string("encode_brick: zstd compression failed: ") +
                                  ZSTD_getErrorName(written));

@@ -19,6 +19,7 @@ void BrickScheduler::notify(const std::shared_ptr<WorkSource>& source, std::size
     if (!source->in_ready_list_) {
       source->in_ready_list_ = true;
       ready_.push_back(source);
+      waiting_sources_.store(ready_.size(), std::memory_order_relaxed);
     }
     // Busy workers come back for more by themselves; only sleeping ones need a wake-up.
     wakes = std::min(items, static_cast<std::size_t>(sleeping_));
@@ -42,6 +43,7 @@ std::function<void()> BrickScheduler::next_task() {
       source->in_ready_list_ = false;
     }
   }
+  waiting_sources_.store(ready_.size(), std::memory_order_relaxed);
   return task;
 }
 
@@ -78,6 +80,7 @@ void BrickScheduler::stop() {
   std::lock_guard lock(mutex_);
   for (auto& source : ready_) source->in_ready_list_ = false;
   ready_.clear();
+  waiting_sources_.store(0, std::memory_order_relaxed);
 }
 
 }  // namespace soltex::server

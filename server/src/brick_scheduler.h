@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <boost/asio/thread_pool.hpp>
 #include <condition_variable>
 #include <deque>
@@ -44,6 +45,8 @@ class BrickScheduler {
   // Lets the workers finish what is queued, then joins them.
   void stop();
   int threads() const { return threads_; }
+  // Sources with work waiting for a worker, as of a moment ago (no lock: a hint).
+  std::size_t waiting_sources() const { return waiting_sources_.load(std::memory_order_relaxed); }
   // An executor for short handlers such as timers, on a thread of its own: the workers may all
   // be busy with bricks for longer than a timer should wait.
   boost::asio::thread_pool::executor_type timer_executor() { return timers_.get_executor(); }
@@ -58,6 +61,7 @@ class BrickScheduler {
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<std::shared_ptr<WorkSource>> ready_;
+  std::atomic<std::size_t> waiting_sources_{0};  // ready_.size(), readable without the lock
   int sleeping_ = 0;
   bool stopping_ = false;
   std::vector<std::thread> workers_;

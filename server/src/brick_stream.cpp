@@ -245,8 +245,14 @@ void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick) {
 
 bool BrickStream::hold_back() const {
   const StreamLimits& limits = context_.limits;
-  // Only while more of the stream's bricks are coming; pump_when_wait_ends() bounds the wait.
-  const bool more_coming = !queue_.drained();
+  // Only while more of the stream's bricks are coming soon: one is being made now, or some are
+  // queued and the workers go round few enough streams to reach this one shortly. Among many
+  // busy streams a held message would only wait out its timer (and wake the timer thread).
+  // pump_when_wait_ends() bounds the wait.
+  const std::size_t queued = queue_.size();
+  const bool turn_soon = queued > 0 && context_.scheduler.waiting_sources() <=
+                                           static_cast<std::size_t>(context_.scheduler.threads());
+  const bool more_coming = queue_.taken() > 0 || turn_soon;
   return more_coming && outbox_.size() < limits.coalesce_bricks && !shutting_down_ &&
          std::chrono::steady_clock::now() - outbox_.front().ready < limits.coalesce_wait;
 }
