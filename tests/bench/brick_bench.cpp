@@ -67,8 +67,9 @@ BENCHMARK(BM_EvaluateBrick)->Apply(BrickArguments)->ArgNames({"pattern", "level"
 // The bricks of soltex-load's cold mix (`--mix uniform --finest-level 10`): 6-octave marble,
 // RGB, B = 16, band-limited, every brick of the L = 10 pyramid equally likely (7 of 8 are at
 // level 0). The work one soltexd worker does per cold brick, without the serving: evaluation
-// alone (encode = 0), or evaluation then encode_brick_samples() with zstd at soltexd's default
-// level 1 and the predictor (encode = 1). The same bricks in the same order on every run.
+// alone (encode = 0), or evaluation then encode_brick_samples() with the predictor and zstd at
+// `zstd_level` (encode = 1; soltexd's default is -200). The same bricks in the same order on
+// every run.
 void BM_ColdMixBrick(benchmark::State& state) {
   TextureSpec spec;
   spec.pattern = MarbleParams{};
@@ -79,6 +80,7 @@ void BM_ColdMixBrick(benchmark::State& state) {
   volume.finest_level_log2 = static_cast<int>(state.range(0));
   const BrickLayout layout(volume, 16);
   const bool encode = state.range(1) != 0;
+  const int zstd_level = static_cast<int>(state.range(2));
   const MipSettings mip{MipMode::band_limited, 2};
   std::vector<float> out(static_cast<std::size_t>(layout.samples_per_brick()) * 3);
   uint64_t total = 0;
@@ -101,19 +103,25 @@ void BM_ColdMixBrick(benchmark::State& state) {
                            static_cast<int>(index / (n * n)));
     evaluate_brick(texture, layout, level, brick, mip, out);
     if (encode) {
-      const std::string encoded = encode_brick_samples(out, 16, 3, CodecOptions{Codec::zstd, 1});
+      const std::string encoded =
+          encode_brick_samples(out, 16, 3, CodecOptions{Codec::zstd, zstd_level});
       bytes += encoded.size();
       benchmark::DoNotOptimize(encoded.data());
     }
     benchmark::DoNotOptimize(out.data());
   }
   state.SetLabel(std::string("marble, cold mix of L = ") + std::to_string(state.range(0)) +
-                 (encode ? ", evaluated and encoded (zstd-1)" : ", evaluated"));
+                 (encode ? ", evaluated and encoded (zstd " + std::to_string(zstd_level) + ")"
+                         : std::string(", evaluated")));
   state.SetItemsProcessed(state.iterations());
   if (encode) state.counters["bytes_per_brick"] = static_cast<double>(bytes) / state.iterations();
 }
 
-BENCHMARK(BM_ColdMixBrick)->Args({10, 0})->Args({10, 1})->ArgNames({"finest", "encode"});
+BENCHMARK(BM_ColdMixBrick)
+    ->Args({10, 0, 0})
+    ->Args({10, 1, -200})
+    ->Args({10, 1, 1})
+    ->ArgNames({"finest", "encode", "zstd_level"});
 
 }  // namespace
 
