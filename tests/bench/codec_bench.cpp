@@ -112,6 +112,34 @@ void encode_samples(benchmark::State& state, const std::vector<Samples>* bricks,
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+// The quantizer, and the quantizer with the 3D predictor, over the brick set: the scalar
+// functions (quantize(), then apply_brick_filter()) against the Highway kernels
+// (quantize_values(), quantize_and_predict()). CPU per brick in the time column / 8.
+void quantize_bricks(benchmark::State& state, const std::vector<Samples>* bricks, bool simd,
+                     bool predict) {
+  Planes quantized(bricks->front().size() + soltex::kQuantizePredictSlack);
+  Planes residual(quantized.size());
+  for (auto _ : state) {
+    for (const Samples& samples : *bricks) {
+      if (simd && predict) {
+        soltex::quantize_and_predict(samples, kBrickSize + 1, quantized, residual);
+      } else if (simd) {
+        soltex::quantize_values(samples, quantized);
+      } else {
+        Planes planes = soltex::quantize(samples);
+        if (predict) {
+          soltex::apply_brick_filter(soltex::BrickFilter::gradient_3d, kBrickSize + 1, planes);
+        }
+        benchmark::DoNotOptimize(planes.data());
+      }
+      benchmark::DoNotOptimize(residual.data());
+      benchmark::DoNotOptimize(quantized.data());
+    }
+  }
+  state.SetBytesProcessed(state.iterations() * static_cast<int64_t>(bricks->size()) *
+                          static_cast<int64_t>(bricks->front().size()));
+}
+
 std::vector<Planes> quantized_bricks(const soltex::Pattern& pattern) {
   soltex::TextureSpec spec;
   spec.pattern = pattern;
@@ -200,6 +228,13 @@ int main(int argc, char** argv) {
       benchmark::RegisterBenchmark(
           ("EncodeSamples/" + std::string(kPatterns[p].name) + "/" + codec.name).c_str(),
           encode_samples, &samples[p], options);
+    }
+  }
+  for (const bool predict : {false, true}) {
+    for (const bool simd : {false, true}) {
+      const std::string name =
+          std::string(predict ? "QuantizePredict/" : "Quantize/") + (simd ? "highway" : "scalar");
+      benchmark::RegisterBenchmark(name.c_str(), quantize_bricks, &samples[0], simd, predict);
     }
   }
   benchmark::Initialize(&argc, argv);
