@@ -86,19 +86,23 @@ void PredictGradient3d(const uint8_t* HWY_RESTRICT quantized, std::size_t side, 
   const std::size_t slab = side * side;
   const std::size_t plane = slab * side;
   const auto first_lane = hn::FirstN(d, 1);
-  // A zero row, and the first row of all with a zero before it (its shifted load reads it).
+  // A zero row, and a copy of the buffer's first row with a zero before it: the shifted load
+  // of a row reads the byte before it, which for the first row is outside the buffer.
   static const uint8_t kZeroRow[1 + kMaxSide + kSlack] = {};
   HWY_ALIGN uint8_t first_row[1 + kMaxSide + kSlack] = {};
   std::memcpy(first_row + 1, quantized, side);
   const uint8_t* zero = kZeroRow + 1;
+  const auto row_at = [&](std::size_t offset) {
+    return offset == 0 ? first_row + 1 : quantized + offset;
+  };
   for (std::size_t p = 0; p < planes; ++p) {
     for (std::size_t z = 0; z < side; ++z) {
       for (std::size_t y = 0; y < side; ++y) {
         const std::size_t offset = p * plane + z * slab + y * side;
-        const uint8_t* c = offset == 0 ? first_row + 1 : quantized + offset;
-        const uint8_t* b = y > 0 ? c - side : zero;
-        const uint8_t* a = z > 0 ? quantized + offset - slab : zero;
-        const uint8_t* ab = y > 0 && z > 0 ? a - side : zero;
+        const uint8_t* c = row_at(offset);
+        const uint8_t* b = y > 0 ? row_at(offset - side) : zero;
+        const uint8_t* a = z > 0 ? row_at(offset - slab) : zero;
+        const uint8_t* ab = y > 0 && z > 0 ? row_at(offset - slab - side) : zero;
         for (std::size_t x = 0; x < side; x += lanes) {
           const auto here = hn::Add(hn::Sub(hn::LoadU(d, c + x), hn::LoadU(d, b + x)),
                                     hn::Sub(hn::LoadU(d, ab + x), hn::LoadU(d, a + x)));
