@@ -2,6 +2,9 @@
 
 #include <lz4.h>
 #include <xxhash.h>
+// ZSTD_c_literalCompressionMode is in zstd's experimental section (Debian's libzstd 1.5.4
+// exports it; the parameter is checked at run time).
+#define ZSTD_STATIC_LINKING_ONLY
 #include <zstd.h>
 
 #include <cstdio>
@@ -78,6 +81,15 @@ ZSTD_DCtx* thread_decompressor() {
   return context.get();
 }
 
+void set_zstd_parameter(ZSTD_CCtx* context, ZSTD_cParameter parameter, int value) {
+  const std::size_t result = ZSTD_CCtx_setParameter(context, parameter, value);
+  if (ZSTD_isError(result)) {
+    throw std::runtime_error(std::string("encode_brick: zstd parameter ") +
+                             std::to_string(static_cast<int>(parameter)) + " = " +
+                             std::to_string(value) + " refused: " + ZSTD_getErrorName(result));
+  }
+}
+
 void check_shape(int brick_size, int channels) {
   if (brick_size != kMinBrickSize && brick_size != kMaxBrickSize) {
     throw std::invalid_argument("encode_brick: brick_size = " + std::to_string(brick_size) +
@@ -104,8 +116,14 @@ std::size_t compress(Codec codec, int zstd_level, std::span<const uint8_t> input
       return static_cast<std::size_t>(written);
     }
     case Codec::zstd: {
-      const std::size_t written = ZSTD_compressCCtx(thread_compressor(), out, capacity,
-                                                    input.data(), input.size(), zstd_level);
+      ZSTD_CCtx* context = thread_compressor();
+      // Literals are always entropy coded: after the predictor a brick is mostly literals, and
+      // their Huffman coding is most of what zstd gains over lz4. Negative levels then only
+      // make the match search cheaper (docs/PERFORMANCE.md, "Brick codec").
+      set_zstd_parameter(context, ZSTD_c_compressionLevel, zstd_level);
+      set_zstd_parameter(context, ZSTD_c_literalCompressionMode, ZSTD_ps_enable);
+      const std::size_t written =
+          ZSTD_compress2(context, out, capacity, input.data(), input.size());
       if (ZSTD_isError(written)) {
         throw std::runtime_error(std::string("encode_brick: zstd compression failed: ") +
                                  ZSTD_getErrorName(written));
@@ -232,12 +250,14 @@ std::vector<uint8_t> encode_brick(std::span<const uint8_t> quantized_planes, int
                       options.filter ? kBrickCodecFilter : BrickFilter::none);
 }
 
-std::vector<uint8_t> encode_brick(std::span<const uint8_t> quantized_planes, int brick_size,
-                                  int channels, const CodecOptions& options, BrickFilter filter) {
+namespace {
+
+void check_encoding(std::size_t samples, int brick_size, int channels,
+                    const CodecOptions& options) {
   check_shape(brick_size, channels);
   const std::size_t decoded_size = brick_decoded_size(brick_size, channels);
-  if (quantized_planes.size() != decoded_size) {
-    throw std::invalid_argument("encode_brick: " + std::to_string(quantized_planes.size()) +
+  if (samples != decoded_size) {
+    throw std::invalid_argument("encode_brick: " + std::to_string(samples) +
                                 " samples given, a brick of size " + std::to_string(brick_size) +
                                 " with " + std::to_string(channels) + " channels has " +
                                 std::to_string(decoded_size));
@@ -248,12 +268,15 @@ std::vector<uint8_t> encode_brick(std::span<const uint8_t> quantized_planes, int
                                 " must be in [" + std::to_string(ZSTD_minCLevel()) + ", " +
                                 std::to_string(ZSTD_maxCLevel()) + "]");
   }
+}
 
-  thread_local std::vector<uint8_t> filtered;
-  filtered.assign(quantized_planes.begin(), quantized_planes.end());
-  apply_brick_filter(filter, brick_size + 1, filtered);
-
-  std::vector<uint8_t> out(kBrickHeaderSize + compress_bound(options.codec, decoded_size));
+// Header and compressed `filtered` into `out` (resized to fit); `quantized` is what the
+// checksum covers.
+void write_encoded(std::span<const uint8_t> filtered, std::span<const uint8_t> quantized,
+                   int brick_size, int channels, const CodecOptions& options, BrickFilter filter,
+                   std::vector<uint8_t>& out) {
+  const std::size_t decoded_size = filtered.size();
+  out.resize(kBrickHeaderSize + compress_bound(options.codec, decoded_size));
   const std::size_t payload_size =
       compress(options.codec, options.zstd_level, filtered, out.data() + kBrickHeaderSize,
                out.size() - kBrickHeaderSize);
@@ -269,8 +292,42 @@ std::vector<uint8_t> encode_brick(std::span<const uint8_t> quantized_planes, int
   std::memset(header + kReservedOffset, 0, kReservedSize);
   put_u32(header + kDecodedSizeOffset, static_cast<uint32_t>(decoded_size));
   put_u32(header + kPayloadSizeOffset, static_cast<uint32_t>(payload_size));
-  put_u64(header + kChecksumOffset, checksum(quantized_planes));
+  put_u64(header + kChecksumOffset, checksum(quantized));
+}
+
+}  // namespace
+
+std::vector<uint8_t> encode_brick(std::span<const uint8_t> quantized_planes, int brick_size,
+                                  int channels, const CodecOptions& options, BrickFilter filter) {
+  check_encoding(quantized_planes.size(), brick_size, channels, options);
+  thread_local std::vector<uint8_t> filtered;
+  filtered.assign(quantized_planes.begin(), quantized_planes.end());
+  apply_brick_filter(filter, brick_size + 1, filtered);
+  std::vector<uint8_t> out;
+  write_encoded(filtered, quantized_planes, brick_size, channels, options, filter, out);
   return out;
+}
+
+std::string encode_brick_samples(std::span<const float> samples, int brick_size, int channels,
+                                 const CodecOptions& options) {
+  check_encoding(samples.size(), brick_size, channels, options);
+  // Scratch per thread, with the slack the vector kernels write into.
+  thread_local std::vector<uint8_t> quantized, filtered, encoded;
+  quantized.resize(samples.size() + kQuantizePredictSlack);
+  const std::span<const uint8_t> planes(quantized.data(), samples.size());
+  BrickFilter filter = BrickFilter::none;
+  if (options.filter) {
+    filter = kBrickCodecFilter;
+    static_assert(kBrickCodecFilter == BrickFilter::gradient_3d, "the fused kernel's predictor");
+    filtered.resize(samples.size() + kQuantizePredictSlack);
+    quantize_and_predict(samples, brick_size + 1, quantized, filtered);
+    write_encoded(std::span<const uint8_t>(filtered.data(), samples.size()), planes, brick_size,
+                  channels, options, filter, encoded);
+  } else {
+    quantize_values(samples, quantized);
+    write_encoded(planes, planes, brick_size, channels, options, filter, encoded);
+  }
+  return std::string(encoded.begin(), encoded.end());
 }
 
 DecodedBrick decode_brick(std::span<const uint8_t> encoded) {

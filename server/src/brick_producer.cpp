@@ -2,6 +2,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include <chrono>
 #include <thread>
 #include <vector>
 
@@ -43,6 +44,11 @@ void BrickProducer::produce(const WorkItem& item, Deliver deliver) {
   if (shared_) shared_->store(item.key, item.codec, brick->payload);
 }
 
+EncodedBrickPtr BrickProducer::cached(const BrickKey& key, Codec codec) {
+  if (faults_ && faults_->delay().count() > 0) return nullptr;
+  return store_.find(key, codec);
+}
+
 EncodedBrickPtr BrickProducer::from_shared_cache(const WorkItem& item) {
   if (!shared_) return nullptr;
   std::optional<std::string> payload = shared_->fetch(item.key, item.codec);
@@ -66,16 +72,19 @@ EncodedBrickPtr BrickProducer::evaluate(const WorkItem& item) {
   thread_local std::vector<float> samples;
   samples.resize(static_cast<std::size_t>(texture.layout.samples_per_brick()) *
                  static_cast<std::size_t>(channels));
+  const auto start = std::chrono::steady_clock::now();
   evaluate_brick(texture.evaluator, texture.layout, item.key.level, item.key.brick, texture.mip,
                  samples);
-  const std::vector<uint8_t> quantized = quantize(samples);
-  const std::vector<uint8_t> encoded =
-      encode_brick(quantized, texture.layout.brick_size(), channels,
-                   CodecOptions{item.codec, zstd_level_, true});
+  const auto evaluated = std::chrono::steady_clock::now();
+  std::string encoded = encode_brick_samples(samples, texture.layout.brick_size(), channels,
+                                             CodecOptions{item.codec, zstd_level_, true});
+  const uint64_t checksum = encoded_brick_checksum(
+      std::span(reinterpret_cast<const uint8_t*>(encoded.data()), encoded.size()));
+  metrics_.record(BrickStage::evaluate, evaluated - start);
+  metrics_.record(BrickStage::encode, std::chrono::steady_clock::now() - evaluated);
   metrics_.bricks_evaluated.fetch_add(1, std::memory_order_relaxed);
   return std::make_shared<const EncodedBrick>(
-      EncodedBrick{item.key, item.codec, std::string(encoded.begin(), encoded.end()),
-                   encoded_brick_checksum(encoded)});
+      EncodedBrick{item.key, item.codec, std::move(encoded), checksum});
 }
 
 }  // namespace soltex::server

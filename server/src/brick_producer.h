@@ -29,6 +29,10 @@ class BrickProducer {
   // Calls `deliver` exactly once, on this thread or on the thread of the producing worker.
   void produce(const WorkItem& item, Deliver deliver);
 
+  // The brick if the store holds it and may hand it out at once (not while fault injection
+  // delays bricks); null otherwise. Cheap enough for a gRPC thread.
+  EncodedBrickPtr cached(const BrickKey& key, Codec codec);
+
  private:
   EncodedBrickPtr from_shared_cache(const WorkItem& item);
   EncodedBrickPtr evaluate(const WorkItem& item);

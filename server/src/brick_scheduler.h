@@ -1,10 +1,14 @@
 #pragma once
 
+#include <atomic>
 #include <boost/asio/thread_pool.hpp>
+#include <condition_variable>
 #include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <thread>
+#include <vector>
 
 namespace soltex::server {
 
@@ -23,9 +27,13 @@ class WorkSource {
   bool in_ready_list_ = false;  // guarded by the scheduler's mutex
 };
 
-// Brick work runs on our own thread pool, never on gRPC's threads. Fair across streams:
+// Brick work runs on our own worker threads, never on gRPC's threads. Fair across streams:
 // sources with work take turns, one item each (round robin); within a stream the source's
 // own order decides (coarse levels first, then priority).
+//
+// A worker keeps taking items until no source has any, so a busy server hands bricks to its
+// workers without a wake-up per brick: a worker sleeps only when there is nothing to do, and
+// notify() wakes no more sleeping workers than there are new items.
 class BrickScheduler {
  public:
   explicit BrickScheduler(int threads);
@@ -34,21 +42,29 @@ class BrickScheduler {
   // `source` gained `items` new items of work.
   void notify(const std::shared_ptr<WorkSource>& source, std::size_t items);
 
-  // Lets queued jobs finish and joins the workers.
+  // Lets the workers finish what is queued, then joins them.
   void stop();
   int threads() const { return threads_; }
+  // Sources with work waiting for a worker, as of a moment ago (no lock: a hint).
+  std::size_t waiting_sources() const { return waiting_sources_.load(std::memory_order_relaxed); }
   // An executor for short handlers such as timers, on a thread of its own: the workers may all
   // be busy with bricks for longer than a timer should wait.
   boost::asio::thread_pool::executor_type timer_executor() { return timers_.get_executor(); }
 
  private:
-  void run_next();
+  void work();
+  // The next task, round robin over the sources; empty when none has work. mutex_ held.
+  std::function<void()> next_task();
 
   const int threads_;
-  boost::asio::thread_pool pool_;
   boost::asio::thread_pool timers_{1};
   std::mutex mutex_;
+  std::condition_variable wake_;
   std::deque<std::shared_ptr<WorkSource>> ready_;
+  std::atomic<std::size_t> waiting_sources_{0};  // ready_.size(), readable without the lock
+  int sleeping_ = 0;
+  bool stopping_ = false;
+  std::vector<std::thread> workers_;
 };
 
 }  // namespace soltex::server

@@ -36,6 +36,17 @@ BrickStore::Claim BrickStore::claim(const BrickKey& key, Codec codec, EncodedBri
   return Claim::owner;
 }
 
+EncodedBrickPtr BrickStore::find(const BrickKey& key, Codec codec) {
+  const CodecKey ck{key, codec};
+  Shard& shard = shard_for(ck);
+  std::lock_guard lock(shard.mutex);
+  const auto it = shard.entries.find(ck);
+  if (it == shard.entries.end()) return nullptr;
+  shard.lru.splice(shard.lru.begin(), shard.lru, it->second.lru);
+  hits_.fetch_add(1, std::memory_order_relaxed);
+  return it->second.brick;
+}
+
 void BrickStore::publish(const EncodedBrickPtr& brick) {
   const CodecKey ck{brick->key, brick->codec};
   Shard& shard = shard_for(ck);

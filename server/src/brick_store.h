@@ -54,6 +54,10 @@ class BrickStore {
 
   Claim claim(const BrickKey& key, Codec codec, EncodedBrickPtr& cached, Waiter waiter);
 
+  // The cached brick, counted as a hit, or null (not counted: the claim() that follows counts
+  // the miss). For answering cache hits where a request arrives, without a worker.
+  EncodedBrickPtr find(const BrickKey& key, Codec codec);
+
   // Stores the brick (evicting others to stay within budget) and hands it to every waiter.
   void publish(const EncodedBrickPtr& brick);
   // The owner failed: waiters are called with nullptr.

@@ -191,8 +191,10 @@ std::size_t BrickStream::accept_request() {
                     " bricks, max_queued_per_stream)");
       continue;
     }
+    const BrickKey key{k.texture_id(), level, {k.x(), k.y(), k.z()}};
+    if (answer_from_cache(key, now)) continue;
     WorkItem item;
-    item.key = {k.texture_id(), level, {k.x(), k.y(), k.z()}};
+    item.key = key;
     item.priority = want.priority();
     item.codec = codec_;
     item.texture = texture;
@@ -206,10 +208,27 @@ std::size_t BrickStream::accept_request() {
   return added;
 }
 
+bool BrickStream::answer_from_cache(const BrickKey& key,
+                                    std::chrono::steady_clock::time_point now) {
+  EncodedBrickPtr hit = context_.producer.cached(key, codec_);
+  if (!hit) return false;
+  // A cache hit needs no worker: it goes straight to the outbox, where the request's other
+  // hits join it in one message, without a thread hand-off per brick.
+  if (queue_.cancel(key)) {
+    count_queued(-1);  // asked for before and still queued: sent now instead
+  } else {
+    context_.metrics.bricks_requested.fetch_add(1, std::memory_order_relaxed);
+  }
+  outbox_.push_back({std::move(hit), std::nullopt, std::nullopt, now, now});
+  return true;
+}
+
 std::function<void()> BrickStream::take() {
   std::optional<WorkItem> item = queue_.pop();
   if (!item) return {};
   count_queued(-1);
+  context_.metrics.record(BrickStage::queue_wait,
+                          std::chrono::steady_clock::now() - item->enqueued);
   return [self = shared_from_this(), item = std::move(*item)] {
     self->context_.producer.produce(
         item, [self, item](const EncodedBrickPtr& brick) { self->deliver(item, brick); });
@@ -231,8 +250,14 @@ void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick) {
 
 bool BrickStream::hold_back() const {
   const StreamLimits& limits = context_.limits;
-  // Only while more of the stream's bricks are coming; pump_when_wait_ends() bounds the wait.
-  const bool more_coming = !queue_.drained();
+  // Only while more of the stream's bricks are coming soon: one is being made now, or some are
+  // queued and the workers go round few enough streams to reach this one shortly. Among many
+  // busy streams a held message would only wait out its timer (and wake the timer thread).
+  // pump_when_wait_ends() bounds the wait.
+  const std::size_t queued = queue_.size();
+  const bool turn_soon = queued > 0 && context_.scheduler.waiting_sources() <=
+                                           static_cast<std::size_t>(context_.scheduler.threads());
+  const bool more_coming = queue_.taken() > 0 || turn_soon;
   return more_coming && outbox_.size() < limits.coalesce_bricks && !shutting_down_ &&
          std::chrono::steady_clock::now() - outbox_.front().ready < limits.coalesce_wait;
 }
@@ -271,6 +296,62 @@ void BrickStream::add_request_error(grpc::StatusCode code, std::string message) 
   outbox_.push_back({nullptr, std::nullopt, std::move(error), now, now});
 }
 
+void BrickStream::write_outbox() {
+  const StreamLimits& limits = context_.limits;
+  batch_.Clear();
+  batch_enqueued_.clear();
+  batch_ready_.clear();
+  std::size_t bytes = 0;
+  while (!outbox_.empty()) {
+    Outgoing& next = outbox_.front();
+    if (next.brick) {
+      if (static_cast<uint32_t>(batch_.bricks_size()) >= limits.max_batch_bricks ||
+          (batch_.bricks_size() > 0 &&
+           bytes + next.brick->payload.size() > limits.max_batch_bytes)) {
+        break;
+      }
+      v1::Brick* b = batch_.add_bricks();
+      const BrickKey& key = next.brick->key;
+      v1::BrickKey* k = b->mutable_key();
+      k->set_texture_id(key.texture);
+      k->set_level(static_cast<uint32_t>(key.level));
+      k->set_x(key.brick.x);
+      k->set_y(key.brick.y);
+      k->set_z(key.brick.z);
+      b->set_codec(to_proto(next.brick->codec));
+      b->set_payload(next.brick->payload);
+      context_.faults.corrupt_if_due(*b->mutable_payload());
+      b->set_checksum(next.brick->checksum);
+      bytes += next.brick->payload.size();
+      batch_enqueued_.push_back(next.enqueued);
+      batch_ready_.push_back(next.ready);
+    } else if (next.error) {
+      *batch_.add_errors() = std::move(*next.error);
+    } else {
+      *batch_.add_request_errors() = std::move(*next.request_error);
+    }
+    outbox_.pop_front();
+  }
+  writing_ = true;
+  ++batches_sent_;
+  bricks_sent_ += static_cast<uint64_t>(batch_.bricks_size());
+  bytes_sent_ += bytes;
+  errors_sent_ += static_cast<uint64_t>(batch_.errors_size() + batch_.request_errors_size());
+  context_.metrics.bricks_served.fetch_add(static_cast<uint64_t>(batch_.bricks_size()),
+                                           std::memory_order_relaxed);
+  context_.metrics.bytes_served.fetch_add(bytes, std::memory_order_relaxed);
+  const auto now = std::chrono::steady_clock::now();
+  for (const auto& enqueued : batch_enqueued_) {
+    context_.metrics.brick_latency_ns.record(static_cast<uint64_t>(
+        std::chrono::duration_cast<std::chrono::nanoseconds>(now - enqueued).count()));
+  }
+  for (const auto& ready : batch_ready_) {
+    context_.metrics.record(BrickStage::outbox_wait, now - ready);
+  }
+  write_started_ = now;
+  reactor_->StartWrite(&batch_);
+}
+
 void BrickStream::pump() {
   if (finished_ || reactor_ == nullptr) return;
   const StreamLimits& limits = context_.limits;
@@ -278,48 +359,7 @@ void BrickStream::pump() {
   const bool can_write = !writing_ && !outbox_.empty() && !cancelled_;
   const bool held = can_write && hold_back();
   if (held) pump_when_wait_ends();
-  if (can_write && !held) {
-    batch_.Clear();
-    batch_enqueued_.clear();
-    std::size_t bytes = 0;
-    while (!outbox_.empty()) {
-      Outgoing& next = outbox_.front();
-      if (next.brick) {
-        if (static_cast<uint32_t>(batch_.bricks_size()) >= limits.max_batch_bricks ||
-            (batch_.bricks_size() > 0 &&
-             bytes + next.brick->payload.size() > limits.max_batch_bytes)) {
-          break;
-        }
-        v1::Brick* b = batch_.add_bricks();
-        *b->mutable_key() = to_proto(next.brick->key);
-        b->set_codec(to_proto(next.brick->codec));
-        b->set_payload(next.brick->payload);
-        context_.faults.corrupt_if_due(*b->mutable_payload());
-        b->set_checksum(next.brick->checksum);
-        bytes += next.brick->payload.size();
-        batch_enqueued_.push_back(next.enqueued);
-      } else if (next.error) {
-        *batch_.add_errors() = std::move(*next.error);
-      } else {
-        *batch_.add_request_errors() = std::move(*next.request_error);
-      }
-      outbox_.pop_front();
-    }
-    writing_ = true;
-    ++batches_sent_;
-    bricks_sent_ += static_cast<uint64_t>(batch_.bricks_size());
-    bytes_sent_ += bytes;
-    errors_sent_ += static_cast<uint64_t>(batch_.errors_size() + batch_.request_errors_size());
-    context_.metrics.bricks_served.fetch_add(static_cast<uint64_t>(batch_.bricks_size()),
-                                             std::memory_order_relaxed);
-    context_.metrics.bytes_served.fetch_add(bytes, std::memory_order_relaxed);
-    const auto now = std::chrono::steady_clock::now();
-    for (const auto& enqueued : batch_enqueued_) {
-      context_.metrics.brick_latency_ns.record(static_cast<uint64_t>(
-          std::chrono::duration_cast<std::chrono::nanoseconds>(now - enqueued).count()));
-    }
-    reactor_->StartWrite(&batch_);
-  }
+  if (can_write && !held) write_outbox();
 
   // Backpressure: read on only while a whole request would still fit, counting every brick
   // the stream owes: queued, being produced, and made but not yet written (a client that
@@ -356,6 +396,7 @@ void BrickStream::pump() {
 
 void BrickStream::on_write_done(bool ok) {
   std::lock_guard lock(mutex_);
+  context_.metrics.record(BrickStage::write, std::chrono::steady_clock::now() - write_started_);
   writing_ = false;
   if (!ok) cancelled_ = true;  // the client is gone; OnCancel or OnDone follows
   pump();

@@ -96,6 +96,8 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   void drop_queue();                    // empties the queue, counted
   void add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message);
   void add_request_error(grpc::StatusCode code, std::string message);
+  bool answer_from_cache(const BrickKey& key, std::chrono::steady_clock::time_point now);
+  void write_outbox();         // starts the write of the next message from the outbox
   void pump();                 // start the next read, write or finish, whichever is due
   std::size_t owed() const;    // bricks queued, in production or waiting to be written
   bool hold_back() const;      // whether the outbox should wait for more bricks (coalescing)
@@ -113,6 +115,8 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   v1::BrickRequest request_;
   v1::BrickBatch batch_;
   std::vector<std::chrono::steady_clock::time_point> batch_enqueued_;
+  std::vector<std::chrono::steady_clock::time_point> batch_ready_;
+  std::chrono::steady_clock::time_point write_started_;
   std::deque<Outgoing> outbox_;
   Codec codec_ = Codec::zstd;
   bool reading_ = false;

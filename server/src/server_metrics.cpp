@@ -94,7 +94,12 @@ namespace {
   X(errors, "soltex_errors_total", counter,                                                      \
     "Per-brick and per-request errors the handlers answered, by gRPC status code.")              \
   X(brick_latency, "soltex_brick_latency_seconds", histogram,                                    \
-    "From a brick entering a stream's queue to its batch being written.")
+    "From a brick entering a stream's queue to its batch being written.")                        \
+  X(brick_stages, "soltex_brick_stage_seconds", histogram,                                       \
+    "Time per brick in each stage: queue_wait (queued until a worker takes it), evaluate, "      \
+    "encode (quantize, predictor, compression, checksum), outbox_wait (made or found in the "    \
+    "cache until its message goes to gRPC); write is per message, from gRPC taking it to "       \
+    "gRPC reporting it written.")
 
 enum class F : std::size_t {
 #define SOLTEX_METRIC_ID(id, name, type, help) id,
@@ -145,6 +150,25 @@ void write_brick_latency(Exposition& e, const LatencyHistogram& histogram) {
               snapshot.mean() * static_cast<double>(snapshot.count()) * 1e-9);
 }
 
+void write_brick_stages(Exposition& e, std::span<const LatencyHistogram, kBrickStages> stages) {
+  // Finer at the low end than the latency family: a stage of a cached brick takes microseconds.
+  static constexpr double kBounds[] = {1e-6,   2.5e-6, 5e-6,   10e-6,  25e-6,  50e-6,
+                                       100e-6, 250e-6, 500e-6, 1e-3,   2.5e-3, 5e-3,
+                                       10e-3,  25e-3,  50e-3,  100e-3, 250e-3, 1.0};
+  e.family(family(F::brick_stages));
+  for (std::size_t s = 0; s < kBrickStages; ++s) {
+    const LatencyHistogramSnapshot snapshot = stages[s].snapshot();
+    std::array<uint64_t, std::size(kBounds)> cumulative{};
+    for (std::size_t i = 0; i < cumulative.size(); ++i) {
+      cumulative[i] =
+          snapshot.cumulative_count_at_or_below(static_cast<uint64_t>(kBounds[i] * 1e9));
+    }
+    e.histogram(kBounds, cumulative, snapshot.count(),
+                snapshot.mean() * static_cast<double>(snapshot.count()) * 1e-9,
+                {{"stage", brick_stage_name(static_cast<BrickStage>(s))}});
+  }
+}
+
 void write_shared_cache(Exposition& e, const SharedCacheStats& shared) {
   const auto counter = [&](F id, uint64_t value) { single(e, id, static_cast<double>(value)); };
   counter(F::shared_hits, shared.hits);
@@ -175,6 +199,22 @@ void write_access(Exposition& e, const AccessCounts& access) {
 }
 
 }  // namespace
+
+const char* brick_stage_name(BrickStage stage) {
+  switch (stage) {
+    case BrickStage::queue_wait:
+      return "queue_wait";
+    case BrickStage::evaluate:
+      return "evaluate";
+    case BrickStage::encode:
+      return "encode";
+    case BrickStage::outbox_wait:
+      return "outbox_wait";
+    case BrickStage::write:
+      return "write";
+  }
+  return "unknown";
+}
 
 std::span<const MetricFamily> metric_families() {
   return kFamilies;
@@ -223,6 +263,7 @@ std::string ServerMetrics::render(const BrickStoreStats& store, std::size_t stor
              {{"grpc_code", grpc_code_name(static_cast<int>(code))}});
   }
   write_brick_latency(e, brick_latency_ns);
+  write_brick_stages(e, stage_ns);
   return e.take();
 }
 

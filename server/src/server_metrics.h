@@ -2,6 +2,7 @@
 
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -14,6 +15,17 @@
 #include "texture_registry.h"
 
 namespace soltex::server {
+
+// Where a brick's time goes inside soltexd, stage by stage (soltex_brick_stage_seconds).
+enum class BrickStage : std::size_t {
+  queue_wait,   // from entering its stream's queue to a worker taking it
+  evaluate,     // evaluating the texture function over the brick's samples
+  encode,       // quantizing, the predictor, zstd or lz4, and the checksum
+  outbox_wait,  // from made (or found in the cache) to its message being handed to gRPC
+  write,        // per message: from handing it to gRPC to gRPC reporting it written
+};
+inline constexpr std::size_t kBrickStages = 5;
+const char* brick_stage_name(BrickStage stage);
 
 // Counted outside ServerMetrics: SIGHUP reloads and refusal log lines left out.
 struct AccessCounts {
@@ -40,7 +52,13 @@ struct ServerMetrics {
   std::array<std::atomic<uint64_t>, 17> errors_by_code{};  // grpc::StatusCode 0..16
   // From a brick entering a stream's queue to its batch being handed to gRPC, nanoseconds.
   LatencyHistogram brick_latency_ns;
+  std::array<LatencyHistogram, kBrickStages> stage_ns;  // by BrickStage, nanoseconds
   GrpcCallMetrics grpc_calls;  // every call, by method and status, from a server interceptor
+
+  void record(BrickStage stage, std::chrono::steady_clock::duration elapsed) {
+    const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count();
+    stage_ns[static_cast<std::size_t>(stage)].record(static_cast<uint64_t>(ns > 0 ? ns : 0));
+  }
 
   void count_error(int code) {
     if (code >= 0 && code < static_cast<int>(errors_by_code.size())) {

@@ -42,8 +42,10 @@ int main(int argc, char** argv) {
   app.add_option("--threads", config.threads, "brick worker threads (0: one per core)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
-  app.add_option("--zstd-level", config.zstd_level, "zstd compression level for bricks")
-      ->check(CLI::Range(1, 19))
+  app.add_option("--zstd-level", config.zstd_level,
+                 "zstd compression level for bricks; negative levels search fewer matches "
+                 "(literals are entropy coded at every level)")
+      ->check(CLI::Range(-1000, 19))
       ->capture_default_str();
   app.add_option("--max-textures", config.max_textures,
                  "textures the registry holds before evicting the least recently used unused one")

@@ -2,8 +2,10 @@
 // thread, for several patterns and MIP modes, at the finest and a coarse level.
 #include <benchmark/benchmark.h>
 
+#include <random>
 #include <vector>
 
+#include "soltex/common/brick_codec.h"
 #include "soltex/common/brick_evaluator.h"
 
 namespace {
@@ -61,6 +63,65 @@ void BrickArguments(benchmark::internal::Benchmark* b) {
 }
 
 BENCHMARK(BM_EvaluateBrick)->Apply(BrickArguments)->ArgNames({"pattern", "level", "mip"});
+
+// The bricks of soltex-load's cold mix (`--mix uniform --finest-level 10`): 6-octave marble,
+// RGB, B = 16, band-limited, every brick of the L = 10 pyramid equally likely (7 of 8 are at
+// level 0). The work one soltexd worker does per cold brick, without the serving: evaluation
+// alone (encode = 0), or evaluation then encode_brick_samples() with the predictor and zstd at
+// `zstd_level` (encode = 1; soltexd's default is -200). The same bricks in the same order on
+// every run.
+void BM_ColdMixBrick(benchmark::State& state) {
+  TextureSpec spec;
+  spec.pattern = MarbleParams{};
+  const TextureEvaluator texture(spec);
+  Volume volume;
+  volume.min = glm::dvec3(-1.0);
+  volume.max = glm::dvec3(1.0);
+  volume.finest_level_log2 = static_cast<int>(state.range(0));
+  const BrickLayout layout(volume, 16);
+  const bool encode = state.range(1) != 0;
+  const int zstd_level = static_cast<int>(state.range(2));
+  const MipSettings mip{MipMode::band_limited, 2};
+  std::vector<float> out(static_cast<std::size_t>(layout.samples_per_brick()) * 3);
+  uint64_t total = 0;
+  for (int level = 0; level <= layout.coarsest_level(); ++level) {
+    const auto n = static_cast<uint64_t>(layout.bricks_per_axis(level));
+    total += n * n * n;
+  }
+  std::mt19937_64 rng(1);
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    uint64_t index = std::uniform_int_distribution<uint64_t>(0, total - 1)(rng);
+    int level = 0;
+    for (;; ++level) {
+      const auto n = static_cast<uint64_t>(layout.bricks_per_axis(level));
+      if (index < n * n * n) break;
+      index -= n * n * n;
+    }
+    const auto n = static_cast<uint64_t>(layout.bricks_per_axis(level));
+    const glm::ivec3 brick(static_cast<int>(index % n), static_cast<int>(index / n % n),
+                           static_cast<int>(index / (n * n)));
+    evaluate_brick(texture, layout, level, brick, mip, out);
+    if (encode) {
+      const std::string encoded =
+          encode_brick_samples(out, 16, 3, CodecOptions{Codec::zstd, zstd_level});
+      bytes += encoded.size();
+      benchmark::DoNotOptimize(encoded.data());
+    }
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetLabel(std::string("marble, cold mix of L = ") + std::to_string(state.range(0)) +
+                 (encode ? ", evaluated and encoded (zstd " + std::to_string(zstd_level) + ")"
+                         : std::string(", evaluated")));
+  state.SetItemsProcessed(state.iterations());
+  if (encode) state.counters["bytes_per_brick"] = static_cast<double>(bytes) / state.iterations();
+}
+
+BENCHMARK(BM_ColdMixBrick)
+    ->Args({10, 0, 0})
+    ->Args({10, 1, -200})
+    ->Args({10, 1, 1})
+    ->ArgNames({"finest", "encode", "zstd_level"});
 
 }  // namespace
 

@@ -175,7 +175,8 @@ TEST(MetricsPage, ParsesAfterRealTrafficAndCountsWhatWasRefused) {
   EXPECT_EQ(run(python() + " " + CHECK_METRICS_SCRIPT + " " + file +
                     " soltex_build_info process_cpu_seconds_total process_resident_memory_bytes"
                     " process_open_fds process_start_time_seconds grpc_server_handled_total"
-                    " soltex_bricks_cancelled_total soltex_brick_latency_seconds",
+                    " soltex_bricks_cancelled_total soltex_brick_latency_seconds"
+                    " soltex_brick_stage_seconds",
                 output),
             0)
       << output << "\n"

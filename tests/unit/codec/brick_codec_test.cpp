@@ -99,6 +99,41 @@ TEST(BrickCodec, RoundTripsEveryPatternCodecAndFilter) {
   }
 }
 
+// The server's encoder from floats makes the bytes of quantize() then encode_brick().
+TEST(BrickCodec, EncodingSamplesEqualsQuantizingThenEncoding) {
+  for (const Pattern& pattern : all_patterns()) {
+    for (int brick_size : {8, 16}) {
+      for (int channels : {1, 3, 5}) {
+        TextureSpec spec;
+        spec.pattern = pattern;
+        spec.channels = channels_for(channels);
+        const TextureEvaluator texture(spec);
+        const BrickLayout layout(Volume{glm::dvec3(-1.0), glm::dvec3(1.0), 6}, brick_size);
+        std::vector<float> samples(static_cast<std::size_t>(layout.samples_per_brick()) * channels);
+        evaluate_brick(texture, layout, 0, glm::ivec3(1, 2, 1), MipSettings{}, samples);
+        const std::vector<uint8_t> planes = quantize(samples);
+        for (bool filter : {false, true}) {
+          for (const CodecCase& c : all_codecs(filter)) {
+            SCOPED_TRACE(std::string(pattern_name(pattern)) + " B=" + std::to_string(brick_size) +
+                         " channels=" + std::to_string(channels) + " " + c.name +
+                         (filter ? " filtered" : " unfiltered"));
+            const std::vector<uint8_t> expected =
+                encode_brick(planes, brick_size, channels, c.options);
+            const std::string encoded =
+                encode_brick_samples(samples, brick_size, channels, c.options);
+            ASSERT_EQ(std::vector<uint8_t>(encoded.begin(), encoded.end()), expected);
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(BrickCodec, EncodingSamplesRejectsTheWrongCount) {
+  const std::vector<float> samples(17 * 17 * 17 * 3 - 1, 0.5f);
+  EXPECT_THROW(encode_brick_samples(samples, 16, 3, CodecOptions{}), std::invalid_argument);
+}
+
 TEST(BrickCodec, RoundTripsEveryFilterExplicitly) {
   const std::vector<uint8_t> planes = real_brick(MarbleParams{}, 16, 3);
   for (BrickFilter filter : {BrickFilter::none, BrickFilter::delta_x, BrickFilter::gradient_xy,

@@ -78,6 +78,12 @@ std::vector<uint8_t> encode_brick(std::span<const uint8_t> quantized_planes, int
 std::vector<uint8_t> encode_brick(std::span<const uint8_t> quantized_planes, int brick_size,
                                   int channels, const CodecOptions& options, BrickFilter filter);
 
+// encode_brick(quantize(samples), ...) from float samples, with the quantizer and predictor
+// fused into one SIMD pass (quantize_and_predict): the same bytes, one copy fewer. The server's
+// encoder; the string is the payload it caches and sends. Throws as encode_brick() does.
+std::string encode_brick_samples(std::span<const float> samples, int brick_size, int channels,
+                                 const CodecOptions& options);
+
 // ---- Decoding ------------------------------------------------------------------------------
 
 // An encoded brick that is malformed, truncated or corrupt. The message names what is wrong
