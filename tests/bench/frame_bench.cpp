@@ -18,9 +18,19 @@
 // wall-clock per frame; the CPU column is the whole process's CPU time (all render threads) per
 // frame. Counters: the warm frame's raster and shade wall times (ms) as FrameRenderer reports them,
 // and its PSNR against the per-pixel reference (dB).
+//   BM_TexturePass     the texturing pass alone, one thread, over the covered pixels of the
+//                      bunny's warm G-buffer (raster and lighting excluded): third argument 0
+//                      the cached lookup (level from the footprint, locate, trilinear read),
+//                      1 the texture evaluated over the footprint (as TextureAccess::evaluated)
+//   BM_EqualPsnr       the warm frame (third argument 0) and the per-pixel reference at K x K
+//                      sub-pixels (third argument K), each with its PSNR against the 8 x 8
+//                      reference (psnr_8x8_db): the reference's K that first reaches the warm
+//                      frame's PSNR is the one whose time the warm frame is compared with
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
@@ -30,6 +40,8 @@
 
 #include "converge.h"
 #include "soltex/common/brick_cache.h"
+#include "soltex/common/texture_evaluator.h"
+#include "soltex/common/texture_sampler.h"
 #include "soltex/net/local_brick_source.h"
 #include "soltex/raster/rasterizer.h"
 #include "soltex/render/frame_renderer.h"
@@ -37,6 +49,7 @@
 #include "soltex/render/prepared_scene.h"
 #include "soltex/scene/default_scene.h"
 #include "soltex/scene/scene_loader.h"
+#include "texture_surface.h"
 
 namespace {
 
@@ -169,6 +182,141 @@ void BM_ColdFrame(benchmark::State& state) {
   state.counters["bricks_wanted"] = static_cast<double>(misses);
 }
 
+// The covered pixels of one object in a warm G-buffer: what the texturing pass reads.
+struct TexturedPixels {
+  std::vector<glm::dvec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<float> footprints;
+};
+
+const TexturedPixels& bunny_pixels(WarmScene& w) {
+  static std::unique_ptr<TexturedPixels> pixels;
+  if (pixels) return *pixels;
+  pixels = std::make_unique<TexturedPixels>();
+  soltex::FrameRenderer keeping(*w.cache,
+                                soltex::RenderOptions{.threads = 1, .keep_gbuffer = true});
+  keeping.render(w.prepared, w.scene.camera, kWidth, kHeight);
+  const soltex::GBuffer& g = keeping.last_gbuffer();
+  // In the tile shader's order: 32 x 32 tiles, rows within a tile.
+  constexpr int kTile = 32;
+  for (int ty = 0; ty < kHeight; ty += kTile) {
+    for (int tx = 0; tx < kWidth; tx += kTile) {
+      for (int y = ty; y < std::min(kHeight, ty + kTile); ++y) {
+        for (int x = tx; x < std::min(kWidth, tx + kTile); ++x) {
+          const std::size_t i = g.index(x, y);
+          if (!g.covered(i) || g.object_id[i] != 0) continue;
+          pixels->positions.push_back(g.texture_position[i]);
+          pixels->normals.push_back(g.normal[i]);
+          pixels->footprints.push_back(g.footprint[i]);
+        }
+      }
+    }
+  }
+  return *pixels;
+}
+
+void cached_pass(benchmark::State& state, WarmScene& w, const TexturedPixels& pixels) {
+  const soltex::PreparedObject& o = w.prepared.objects.front();
+  soltex::TextureSampler sampler(*w.cache, o.texture_id, o.layout, o.channels);
+  const soltex::NearestLevelTable table(o.layout, 0.0);
+  // As the tile shader reads them: a batch of cells located (and prefetched), then read.
+  constexpr std::size_t kBatch = 64;
+  std::array<const uint8_t*, kBatch> cells;
+  std::array<glm::vec3, kBatch> fractions;
+  for (auto _ : state) {
+    float sum = 0.0f;
+    for (std::size_t first = 0; first < pixels.positions.size(); first += kBatch) {
+      const std::size_t n = std::min(kBatch, pixels.positions.size() - first);
+      for (std::size_t j = 0; j < n; ++j) {
+        const int level = table.level(pixels.footprints[first + j]);
+        cells[j] = sampler.locate_rgb(pixels.positions[first + j], level, fractions[j]);
+        if (cells[j] == nullptr) {
+          state.SkipWithError("texture pass missed a brick");
+          return;
+        }
+        __builtin_prefetch(cells[j]);
+        __builtin_prefetch(cells[j] + sampler.y_stride());
+        __builtin_prefetch(cells[j] + sampler.z_stride());
+        __builtin_prefetch(cells[j] + sampler.y_stride() + sampler.z_stride());
+      }
+      for (std::size_t j = 0; j < n; ++j) {
+        alignas(16) float rgb[4];
+        sampler.trilinear_rgb(cells[j], fractions[j], rgb);
+        sum += rgb[0] + rgb[1] + rgb[2];
+      }
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+}
+
+void evaluated_pass(benchmark::State& state, WarmScene& w, const TexturedPixels& pixels) {
+  const soltex::PreparedObject& o = w.prepared.objects.front();
+  const soltex::TextureEvaluator evaluator(o.texture);
+  const soltex::render::TextureSurface surface(o);
+  constexpr std::size_t kBatch = 64;  // as TileShader batches evaluated pixels
+  std::array<glm::dvec3, kBatch> points;
+  std::array<soltex::SampleFootprint, kBatch> footprints;
+  std::array<soltex::Texel, kBatch> texels;
+  for (auto _ : state) {
+    float sum = 0.0f;
+    for (std::size_t first = 0; first < pixels.positions.size(); first += kBatch) {
+      const std::size_t n = std::min(kBatch, pixels.positions.size() - first);
+      for (std::size_t j = 0; j < n; ++j) {
+        const glm::dvec3 normal = surface.normal(pixels.normals[first + j]);
+        const double footprint = pixels.footprints[first + j];
+        points[j] = soltex::render::inset(pixels.positions[first + j], normal,
+                                          soltex::render::kEvaluatedInset * footprint);
+        footprints[j] = soltex::render::surface_footprint(footprint, normal);
+      }
+      evaluator.sample({points.data(), n}, {footprints.data(), n}, {texels.data(), n});
+      for (std::size_t j = 0; j < n; ++j) sum += texels[j].colour.r;
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+}
+
+void BM_TexturePass(benchmark::State& state) {
+  WarmScene& w = warm_scene(state);
+  const TexturedPixels& pixels = bunny_pixels(w);
+  if (state.range(2) == 0) {
+    cached_pass(state, w, pixels);
+  } else {
+    evaluated_pass(state, w, pixels);
+  }
+  state.counters["pixels"] = static_cast<double>(pixels.positions.size());
+  state.counters["ns_per_pixel"] = benchmark::Counter(
+      static_cast<double>(pixels.positions.size()) * 1e-9,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+// The 8 x 8 reference of the bunny-alone view, made once: the ground truth of BM_EqualPsnr.
+const soltex::Image& ground_truth(WarmScene& w) {
+  static std::unique_ptr<soltex::Image> image;
+  if (!image) {
+    image = std::make_unique<soltex::Image>(
+        w.renderer->render_reference(w.prepared, w.scene.camera, kWidth, kHeight, 8));
+  }
+  return *image;
+}
+
+void BM_EqualPsnr(benchmark::State& state) {
+  WarmScene& w = warm_scene(state);
+  const soltex::Image& truth = ground_truth(w);
+  const auto k = static_cast<int>(state.range(2));
+  soltex::Image image;
+  for (auto _ : state) {
+    if (k == 0) {
+      soltex::Frame frame = w.renderer->render(w.prepared, w.scene.camera, kWidth, kHeight);
+      if (!frame.complete()) state.SkipWithError("warm frame missed a brick");
+      image = std::move(frame.image);
+    } else {
+      image = w.renderer->render_reference(w.prepared, w.scene.camera, kWidth, kHeight, k);
+    }
+    benchmark::DoNotOptimize(image.rgb.data());
+  }
+  state.counters["psnr_8x8_db"] = soltex::psnr(image, truth);
+}
+
 // Wall time per frame, with the whole process's CPU (all render threads) beside it.
 void wall_and_process_cpu_ms(benchmark::internal::Benchmark* b) {
   b->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
@@ -188,6 +336,17 @@ BENCHMARK(BM_ReferenceFrame)
     ->Args({2, 0})
     ->Args({2, 1})
     ->Args({2, 2})
+    ->Apply(wall_and_process_cpu_ms);
+BENCHMARK(BM_TexturePass)
+    ->Args({2, 1, 0})
+    ->Args({2, 1, 1})
+    ->Unit(benchmark::kMillisecond);  // one thread: its CPU time, steadier than wall time here
+BENCHMARK(BM_EqualPsnr)
+    ->Args({2, 1, 0})
+    ->Args({2, 1, 1})
+    ->Args({2, 1, 2})
+    ->Args({2, 1, 3})
+    ->Args({2, 1, 4})
     ->Apply(wall_and_process_cpu_ms);
 
 }  // namespace
