@@ -14,7 +14,9 @@
 // speed ratio at PSNR >= 40 dB is read from the second; 2 for the bunny alone drawn with both
 // faces (the scene draws front faces only), to show what back-face culling saves; 3 for the
 // built-in default scene instead (four objects; a clip plane cuts the marble sphere open, so
-// the frame has caps); 4 for the bunny alone in bricks of 8 instead of 16. Times are
+// the frame has caps); 4 for the bunny alone in bricks of 8 instead of 16; 5, 6 and 7 a
+// marble sphere of a million triangles, of ten thousand, and of a million drawn without its
+// simplified levels (sphere_scene()). Times are
 // wall-clock per frame; the CPU column is the whole process's CPU time (all render threads) per
 // frame. Counters: the warm frame's raster and shade wall times (ms) as FrameRenderer reports them,
 // and its PSNR against the per-pixel reference (dB).
@@ -56,6 +58,28 @@ namespace {
 constexpr int kWidth = 1280;
 constexpr int kHeight = 720;
 
+// A marble sphere of radius 1 seen from 3.2 away (about 330,000 pixels): 5 with 998,000
+// triangles (segments 1000, rings 500), 6 with 9,800 (100, 50), 7 the first without its
+// simplified levels (every triangle drawn).
+soltex::Scene sphere_scene(int variant) {
+  const bool fine = variant != 6;
+  const std::string json =
+      std::string(R"({
+    "camera": {"position": [0, 0.6, 3.2], "target": [0, 0, 0], "fov_y_degrees": 40},
+    "lights": [{"directional": {"direction": [-0.5, -1.0, -0.7]}}],
+    "objects": [{"name": "sphere", "double_sided": false,
+      "mesh": {"sphere": {"radius": 1, )") +
+      (fine ? R"("segments": 1000, "rings": 500)" : R"("segments": 100, "rings": 50)") +
+      R"(}},
+      "material": {"texture": {"marble": {"turbulence": {"scale": 2, "octave_max": 6}}},
+                   "specular": 0.5, "shininess": 48}}]})";
+  soltex::Scene scene = soltex::parse_scene(json, "<sphere scene>");
+  if (variant == 7) {
+    for (soltex::SceneObject& object : scene.objects) object.levels.reset();
+  }
+  return scene;
+}
+
 // One converged scene per thread count, kept for the whole run.
 struct WarmScene {
   WarmScene(int threads, int variant)
@@ -73,6 +97,7 @@ struct WarmScene {
 
   static soltex::Scene load(int variant) {
     if (variant == 3) return soltex::default_scene();  // 4: the bunny alone, bricks of 8
+    if (variant >= 5) return sphere_scene(variant);
     soltex::Scene scene = soltex::load_scene(SOLTEX_SOURCE_DIR "/deploy/scenes/bunny-marble.json");
     if (variant >= 1) {
       std::erase_if(scene.objects, [](const soltex::SceneObject& o) { return o.name == "floor"; });
@@ -92,7 +117,7 @@ struct WarmScene {
 };
 
 WarmScene& warm_scene(const benchmark::State& state) {
-  constexpr int kThreadCounts = 3, kVariants = 5;  // threads 0..2, variants 0..4
+  constexpr int kThreadCounts = 3, kVariants = 8;  // threads 0..2, variants 0..7
   static std::unique_ptr<WarmScene> scenes[kThreadCounts][kVariants];
   const auto threads = static_cast<int>(state.range(0));
   const auto variant = static_cast<int>(state.range(1));
@@ -107,19 +132,21 @@ WarmScene& warm_scene(const benchmark::State& state) {
 void BM_WarmFrame(benchmark::State& state) {
   WarmScene& w = warm_scene(state);
   double raster_ms = 0.0, shade_ms = 0.0;
-  std::size_t covered = 0;
+  std::size_t covered = 0, triangles = 0;
   for (auto _ : state) {
     soltex::Frame frame = w.renderer->render(w.prepared, w.scene.camera, kWidth, kHeight);
     if (!frame.complete()) state.SkipWithError("warm frame missed a brick");
     raster_ms += frame.stats.raster_ms;
     shade_ms += frame.stats.shade_ms;
     covered = frame.stats.covered_pixels;
+    triangles = frame.stats.raster.triangles_in;
     benchmark::DoNotOptimize(frame.image);
   }
   const auto n = static_cast<double>(state.iterations());
   state.counters["raster_ms"] = raster_ms / n;
   state.counters["shade_ms"] = shade_ms / n;
   state.counters["covered"] = static_cast<double>(covered);
+  state.counters["triangles"] = static_cast<double>(triangles);
   state.counters["psnr_db"] = w.psnr;
 }
 
@@ -329,6 +356,9 @@ BENCHMARK(BM_WarmFrame)
     ->Args({2, 2})
     ->Args({2, 3})
     ->Args({2, 4})
+    ->Args({2, 5})
+    ->Args({2, 6})
+    ->Args({2, 7})
     ->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_Raster)->Args({1, 0})->Args({2, 0})->Args({2, 1})->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_ColdFrame)->Args({2, 0})->Args({2, 1})->Args({2, 4})->Apply(wall_and_process_cpu_ms);
