@@ -30,11 +30,7 @@ RasterMesh mesh_for_view(const PreparedObject& object, const Camera& camera, int
   const double allowed = kMaxLevelErrorPixels * pixel / scale;  // in the mesh's units
   RasterMesh chosen = own;
   for (const MeshLevel& level : *object.object->levels) {
-    // Both errors grow level by level.
-    if (!(static_cast<double>(level.error) <= allowed) ||
-        !(static_cast<double>(level.normal_error) <= kMaxLevelNormalError)) {
-      break;
-    }
+    if (!(static_cast<double>(level.error) <= allowed)) break;  // errors grow level by level
     chosen = {level.mesh.positions, level.mesh.normals, level.mesh.indices};
   }
   return chosen;

@@ -12,13 +12,9 @@ namespace soltex::render {
 // nearest point to the eye: a silhouette moves by less than half a pixel, the most a pixel
 // centre already lies from an edge it is drawn by, and the texture position moves less still.
 inline constexpr double kMaxLevelErrorPixels = 0.5;
-// The most a drawn level's normals may turn from the mesh's (MeshLevel::normal_error), in
-// radians: about 3 degrees, a few percent of a light's diffuse term at most. A scanned mesh
-// keeps its fine shading in its normals and is drawn as it is.
-inline constexpr double kMaxLevelNormalError = 0.05;
 
-// The coarsest level of `object` whose normals turn by at most kMaxLevelNormalError and whose
-// error, scaled to world space by the object's transform
+// The coarsest level of `object` (whose levels turn normals by at most
+// MeshLodLimits::kMaxNormalError) whose error, scaled to world space by the object's transform
 // and seen at the nearest point of its bounding sphere (no nearer than the near plane), spans
 // at most kMaxLevelErrorPixels of a frame `height` pixels high; the object's own mesh when no
 // level qualifies (or it has none).

@@ -119,6 +119,7 @@ std::vector<MeshLevel> simplified_levels(const Mesh& mesh) {
     error += step_error * scale;
     Mesh simplified = compact(*finer, std::move(indices));
     const float turned = normal_error(mesh, simplified);
+    if (!(turned <= MeshLodLimits::kMaxNormalError)) break;
     levels.push_back({std::move(simplified), error, turned});
     finer = &levels.back().mesh;
   }

@@ -40,7 +40,7 @@ TEST(MeshLod, SmallMeshesGetNoLevels) {
 TEST(MeshLod, LevelsHalveASmoothMeshOutOfItsOwnVertices) {
   const Mesh sphere = fine_sphere();
   const std::vector<MeshLevel> levels = simplified_levels(sphere);
-  ASSERT_GE(levels.size(), 4u);
+  ASSERT_GE(levels.size(), 2u);
   const std::set<Vertex> original = vertices_of(sphere);
   std::size_t finer = sphere.triangle_count();
   float error = 0.0f;
@@ -59,16 +59,12 @@ TEST(MeshLod, LevelsHalveASmoothMeshOutOfItsOwnVertices) {
     std::vector<bool> used(mesh.positions.size(), false);
     for (uint32_t index : mesh.indices) used[index] = true;
     EXPECT_EQ(std::count(used.begin(), used.end(), false), 0);
-    // A sphere's normals turn little between neighbouring vertices: a few degrees down to
-    // some ten thousand triangles.
-    if (mesh.triangle_count() >= 9000) {
-      EXPECT_LT(level.normal_error, 0.06f);
-    }
+    EXPECT_LE(level.normal_error, MeshLodLimits::kMaxNormalError);
     EXPECT_EQ(mesh.bounds.min, bounds_of(mesh.positions).min);
   }
 }
 
-TEST(MeshLod, NormalsThatVaryFasterThanTheSurfaceAreMeasured) {
+TEST(MeshLod, NormalsThatVaryFasterThanTheSurfaceKeepTheMeshWhole) {
   // A scan's look: the same sphere, every other vertex's normal tipped by about 30 degrees.
   Mesh rough = fine_sphere();
   for (std::size_t v = 0; v < rough.normals.size(); v += 2) {
@@ -76,9 +72,8 @@ TEST(MeshLod, NormalsThatVaryFasterThanTheSurfaceAreMeasured) {
     const glm::vec3 side = std::fabs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
     rough.normals[v] = glm::normalize(n + 0.58f * glm::normalize(glm::cross(n, side)));
   }
-  const std::vector<MeshLevel> levels = simplified_levels(rough);
-  ASSERT_FALSE(levels.empty());
-  for (const MeshLevel& level : levels) EXPECT_GT(level.normal_error, 0.4f);
+  // Every level would turn some normal by about 30 degrees: none is kept.
+  EXPECT_TRUE(simplified_levels(rough).empty());
 }
 
 TEST(MeshLod, IndicesOutOfRangeAreLeftForTheRasterizer) {

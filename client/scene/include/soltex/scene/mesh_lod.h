@@ -37,6 +37,11 @@ struct MeshLodLimits {
   static constexpr std::size_t kMinTriangles = 32768;
   // No level below this many triangles.
   static constexpr std::size_t kCoarsestTriangles = 2048;
+  // The most a kept level's normals may turn from the original's (MeshLevel::normal_error), in
+  // radians: about 3 degrees, a few percent of a light's diffuse term at most. The first level
+  // past it ends the chain (coarser ones only turn more), so a scanned mesh, whose fine
+  // shading lives in its normals, keeps none or few.
+  static constexpr float kMaxNormalError = 0.05f;
   // Original vertices whose normals are compared with each level's (evenly spread).
   static constexpr std::size_t kNormalProbes = 65536;
 };
@@ -44,7 +49,8 @@ struct MeshLodLimits {
 // The simplified levels of `mesh`, finest first, each with at most about half the triangles of
 // the one before; empty for a mesh below MeshLodLimits::kMinTriangles triangles. The
 // simplification stops early where a step cannot remove a quarter of the triangles (the mesh
-// is as simple as its borders allow). Normals are the original vertices' (simplification keeps
+// is as simple as its borders allow) or turns normals by more than
+// MeshLodLimits::kMaxNormalError. Normals are the original vertices' (simplification keeps
 // a subset of the vertices), and each level is ordered for locality like the original.
 std::vector<MeshLevel> simplified_levels(const Mesh& mesh);
 
