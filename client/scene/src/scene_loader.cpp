@@ -513,8 +513,8 @@ Scene parse_scene(std::string_view json_text, const std::string& name_for_errors
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     auto& levels = simplified[meshes[i].cache_key];
     if (!levels) {
-      levels = std::make_shared<const std::vector<MeshLevel>>(
-          simplified_levels(*scene.objects[i].mesh));
+      levels =
+          std::make_shared<const std::vector<MeshLevel>>(simplified_levels(*scene.objects[i].mesh));
     }
     scene.objects[i].levels = levels;
   }
