@@ -361,7 +361,12 @@ BENCHMARK(BM_WarmFrame)
     ->Args({2, 7})
     ->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_Raster)->Args({1, 0})->Args({2, 0})->Args({2, 1})->Apply(wall_and_process_cpu_ms);
-BENCHMARK(BM_ColdFrame)->Args({2, 0})->Args({2, 1})->Args({2, 4})->Apply(wall_and_process_cpu_ms);
+BENCHMARK(BM_ColdFrame)
+    ->Args({2, 0})
+    ->Args({2, 1})
+    ->Args({2, 3})
+    ->Args({2, 4})
+    ->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_ReferenceFrame)
     ->Args({2, 0})
     ->Args({2, 1})
