@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <bit>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -79,7 +81,9 @@ TextureSampler::TextureSampler(BrickCache& cache, uint64_t texture, const BrickL
       // Clamped: the channel count is checked below, after the members are built.
       accessor_(cache,
                 BrickCache::Accessor::set_bits_for(
-                    layout.brick_size(), std::clamp(channels, 1, CachedBrick::kMaxChannels))) {
+                    layout.brick_size(), std::clamp(channels, 1, CachedBrick::kMaxChannels))),
+      remembered_(std::size_t{1} << kRememberedBits),
+      last_{&remembered_[0], &remembered_[0]} {
   if (channels < 1 || channels > CachedBrick::kMaxChannels) {
     throw std::invalid_argument("TextureSampler: channels = " + std::to_string(channels) +
                                 " must be in [1, " + std::to_string(CachedBrick::kMaxChannels) +
@@ -89,6 +93,95 @@ TextureSampler::TextureSampler(BrickCache& cache, uint64_t texture, const BrickL
     const auto l = static_cast<std::size_t>(level);
     level_scale_[l] = std::ldexp(1.0, -level);
     cells_[l] = static_cast<double>(layout.cells_per_axis(level));
+  }
+}
+
+void TextureSampler::sample(std::span<const glm::dvec3> points, double lod, SampleFilter filter,
+                            std::span<SampleResult> results) {
+  if (results.size() != points.size()) {
+    throw std::invalid_argument("TextureSampler::sample: " + std::to_string(results.size()) +
+                                " results for " + std::to_string(points.size()) +
+                                " points; the counts must be equal");
+  }
+  // The same test as sample()'s fast path: other cases take it point by point.
+  if (filter != SampleFilter::trilinear || channels_ != 3 || !(lod >= 0.0)) {
+    for (std::size_t i = 0; i < points.size(); ++i) results[i] = sample(points[i], lod, filter);
+    return;
+  }
+  const int level = static_cast<int>(std::min(lod, coarsest_lod_) + 0.5);
+  for (std::size_t first = 0; first < points.size(); first += kSampleChunk) {
+    const std::size_t n = std::min(kSampleChunk, points.size() - first);
+    sample_rgb_chunk(points.subspan(first, n), level, results.subspan(first, n));
+  }
+}
+
+void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int level,
+                                      std::span<SampleResult> results) {
+  const auto l = static_cast<std::size_t>(level);
+  CellChunk chunk;
+  split_cells(points, min_, finest_spacing_, level_scale_[l], cells_[l], chunk);
+  std::array<const uint8_t*, kSampleChunk> corners;
+  bool missed = false;
+  const auto n = points.size();
+  const int bricks = layout_.bricks_per_axis(level);
+  // Neighbouring points mostly share a brick: a run in one brick asks resident() once.
+  const uint8_t* run_samples = nullptr;
+  uint64_t run_hits = 0, run_misses = 0;  // lookups a run answered, counted as resident() would
+  const auto brick_of = [&](std::size_t i) {
+    return glm::ivec3(chunk.cell[0][i] >> brick_shift_, chunk.cell[1][i] >> brick_shift_,
+                      chunk.cell[2][i] >> brick_shift_);
+  };
+  if (static_cast<int64_t>(bricks) * bricks * bricks <= INT32_MAX) {
+    // The flat brick index in one int32 compares a run in one instruction.
+    locate_cells(chunk, n, {brick_shift_, brick_mask_, bricks, 3, y_stride_, z_stride_});
+    int32_t run_brick = -1;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (chunk.brick[i] == run_brick) {
+        ++(run_samples == nullptr ? run_misses : run_hits);
+      } else {
+        const Current* found = resident(level, brick_of(i));
+        run_brick = chunk.brick[i];
+        run_samples = found == nullptr ? nullptr : found->samples;
+      }
+      corners[i] = run_samples == nullptr ? nullptr : run_samples + chunk.offset[i];
+      missed |= run_samples == nullptr;
+    }
+  } else {
+    glm::ivec3 run_brick(-1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const glm::ivec3 brick = brick_of(i);
+      if (brick == run_brick) {
+        ++(run_samples == nullptr ? run_misses : run_hits);
+      } else {
+        const Current* found = resident(level, brick);
+        run_brick = brick;
+        run_samples = found == nullptr ? nullptr : found->samples;
+      }
+      const glm::ivec3 local(chunk.cell[0][i] & brick_mask_, chunk.cell[1][i] & brick_mask_,
+                             chunk.cell[2][i] & brick_mask_);
+      corners[i] = run_samples == nullptr
+                       ? nullptr
+                       : run_samples + local.z * z_stride_ + local.y * y_stride_ + local.x * 3;
+      missed |= run_samples == nullptr;
+    }
+  }
+  accessor_.count_microcache_hit(run_hits);
+  accessor_.count_miss(run_misses);
+  for (SampleResult& result : results) {
+    result.values[4] = 0.0f;  // the kernel writes the first four
+    result.level = level;
+    result.complete = true;
+  }
+  static_assert(sizeof(SampleResult) % sizeof(float) == 0);
+  soltex::trilinear_rgb(std::span<const uint8_t* const>(corners.data(), points.size()), chunk,
+                        y_stride_, z_stride_, results[0].values.data(),
+                        sizeof(SampleResult) / sizeof(float));
+  if (!missed) return;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (corners[i] == nullptr) {
+      sample_general(points[i], static_cast<double>(level), SampleFilter::trilinear, nullptr,
+                     results[i]);
+    }
   }
 }
 

@@ -6,15 +6,21 @@
 // renderer would pick), visited in two orders:
 //   *_Scanline  row after row, adjacent rows next to each other, as a rasterizer visits them;
 //   *_Random    the same points shuffled.
-// At every point:
-//   Cached_Trilinear     TextureSampler::sample at level 0: brick lookup (the sampler's
-//                        last brick, then the accessor's microcache table, then the sharded
-//                        map), then trilinear RGB from the 8-bit brick;
-//   Cached_Quadrilinear  the same at level of detail 0.5 (levels 0 and 1 blended);
+// At every point, one image row (512 points) per call, into a row of SampleResults:
+//   Cached_Trilinear     TextureSampler::sample(points, 0, trilinear, results): per chunk of
+//                        64 points the runtime-dispatched cell split and brick location
+//                        (sampling_kernels.h), one brick lookup per run of points in one
+//                        brick (the sampler's last brick, its brick table, the accessor's
+//                        microcache table, the sharded map), the dispatched RGB kernel;
+//   Cached_Quadrilinear  the same at level of detail 0.5 (levels 0 and 1 blended; this
+//                        filter goes point by point);
 //   Dense_Trilinear      a dense 257^3 RGB uint8 array holding the same quantized voxels
-//                        (the vertex-centred lattice of 256^3 cells, 48.6 MiB), trilinear
-//                        with the same clamping and cell split (soltex::split_cell) and
-//                        the same kernel (soltex::trilinear_u8);
+//                        (the vertex-centred lattice of 256^3 cells, 48.6 MiB), through the
+//                        same dispatched kernels (the whole lattice as one brick), filling
+//                        the same SampleResults;
+//   CachedPoint_*, DensePoint_*  the per-point forms (TextureSampler::sample(p, ...), and
+//                        split_cell plus trilinear_u8 for the array): the build's static
+//                        target, scalar in a generic build;
 //   Marble_Direct        TextureEvaluator::sample of the marble, band-limited to level 0's
 //                        spacing, at the same points: what the cache saves.
 // The cache holds every level-0 and level-1 brick the plane touches (its budget is larger
@@ -26,6 +32,8 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <array>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <glm/geometric.hpp>
@@ -40,6 +48,7 @@
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/brick_layout.h"
 #include "soltex/common/sample_split.h"
+#include "soltex/common/sampling_kernels.h"
 #include "soltex/common/texture_evaluator.h"
 #include "soltex/common/texture_id.h"
 #include "soltex/common/texture_sampler.h"
@@ -93,6 +102,33 @@ class DenseVolume {
     soltex::trilinear_u8<3>(corner, static_cast<std::ptrdiff_t>(n_) * 3,
                             static_cast<std::ptrdiff_t>(n_) * n_ * 3, s.frac.x, s.frac.y, s.frac.z,
                             out);
+  }
+
+  // The same for a batch, in the shape of TextureSampler::sample(points, lod, filter,
+  // results): the cell split and the kernel through the runtime-dispatched batch kernels, one
+  // chunk at a time, into SampleResults (level 0, complete) as the sampler fills them.
+  void trilinear(std::span<const glm::dvec3> points,
+                 std::span<soltex::SampleResult> results) const {
+    soltex::CellChunk chunk;
+    std::array<const uint8_t*, soltex::kSampleChunk> corners;
+    const auto y_stride = static_cast<std::ptrdiff_t>(n_) * 3;
+    const auto z_stride = static_cast<std::ptrdiff_t>(n_) * n_ * 3;
+    for (std::size_t first = 0; first < points.size(); first += soltex::kSampleChunk) {
+      const std::size_t n = std::min(soltex::kSampleChunk, points.size() - first);
+      soltex::split_cells(points.subspan(first, n), min_, spacing_, 1.0, cells_, chunk);
+      // The whole lattice as one brick: the offsets are the indices.
+      soltex::locate_cells(chunk, n, {31, INT32_MAX, 1, 3, y_stride, z_stride});
+      for (std::size_t i = 0; i < n; ++i) corners[i] = rgb_.data() + chunk.offset[i];
+      for (std::size_t i = 0; i < n; ++i) {
+        soltex::SampleResult& result = results[first + i];
+        result.values[4] = 0.0f;
+        result.level = 0;
+        result.complete = true;
+      }
+      soltex::trilinear_rgb(std::span<const uint8_t* const>(corners.data(), n), chunk, y_stride,
+                            z_stride, results[first].values.data(),
+                            sizeof(soltex::SampleResult) / sizeof(float));
+    }
   }
 
   std::size_t bytes() const { return rgb_.size(); }
@@ -216,8 +252,8 @@ void report_samples(benchmark::State& state) {
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-void BM_Cached(benchmark::State& state, bool random_order, double lod,
-               soltex::SampleFilter filter) {
+void BM_CachedPoint(benchmark::State& state, bool random_order, double lod,
+                    soltex::SampleFilter filter) {
   Scene& s = scene();
   const std::vector<glm::dvec3>& points = points_in(random_order);
   soltex::TextureSampler sampler(s.cache, s.id, s.layout, 3);
@@ -243,7 +279,7 @@ void BM_Cached(benchmark::State& state, bool random_order, double lod,
   state.counters["cache_MiB"] = static_cast<double>(after.resident_bytes) / (1 << 20);
 }
 
-void BM_Dense(benchmark::State& state, bool random_order) {
+void BM_DensePoint(benchmark::State& state, bool random_order) {
   const DenseVolume& dense = scene().dense;
   const std::vector<glm::dvec3>& points = points_in(random_order);
   for (auto _ : state) {
@@ -257,6 +293,56 @@ void BM_Dense(benchmark::State& state, bool random_order) {
   }
   report_samples(state);
   state.counters["array_MiB"] = static_cast<double>(dense.bytes()) / (1 << 20);
+}
+
+// The batch forms: one image row (kImageSide points) per call, as a renderer hands over a
+// row of a tile, into a reused row of results.
+void BM_Cached(benchmark::State& state, bool random_order, double lod,
+               soltex::SampleFilter filter) {
+  Scene& s = scene();
+  const std::span<const glm::dvec3> points = points_in(random_order);
+  soltex::TextureSampler sampler(s.cache, s.id, s.layout, 3);
+  std::vector<soltex::SampleResult> row(kImageSide);
+  const soltex::BrickCacheStats before = s.cache.stats();
+  bool complete = true;
+  for (auto _ : state) {
+    float sink = 0.0f;
+    for (std::size_t first = 0; first < points.size(); first += kImageSide) {
+      sampler.sample(points.subspan(first, kImageSide), lod, filter, row);
+      for (const soltex::SampleResult& r : row) {
+        complete = complete && r.complete;
+        sink += r.values[0] + r.values[1] + r.values[2];
+      }
+    }
+    benchmark::DoNotOptimize(sink);
+  }
+  sampler.flush_statistics();
+  const soltex::BrickCacheStats after = s.cache.stats();
+  if (!complete) state.SkipWithError("a lookup missed: the cache does not hold the plane");
+  report_samples(state);
+  state.counters["microcache_hit_rate"] =
+      static_cast<double>(after.microcache_hits - before.microcache_hits) /
+      static_cast<double>(std::max<uint64_t>(1, after.lookups - before.lookups));
+}
+
+void BM_Dense(benchmark::State& state, bool random_order) {
+  const DenseVolume& dense = scene().dense;
+  const std::span<const glm::dvec3> points = points_in(random_order);
+  std::vector<soltex::SampleResult> row(kImageSide);
+  bool complete = true;
+  for (auto _ : state) {
+    float sink = 0.0f;
+    for (std::size_t first = 0; first < points.size(); first += kImageSide) {
+      dense.trilinear(points.subspan(first, kImageSide), row);
+      for (const soltex::SampleResult& r : row) {
+        complete = complete && r.complete;
+        sink += r.values[0] + r.values[1] + r.values[2];
+      }
+    }
+    benchmark::DoNotOptimize(sink);
+  }
+  benchmark::DoNotOptimize(complete);
+  report_samples(state);
 }
 
 void BM_Marble(benchmark::State& state, bool random_order) {
@@ -278,10 +364,16 @@ using soltex::SampleFilter;
 BENCHMARK_CAPTURE(BM_Cached, Trilinear_Scanline, false, 0.0, SampleFilter::trilinear)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Dense, Trilinear_Scanline, false)->Unit(benchmark::kMillisecond);
-BENCHMARK_CAPTURE(BM_Marble, Direct_Scanline, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Cached, Trilinear_Random, true, 0.0, SampleFilter::trilinear)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Dense, Trilinear_Random, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CachedPoint, Trilinear_Scanline, false, 0.0, SampleFilter::trilinear)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_DensePoint, Trilinear_Scanline, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CachedPoint, Trilinear_Random, true, 0.0, SampleFilter::trilinear)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_DensePoint, Trilinear_Random, true)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Marble, Direct_Scanline, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Marble, Direct_Random, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Cached, Quadrilinear_Scanline, false, 0.5, SampleFilter::quadrilinear)
     ->Unit(benchmark::kMillisecond);

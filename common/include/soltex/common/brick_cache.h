@@ -220,7 +220,7 @@ class BrickCache::Accessor {
   // a caller may keep using it without asking again (a layer that keeps its last brick).
   uint64_t generation() const { return cache_->generation_.load(std::memory_order_acquire); }
   // Counts a lookup such a layer answered from the brick it kept.
-  void count_microcache_hit() { ++microcache_hits_; }
+  void count_microcache_hit(uint64_t lookups = 1) { microcache_hits_ += lookups; }
   // Bricks inserted so far: while generation() and this are unchanged, a brick found missing
   // is still missing, so a layer may remember the miss.
   uint64_t insertions() const { return cache_->insertions_.load(std::memory_order_acquire); }

@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <glm/vec3.hpp>
 
-#if defined(__AVX__) && defined(__SSE4_1__)
-#include <immintrin.h>
-#endif
+#include "soltex/common/sampling_kernels-inl.h"
 
 // The split of a texture-space point into a lattice cell and the fraction inside it, as a
 // trilinear lookup needs it:
@@ -35,27 +33,24 @@ inline CellSplit split_cell_scalar(const glm::dvec3& p, const glm::dvec3& origin
   return split;
 }
 
-// The same operations on the three axes at once where AVX is available; bit-identical to
-// split_cell_scalar (each lane does the same IEEE operations in the same order).
+// The same operations on the three axes at once where the build's static Highway target has
+// four double lanes (AVX2 and up); bit-identical to split_cell_scalar (each lane does the same
+// IEEE operations in the same order). Batches split through sampling_kernels.h instead, with
+// the points in the lanes, dispatched at run time.
 inline CellSplit split_cell(const glm::dvec3& p, const glm::dvec3& origin,
                             const glm::dvec3& spacing, double scale, double cells) {
-#if defined(__AVX__) && defined(__SSE4_1__)
-  const __m256d u =
-      _mm256_mul_pd(_mm256_div_pd(_mm256_sub_pd(_mm256_setr_pd(p.x, p.y, p.z, 0.0),
-                                                _mm256_setr_pd(origin.x, origin.y, origin.z, 0.0)),
-                                  _mm256_setr_pd(spacing.x, spacing.y, spacing.z, 1.0)),
-                    _mm256_set1_pd(scale));
-  // max(u, 0) returns its second operand, 0, when u is NaN.
-  const __m256d clamped =
-      _mm256_min_pd(_mm256_max_pd(u, _mm256_setzero_pd()), _mm256_set1_pd(cells));
-  const __m128i cell =
-      _mm_min_epi32(_mm256_cvttpd_epi32(clamped), _mm_set1_epi32(static_cast<int>(cells) - 1));
-  const __m128 frac = _mm256_cvtpd_ps(_mm256_sub_pd(clamped, _mm256_cvtepi32_pd(cell)));
-  alignas(16) int cells_out[4];
-  alignas(16) float fracs_out[4];
-  _mm_store_si128(reinterpret_cast<__m128i*>(cells_out), cell);
-  _mm_store_ps(fracs_out, frac);
-  return {{cells_out[0], cells_out[1], cells_out[2]}, {fracs_out[0], fracs_out[1], fracs_out[2]}};
+#if HWY_MAX_BYTES >= 32 && HWY_TARGET != HWY_EMU128 && HWY_TARGET != HWY_SCALAR
+  namespace hn = hwy::HWY_NAMESPACE;
+  const hn::FixedTag<double, 4> d;
+  // Masked loads of the three coordinates: no read past a vector, and no scalar stores for a
+  // vector load to wait on. The fourth lane is 0 / 0, ignored.
+  const auto xyz = hn::FirstN(d, 3);
+  alignas(16) int32_t cell[4];
+  alignas(16) float frac[4];
+  HWY_NAMESPACE::sampling_kernels::split_lanes(
+      d, hn::MaskedLoad(xyz, d, &p.x), hn::MaskedLoad(xyz, d, &origin.x),
+      hn::MaskedLoad(xyz, d, &spacing.x), hn::Set(d, scale), hn::Set(d, cells), cell, frac);
+  return {{cell[0], cell[1], cell[2]}, {frac[0], frac[1], frac[2]}};
 #else
   return split_cell_scalar(p, origin, spacing, scale, cells);
 #endif

@@ -6,12 +6,14 @@
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <span>
+#include <vector>
 
 #include "soltex/common/brick_cache.h"
 #include "soltex/common/brick_key.h"
 #include "soltex/common/brick_layout.h"
 #include "soltex/common/cached_brick.h"
 #include "soltex/common/sample_split.h"
+#include "soltex/common/sampling_kernels.h"
 #include "soltex/common/trilinear_u8.h"
 
 // Sampling one texture through the sparse cache cube.
@@ -161,6 +163,15 @@ class TextureSampler {
     return result;
   }
 
+  // sample(points[i], lod, filter) for every i into results[i], bit for bit; results.size()
+  // must equal points.size() (std::invalid_argument otherwise). Missed bricks are not
+  // listed: a result with complete == false names them through brick_key(). Trilinear RGB
+  // runs the runtime-dispatched kernels of sampling_kernels.h, chosen once per kSampleChunk
+  // points, so a generic build uses the CPU's widest vectors; other filters and channel
+  // counts go point by point.
+  void sample(std::span<const glm::dvec3> points, double lod, SampleFilter filter,
+              std::span<SampleResult> results);
+
   // sample()'s nearest and trilinear fast path in two steps, for callers that look many points
   // up and prefetch in between. For a three-channel texture and a level in [0, coarsest]: the
   // address of the cell's first sample in its resident brick (bricks found in this frame stay
@@ -253,17 +264,24 @@ class TextureSampler {
     return found;
   }
 
-  // find() with the brick used last at this level's parity kept in front of it (OpenVDB's
-  // accessors keep the last leaf the same way; two, so that quadrilinear's two adjacent
-  // levels each keep theirs): a run of samples in one brick compares a level, a brick
-  // coordinate and the generation, and needs no key and no microcache probe.
+  // find() with the bricks found lately kept in front of it, in a small direct-mapped table
+  // of this sampler's own (a page table in the small: one probe, and the entry holds the
+  // sample pointer itself), and the entry used last at this level's parity checked first
+  // (OpenVDB's accessors keep the last leaf the same way; two, so that quadrilinear's two
+  // adjacent levels each keep theirs). An entry is valid while the cache's generation is
+  // the one it was found in: no eviction since, so the brick is still resident and alive.
   const Current* resident(int level, const glm::ivec3& brick) {
     const uint64_t generation = accessor_.generation();
-    Current& current = current_[static_cast<std::size_t>(level & 1)];
-    if ((level == current.level) & (brick.x == current.brick.x) & (brick.y == current.brick.y) &
-        (brick.z == current.brick.z) & (generation == current.generation)) {
+    const Current*& last = last_[static_cast<std::size_t>(level & 1)];
+    if (holds(*last, level, brick, generation)) {
       accessor_.count_microcache_hit();
-      return &current;
+      return last;
+    }
+    Current& entry = remembered_[remembered_slot(level, brick)];
+    if (holds(entry, level, brick, generation)) {
+      accessor_.count_microcache_hit();
+      last = &entry;
+      return last;
     }
     // A brick found missing is still missing while nothing was inserted or evicted since: a
     // cold frame misses at nearly every pixel, over and over in the same few bricks per level.
@@ -276,13 +294,33 @@ class TextureSampler {
     }
     const CachedBrick* found = find(level, brick);
     if (found == nullptr) {
-      current = Current{};
       missing = Missing{brick, generation, insertions};
       return nullptr;
     }
-    current = Current{brick, level, generation, found, found->sample(0, 0, 0)};
-    return &current;
+    entry = Current{brick, level, generation, found, found->sample(0, 0, 0)};
+    last = &entry;
+    return last;
   }
+
+  // Compared with & rather than &&: no branch per field.
+  static bool holds(const Current& entry, int level, const glm::ivec3& brick, uint64_t generation) {
+    return (level == entry.level) & (brick.x == entry.brick.x) & (brick.y == entry.brick.y) &
+           (brick.z == entry.brick.z) & (generation == entry.generation);
+  }
+
+  static constexpr int kRememberedBits = 11;  // 2,048 bricks, 80 KiB
+  static std::size_t remembered_slot(int level, const glm::ivec3& brick) {
+    // Brick coordinates are below 2^11 (SpecLimits) and levels below 2^4: the key is exact.
+    const uint64_t key = static_cast<uint64_t>(level) << 60 |
+                         static_cast<uint64_t>(static_cast<uint32_t>(brick.x)) << 40 |
+                         static_cast<uint64_t>(static_cast<uint32_t>(brick.y)) << 20 |
+                         static_cast<uint32_t>(brick.z);
+    return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15u) >> (64 - kRememberedBits));
+  }
+
+  // The trilinear RGB lookups of up to kSampleChunk points at one level, into results.
+  void sample_rgb_chunk(std::span<const glm::dvec3> points, int level,
+                        std::span<SampleResult> results);
 
   void sample_general(const glm::dvec3& p, double lod, SampleFilter filter, MissedBricks* missed,
                       SampleResult& result);
@@ -305,9 +343,11 @@ class TextureSampler {
   std::array<double, SpecLimits::kMaxFinestLevelLog2 + 1> level_scale_;
   std::array<double, SpecLimits::kMaxFinestLevelLog2 + 1> cells_;
   BrickCache::Accessor accessor_;
-  // The bricks resident() found last, per level parity; each valid while the cache's
-  // generation is the one it was found in (no eviction since: still resident and alive).
-  std::array<Current, 2> current_;
+  // The bricks resident() found lately (remembered_, indexed by remembered_slot()), and the
+  // entries it returned last, per level parity; each valid while the cache's generation is
+  // the one it was found in.
+  std::vector<Current> remembered_;
+  std::array<const Current*, 2> last_;
   // Per level, the brick last found missing.
   std::array<Missing, SpecLimits::kMaxFinestLevelLog2 + 1> missing_{};
 };
