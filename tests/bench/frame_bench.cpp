@@ -22,8 +22,10 @@
 // and its PSNR against the per-pixel reference (dB).
 //   BM_TexturePass     the texturing pass alone, one thread, over the covered pixels of the
 //                      bunny's warm G-buffer (raster and lighting excluded): third argument 0
-//                      the cached lookup (level from the footprint, locate, trilinear read),
-//                      1 the texture evaluated over the footprint (as TextureAccess::evaluated)
+//                      the cached lookup as TileShader makes it (level from the footprint,
+//                      pixels grouped by level, TextureSampler's batch call per group), 1 the
+//                      texture evaluated over the footprint (as TextureAccess::evaluated), 2 the
+//                      cached lookup pixel by pixel (locate_rgb, trilinear_rgb a batch later)
 //   BM_EqualPsnr       the warm frame (third argument 0) and the per-pixel reference at K x K
 //                      sub-pixels (third argument K), each with its PSNR against the 8 x 8
 //                      reference (psnr_8x8_db): the reference's K that first reaches the warm
@@ -42,6 +44,7 @@
 
 #include "converge.h"
 #include "soltex/common/brick_cache.h"
+#include "soltex/common/sampling_kernels.h"
 #include "soltex/common/texture_evaluator.h"
 #include "soltex/common/texture_sampler.h"
 #include "soltex/net/local_brick_source.h"
@@ -242,7 +245,48 @@ const TexturedPixels& bunny_pixels(WarmScene& w) {
   return *pixels;
 }
 
-void cached_pass(benchmark::State& state, WarmScene& w, const TexturedPixels& pixels) {
+// As the tile shader reads them: pixels grouped by level, each group of kSampleChunk looked up
+// through the sampler's batch call.
+void batched_pass(benchmark::State& state, WarmScene& w, const TexturedPixels& pixels) {
+  const soltex::PreparedObject& o = w.prepared.objects.front();
+  soltex::TextureSampler sampler(*w.cache, o.texture_id, o.layout, o.channels);
+  const soltex::NearestLevelTable table(o.layout, 0.0);
+  constexpr std::size_t kBatch = soltex::kSampleChunk;
+  constexpr std::size_t kLevels = soltex::SpecLimits::kMaxFinestLevelLog2 + 1;
+  std::vector<std::array<glm::dvec3, kBatch>> groups(kLevels);
+  std::array<std::size_t, kLevels> counts{};
+  std::array<soltex::SampleResult, kBatch> results;
+  bool missed = false;
+  const auto look_up = [&](std::size_t level) {
+    const std::size_t n = counts[level];
+    counts[level] = 0;
+    sampler.sample({groups[level].data(), n}, static_cast<double>(level),
+                   soltex::SampleFilter::trilinear, {results.data(), n});
+    float sum = 0.0f;
+    for (std::size_t j = 0; j < n; ++j) {
+      missed |= !results[j].complete;
+      sum += results[j].values[0] + results[j].values[1] + results[j].values[2];
+    }
+    return sum;
+  };
+  for (auto _ : state) {
+    float sum = 0.0f;
+    for (std::size_t i = 0; i < pixels.positions.size(); ++i) {
+      const auto level = static_cast<std::size_t>(table.level(pixels.footprints[i]));
+      groups[level][counts[level]++] = pixels.positions[i];
+      if (counts[level] == kBatch) sum += look_up(level);
+    }
+    for (std::size_t level = 0; level < kLevels; ++level) {
+      if (counts[level] > 0) sum += look_up(level);
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  if (missed) state.SkipWithError("texture pass missed a brick");
+}
+
+// The per-pixel form it replaced: each pixel located (and its cell prefetched), read a batch
+// later.
+void located_pass(benchmark::State& state, WarmScene& w, const TexturedPixels& pixels) {
   const soltex::PreparedObject& o = w.prepared.objects.front();
   soltex::TextureSampler sampler(*w.cache, o.texture_id, o.layout, o.channels);
   const soltex::NearestLevelTable table(o.layout, 0.0);
@@ -306,9 +350,11 @@ void BM_TexturePass(benchmark::State& state) {
   WarmScene& w = warm_scene(state);
   const TexturedPixels& pixels = bunny_pixels(w);
   if (state.range(2) == 0) {
-    cached_pass(state, w, pixels);
-  } else {
+    batched_pass(state, w, pixels);
+  } else if (state.range(2) == 1) {
     evaluated_pass(state, w, pixels);
+  } else {
+    located_pass(state, w, pixels);
   }
   state.counters["pixels"] = static_cast<double>(pixels.positions.size());
   state.counters["ns_per_pixel"] = benchmark::Counter(
@@ -375,6 +421,7 @@ BENCHMARK(BM_ReferenceFrame)
 BENCHMARK(BM_TexturePass)
     ->Args({2, 1, 0})
     ->Args({2, 1, 1})
+    ->Args({2, 1, 2})
     ->Unit(benchmark::kMillisecond);  // one thread: its CPU time, steadier than wall time here
 BENCHMARK(BM_EqualPsnr)
     ->Args({2, 1, 0})
