@@ -14,13 +14,27 @@
 // speed ratio at PSNR >= 40 dB is read from the second; 2 for the bunny alone drawn with both
 // faces (the scene draws front faces only), to show what back-face culling saves; 3 for the
 // built-in default scene instead (four objects; a clip plane cuts the marble sphere open, so
-// the frame has caps); 4 for the bunny alone in bricks of 8 instead of 16. Times are
+// the frame has caps); 4 for the bunny alone in bricks of 8 instead of 16; 5, 6 and 7 a
+// marble sphere of a million triangles, of ten thousand, and of a million drawn without its
+// simplified levels (sphere_scene()). Times are
 // wall-clock per frame; the CPU column is the whole process's CPU time (all render threads) per
 // frame. Counters: the warm frame's raster and shade wall times (ms) as FrameRenderer reports them,
 // and its PSNR against the per-pixel reference (dB).
+//   BM_TexturePass     the texturing pass alone, one thread, over the covered pixels of the
+//                      bunny's warm G-buffer (raster and lighting excluded): third argument 0
+//                      the cached lookup as TileShader makes it (level from the footprint,
+//                      pixels grouped by level, TextureSampler's batch call per group), 1 the
+//                      texture evaluated over the footprint (as TextureAccess::evaluated), 2 the
+//                      cached lookup pixel by pixel (locate_rgb, trilinear_rgb a batch later)
+//   BM_EqualPsnr       the warm frame (third argument 0) and the per-pixel reference at K x K
+//                      sub-pixels (third argument K), each with its PSNR against the 8 x 8
+//                      reference (psnr_8x8_db): the reference's K that first reaches the warm
+//                      frame's PSNR is the one whose time the warm frame is compared with
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
@@ -30,6 +44,9 @@
 
 #include "converge.h"
 #include "soltex/common/brick_cache.h"
+#include "soltex/common/sampling_kernels.h"
+#include "soltex/common/texture_evaluator.h"
+#include "soltex/common/texture_sampler.h"
 #include "soltex/net/local_brick_source.h"
 #include "soltex/raster/rasterizer.h"
 #include "soltex/render/frame_renderer.h"
@@ -37,11 +54,34 @@
 #include "soltex/render/prepared_scene.h"
 #include "soltex/scene/default_scene.h"
 #include "soltex/scene/scene_loader.h"
+#include "texture_surface.h"
 
 namespace {
 
 constexpr int kWidth = 1280;
 constexpr int kHeight = 720;
+
+// A marble sphere of radius 1 seen from 3.2 away (about 330,000 pixels): 5 with 998,000
+// triangles (segments 1000, rings 500), 6 with 9,800 (100, 50), 7 the first without its
+// simplified levels (every triangle drawn).
+soltex::Scene sphere_scene(int variant) {
+  const bool fine = variant != 6;
+  const std::string json =
+      std::string(R"({
+    "camera": {"position": [0, 0.6, 3.2], "target": [0, 0, 0], "fov_y_degrees": 40},
+    "lights": [{"directional": {"direction": [-0.5, -1.0, -0.7]}}],
+    "objects": [{"name": "sphere", "double_sided": false,
+      "mesh": {"sphere": {"radius": 1, )") +
+      (fine ? R"("segments": 1000, "rings": 500)" : R"("segments": 100, "rings": 50)") +
+      R"(}},
+      "material": {"texture": {"marble": {"turbulence": {"scale": 2, "octave_max": 6}}},
+                   "specular": 0.5, "shininess": 48}}]})";
+  soltex::Scene scene = soltex::parse_scene(json, "<sphere scene>");
+  if (variant == 7) {
+    for (soltex::SceneObject& object : scene.objects) object.levels.reset();
+  }
+  return scene;
+}
 
 // One converged scene per thread count, kept for the whole run.
 struct WarmScene {
@@ -60,6 +100,7 @@ struct WarmScene {
 
   static soltex::Scene load(int variant) {
     if (variant == 3) return soltex::default_scene();  // 4: the bunny alone, bricks of 8
+    if (variant >= 5) return sphere_scene(variant);
     soltex::Scene scene = soltex::load_scene(SOLTEX_SOURCE_DIR "/deploy/scenes/bunny-marble.json");
     if (variant >= 1) {
       std::erase_if(scene.objects, [](const soltex::SceneObject& o) { return o.name == "floor"; });
@@ -79,7 +120,7 @@ struct WarmScene {
 };
 
 WarmScene& warm_scene(const benchmark::State& state) {
-  constexpr int kThreadCounts = 3, kVariants = 5;  // threads 0..2, variants 0..4
+  constexpr int kThreadCounts = 3, kVariants = 8;  // threads 0..2, variants 0..7
   static std::unique_ptr<WarmScene> scenes[kThreadCounts][kVariants];
   const auto threads = static_cast<int>(state.range(0));
   const auto variant = static_cast<int>(state.range(1));
@@ -94,19 +135,21 @@ WarmScene& warm_scene(const benchmark::State& state) {
 void BM_WarmFrame(benchmark::State& state) {
   WarmScene& w = warm_scene(state);
   double raster_ms = 0.0, shade_ms = 0.0;
-  std::size_t covered = 0;
+  std::size_t covered = 0, triangles = 0;
   for (auto _ : state) {
     soltex::Frame frame = w.renderer->render(w.prepared, w.scene.camera, kWidth, kHeight);
     if (!frame.complete()) state.SkipWithError("warm frame missed a brick");
     raster_ms += frame.stats.raster_ms;
     shade_ms += frame.stats.shade_ms;
     covered = frame.stats.covered_pixels;
+    triangles = frame.stats.raster.triangles_in;
     benchmark::DoNotOptimize(frame.image);
   }
   const auto n = static_cast<double>(state.iterations());
   state.counters["raster_ms"] = raster_ms / n;
   state.counters["shade_ms"] = shade_ms / n;
   state.counters["covered"] = static_cast<double>(covered);
+  state.counters["triangles"] = static_cast<double>(triangles);
   state.counters["psnr_db"] = w.psnr;
 }
 
@@ -169,6 +212,184 @@ void BM_ColdFrame(benchmark::State& state) {
   state.counters["bricks_wanted"] = static_cast<double>(misses);
 }
 
+// The covered pixels of one object in a warm G-buffer: what the texturing pass reads.
+struct TexturedPixels {
+  std::vector<glm::dvec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<float> footprints;
+};
+
+const TexturedPixels& bunny_pixels(WarmScene& w) {
+  static std::unique_ptr<TexturedPixels> pixels;
+  if (pixels) return *pixels;
+  pixels = std::make_unique<TexturedPixels>();
+  soltex::FrameRenderer keeping(*w.cache,
+                                soltex::RenderOptions{.threads = 1, .keep_gbuffer = true});
+  keeping.render(w.prepared, w.scene.camera, kWidth, kHeight);
+  const soltex::GBuffer& g = keeping.last_gbuffer();
+  // In the tile shader's order: 32 x 32 tiles, rows within a tile.
+  constexpr int kTile = 32;
+  for (int ty = 0; ty < kHeight; ty += kTile) {
+    for (int tx = 0; tx < kWidth; tx += kTile) {
+      for (int y = ty; y < std::min(kHeight, ty + kTile); ++y) {
+        for (int x = tx; x < std::min(kWidth, tx + kTile); ++x) {
+          const std::size_t i = g.index(x, y);
+          if (!g.covered(i) || g.object_id[i] != 0) continue;
+          pixels->positions.push_back(g.texture_position[i]);
+          pixels->normals.push_back(g.normal[i]);
+          pixels->footprints.push_back(g.footprint[i]);
+        }
+      }
+    }
+  }
+  return *pixels;
+}
+
+// As the tile shader reads them: pixels grouped by level, each group of kSampleChunk looked up
+// through the sampler's batch call.
+void batched_pass(benchmark::State& state, WarmScene& w, const TexturedPixels& pixels) {
+  const soltex::PreparedObject& o = w.prepared.objects.front();
+  soltex::TextureSampler sampler(*w.cache, o.texture_id, o.layout, o.channels);
+  const soltex::NearestLevelTable table(o.layout, 0.0);
+  constexpr std::size_t kBatch = soltex::kSampleChunk;
+  constexpr std::size_t kLevels = soltex::SpecLimits::kMaxFinestLevelLog2 + 1;
+  std::vector<std::array<glm::dvec3, kBatch>> groups(kLevels);
+  std::array<std::size_t, kLevels> counts{};
+  std::array<soltex::SampleResult, kBatch> results;
+  bool missed = false;
+  const auto look_up = [&](std::size_t level) {
+    const std::size_t n = counts[level];
+    counts[level] = 0;
+    sampler.sample({groups[level].data(), n}, static_cast<double>(level),
+                   soltex::SampleFilter::trilinear, {results.data(), n});
+    float sum = 0.0f;
+    for (std::size_t j = 0; j < n; ++j) {
+      missed |= !results[j].complete;
+      sum += results[j].values[0] + results[j].values[1] + results[j].values[2];
+    }
+    return sum;
+  };
+  for (auto _ : state) {
+    float sum = 0.0f;
+    for (std::size_t i = 0; i < pixels.positions.size(); ++i) {
+      const auto level = static_cast<std::size_t>(table.level(pixels.footprints[i]));
+      groups[level][counts[level]++] = pixels.positions[i];
+      if (counts[level] == kBatch) sum += look_up(level);
+    }
+    for (std::size_t level = 0; level < kLevels; ++level) {
+      if (counts[level] > 0) sum += look_up(level);
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  if (missed) state.SkipWithError("texture pass missed a brick");
+}
+
+// The per-pixel form it replaced: each pixel located (and its cell prefetched), read a batch
+// later.
+void located_pass(benchmark::State& state, WarmScene& w, const TexturedPixels& pixels) {
+  const soltex::PreparedObject& o = w.prepared.objects.front();
+  soltex::TextureSampler sampler(*w.cache, o.texture_id, o.layout, o.channels);
+  const soltex::NearestLevelTable table(o.layout, 0.0);
+  // As the tile shader reads them: a batch of cells located (and prefetched), then read.
+  constexpr std::size_t kBatch = 64;
+  std::array<const uint8_t*, kBatch> cells;
+  std::array<glm::vec3, kBatch> fractions;
+  for (auto _ : state) {
+    float sum = 0.0f;
+    for (std::size_t first = 0; first < pixels.positions.size(); first += kBatch) {
+      const std::size_t n = std::min(kBatch, pixels.positions.size() - first);
+      for (std::size_t j = 0; j < n; ++j) {
+        const int level = table.level(pixels.footprints[first + j]);
+        cells[j] = sampler.locate_rgb(pixels.positions[first + j], level, fractions[j]);
+        if (cells[j] == nullptr) {
+          state.SkipWithError("texture pass missed a brick");
+          return;
+        }
+        __builtin_prefetch(cells[j]);
+        __builtin_prefetch(cells[j] + sampler.y_stride());
+        __builtin_prefetch(cells[j] + sampler.z_stride());
+        __builtin_prefetch(cells[j] + sampler.y_stride() + sampler.z_stride());
+      }
+      for (std::size_t j = 0; j < n; ++j) {
+        alignas(16) float rgb[4];
+        sampler.trilinear_rgb(cells[j], fractions[j], rgb);
+        sum += rgb[0] + rgb[1] + rgb[2];
+      }
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+}
+
+void evaluated_pass(benchmark::State& state, WarmScene& w, const TexturedPixels& pixels) {
+  const soltex::PreparedObject& o = w.prepared.objects.front();
+  const soltex::TextureEvaluator evaluator(o.texture);
+  const soltex::render::TextureSurface surface(o);
+  constexpr std::size_t kBatch = 64;  // as TileShader batches evaluated pixels
+  std::array<glm::dvec3, kBatch> points;
+  std::array<soltex::SampleFootprint, kBatch> footprints;
+  std::array<soltex::Texel, kBatch> texels;
+  for (auto _ : state) {
+    float sum = 0.0f;
+    for (std::size_t first = 0; first < pixels.positions.size(); first += kBatch) {
+      const std::size_t n = std::min(kBatch, pixels.positions.size() - first);
+      for (std::size_t j = 0; j < n; ++j) {
+        const glm::dvec3 normal = surface.normal(pixels.normals[first + j]);
+        const double footprint = pixels.footprints[first + j];
+        points[j] = soltex::render::inset(pixels.positions[first + j], normal,
+                                          soltex::render::kEvaluatedInset * footprint);
+        footprints[j] = soltex::render::surface_footprint(footprint, normal);
+      }
+      evaluator.sample({points.data(), n}, {footprints.data(), n}, {texels.data(), n});
+      for (std::size_t j = 0; j < n; ++j) sum += texels[j].colour.r;
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+}
+
+void BM_TexturePass(benchmark::State& state) {
+  WarmScene& w = warm_scene(state);
+  const TexturedPixels& pixels = bunny_pixels(w);
+  if (state.range(2) == 0) {
+    batched_pass(state, w, pixels);
+  } else if (state.range(2) == 1) {
+    evaluated_pass(state, w, pixels);
+  } else {
+    located_pass(state, w, pixels);
+  }
+  state.counters["pixels"] = static_cast<double>(pixels.positions.size());
+  state.counters["ns_per_pixel"] = benchmark::Counter(
+      static_cast<double>(pixels.positions.size()) * 1e-9,
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+// The 8 x 8 reference of the bunny-alone view, made once: the ground truth of BM_EqualPsnr.
+const soltex::Image& ground_truth(WarmScene& w) {
+  static std::unique_ptr<soltex::Image> image;
+  if (!image) {
+    image = std::make_unique<soltex::Image>(
+        w.renderer->render_reference(w.prepared, w.scene.camera, kWidth, kHeight, 8));
+  }
+  return *image;
+}
+
+void BM_EqualPsnr(benchmark::State& state) {
+  WarmScene& w = warm_scene(state);
+  const soltex::Image& truth = ground_truth(w);
+  const auto k = static_cast<int>(state.range(2));
+  soltex::Image image;
+  for (auto _ : state) {
+    if (k == 0) {
+      soltex::Frame frame = w.renderer->render(w.prepared, w.scene.camera, kWidth, kHeight);
+      if (!frame.complete()) state.SkipWithError("warm frame missed a brick");
+      image = std::move(frame.image);
+    } else {
+      image = w.renderer->render_reference(w.prepared, w.scene.camera, kWidth, kHeight, k);
+    }
+    benchmark::DoNotOptimize(image.rgb.data());
+  }
+  state.counters["psnr_8x8_db"] = soltex::psnr(image, truth);
+}
+
 // Wall time per frame, with the whole process's CPU (all render threads) beside it.
 void wall_and_process_cpu_ms(benchmark::internal::Benchmark* b) {
   b->Unit(benchmark::kMillisecond)->MeasureProcessCPUTime()->UseRealTime();
@@ -181,13 +402,33 @@ BENCHMARK(BM_WarmFrame)
     ->Args({2, 2})
     ->Args({2, 3})
     ->Args({2, 4})
+    ->Args({2, 5})
+    ->Args({2, 6})
+    ->Args({2, 7})
     ->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_Raster)->Args({1, 0})->Args({2, 0})->Args({2, 1})->Apply(wall_and_process_cpu_ms);
-BENCHMARK(BM_ColdFrame)->Args({2, 0})->Args({2, 1})->Args({2, 4})->Apply(wall_and_process_cpu_ms);
+BENCHMARK(BM_ColdFrame)
+    ->Args({2, 0})
+    ->Args({2, 1})
+    ->Args({2, 3})
+    ->Args({2, 4})
+    ->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_ReferenceFrame)
     ->Args({2, 0})
     ->Args({2, 1})
     ->Args({2, 2})
+    ->Apply(wall_and_process_cpu_ms);
+BENCHMARK(BM_TexturePass)
+    ->Args({2, 1, 0})
+    ->Args({2, 1, 1})
+    ->Args({2, 1, 2})
+    ->Unit(benchmark::kMillisecond);  // one thread: its CPU time, steadier than wall time here
+BENCHMARK(BM_EqualPsnr)
+    ->Args({2, 1, 0})
+    ->Args({2, 1, 1})
+    ->Args({2, 1, 2})
+    ->Args({2, 1, 3})
+    ->Args({2, 1, 4})
     ->Apply(wall_and_process_cpu_ms);
 
 }  // namespace

@@ -101,15 +101,23 @@ struct SurfaceBatch {
   void write(const TileFrame& frame, const GBufferPlanes& target) {
     const auto n = static_cast<std::size_t>(count);
     if (n == 0) return;
-    // Vertex k's position, 1/w, texture offset and normal, per lane.
-    alignas(64) std::array<Lanes<int64_t>, 3> vx, vy;
-    alignas(64) Lanes<int64_t> area, px, py;
+    // Per lane: vertex k's barycentric numerator (the edge function opposite it at the pixel
+    // centre) and edge k's steps, already in float, so that the loop below is float arithmetic
+    // alone (no 64-bit products or conversions) and runs in vector lanes; then vertex k's 1/w,
+    // texture offset and normal.
+    alignas(64) std::array<Lanes<float>, 3> edge, edge_dy, edge_dx;
+    alignas(64) Lanes<float> area;
     alignas(64) std::array<Lanes<float>, 3> q, ox, oy, oz, nx, ny, nz;
     for (std::size_t l = 0; l < n; ++l) {
       const ScreenTriangle& t = *triangle[l];
+      const int64_t px = pixel_centre(x[l]), py = pixel_centre(y[l]);
       for (std::size_t k = 0; k < 3; ++k) {
-        vx[k][l] = t.x[k];
-        vy[k][l] = t.y[k];
+        // Edge k runs from vertex k + 1 to vertex k + 2 (edges_of()).
+        const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+        const int64_t ax = t.x[a], ay = t.y[a], bx = t.x[b], by = t.y[b];
+        edge[k][l] = static_cast<float>(edge_function(ax, ay, bx, by, px, py));
+        edge_dy[k][l] = static_cast<float>(by - ay);
+        edge_dx[k][l] = static_cast<float>(bx - ax);
         q[k][l] = t.inv_w[k];
         ox[k][l] = t.texture_offset[k].x;
         oy[k][l] = t.texture_offset[k].y;
@@ -118,28 +126,22 @@ struct SurfaceBatch {
         ny[k][l] = t.normal[k].y;
         nz[k][l] = t.normal[k].z;
       }
-      area[l] = t.double_area;
-      px[l] = pixel_centre(x[l]);
-      py[l] = pixel_centre(y[l]);
+      area[l] = static_cast<float>(t.double_area);
     }
     alignas(64) Lanes<float> offset_x, offset_y, offset_z, footprint, normal_x, normal_y, normal_z;
     for (std::size_t l = 0; l < n; ++l) {
-      const float inv_area = 1.0f / static_cast<float>(area[l]);
+      const float inv_area = 1.0f / area[l];
       const float step = static_cast<float>(kSubpixelScale) * inv_area;
       float sum_q = 0.0f, dq_dx = 0.0f, dq_dy = 0.0f;
       float sx = 0.0f, sy = 0.0f, sz = 0.0f;  // sum b q P
       float dx_x = 0.0f, dx_y = 0.0f, dx_z = 0.0f, dy_x = 0.0f, dy_y = 0.0f, dy_z = 0.0f;
       float mx = 0.0f, my = 0.0f, mz = 0.0f;  // sum b q N
       for (std::size_t k = 0; k < 3; ++k) {
-        // Edge k runs from vertex k + 1 to vertex k + 2 (edges_of()).
-        const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
-        const int64_t ax = vx[a][l], ay = vy[a][l], bx = vx[b][l], by = vy[b][l];
-        const float weight =
-            static_cast<float>(edge_function(ax, ay, bx, by, px[l], py[l])) * inv_area;
+        const float weight = edge[k][l] * inv_area;
         const float q_k = q[k][l];
         const float weight_q = weight * q_k;
-        const float weight_q_dx = -static_cast<float>(by - ay) * step * q_k;
-        const float weight_q_dy = static_cast<float>(bx - ax) * step * q_k;
+        const float weight_q_dx = -edge_dy[k][l] * step * q_k;
+        const float weight_q_dy = edge_dx[k][l] * step * q_k;
         sum_q += weight_q;
         dq_dx += weight_q_dx;
         dq_dy += weight_q_dy;

@@ -8,6 +8,7 @@
 #include <memory>
 #include <unordered_map>
 
+#include "mesh_for_view.h"
 #include "soltex/common/overloaded.h"
 #include "soltex/common/texture_evaluator.h"
 #include "soltex/render/shading.h"
@@ -41,7 +42,10 @@ struct EyeRelative {
   glm::dmat4 view_projection;
 };
 
-EyeRelative eye_relative(const PreparedScene& scene, const Camera& camera, int width, int height) {
+// `simplified`: each object drawn at the coarsest level of its mesh no pixel can tell from it
+// (mesh_for_view()); the reference draws every mesh as it is.
+EyeRelative eye_relative(const PreparedScene& scene, const Camera& camera, int width, int height,
+                         bool simplified) {
   const glm::dvec3& eye = camera.position;
   const glm::dmat4 from_world = glm::translate(glm::dmat4(1.0), -eye);
   EyeRelative r;
@@ -49,6 +53,7 @@ EyeRelative eye_relative(const PreparedScene& scene, const Camera& camera, int w
   for (const PreparedObject& o : scene.objects) {
     RasterObject object = o.raster;
     object.model = glm::mat4(from_world * o.world_from_object);
+    if (simplified) object.mesh = render::mesh_for_view(o, camera, height);
     r.objects.push_back(object);
   }
   for (const glm::dvec4& plane : scene.clip_planes) {
@@ -182,7 +187,7 @@ Frame FrameRenderer::render_pixels(const PreparedScene& scene, const Camera& cam
   Frame frame;
   frame.image = Image(width, height);
   const auto start = Clock::now();
-  const EyeRelative relative = eye_relative(scene, camera, width, height);
+  const EyeRelative relative = eye_relative(scene, camera, width, height, true);
   const glm::dmat4& vp = relative.view_projection;
   const RasterView view{width, height, glm::mat4(vp), relative.clip_planes};
   cache_.begin_frame();
@@ -261,7 +266,7 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
                                       int height, int supersample) {
   const int k = std::clamp(supersample, 1, 8);
   const int w = width * k, h = height * k;
-  const EyeRelative relative = eye_relative(scene, camera, w, h);
+  const EyeRelative relative = eye_relative(scene, camera, w, h, false);
   const glm::dmat4& vp = relative.view_projection;
   const RasterView view{w, h, glm::mat4(vp), relative.clip_planes};
   GBuffer& g = reference_gbuffer_;

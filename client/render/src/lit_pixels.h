@@ -45,48 +45,6 @@ struct LitPixels {
     batch.albedo_b[l] = surface.albedo.b;
     batch.specular[l] = surface.specular;
     batch.shininess[l] = shininess;
-    cell[l] = nullptr;
-  }
-
-  // A lane whose albedo is still to be read from a brick cell (located, and prefetched).
-  ShadeBatch::Lanes<const uint8_t*> cell;  // nullptr: the albedo is in the batch already
-  ShadeBatch::Lanes<glm::vec3> fraction;
-  ShadeBatch::Lanes<const TextureSampler*> sampler;
-
-  void add_cell(int lane, int px, int py, std::size_t i, const uint8_t* first_sample,
-                const glm::vec3& frac, const TextureSampler& texture, float specular,
-                float shininess) {
-    const auto l = static_cast<std::size_t>(lane);
-    x[l] = px;
-    y[l] = py;
-    index[l] = i;
-    opacity[l] = 1.0f;
-    cell[l] = first_sample;
-    fraction[l] = frac;
-    sampler[l] = &texture;
-    batch.specular[l] = specular;
-    batch.shininess[l] = shininess;
-    const int y_stride = texture.y_stride(), z_stride = texture.z_stride();
-    __builtin_prefetch(first_sample);
-    __builtin_prefetch(first_sample + y_stride);
-    __builtin_prefetch(first_sample + z_stride);
-    __builtin_prefetch(first_sample + y_stride + z_stride);
-  }
-
-  // The located cells' lookups, by now (one batch after their prefetch) in cache.
-  void read_cells(bool nearest) {
-    for (std::size_t l = 0; l < static_cast<std::size_t>(batch.count); ++l) {
-      if (cell[l] == nullptr) continue;
-      alignas(16) float rgb[4];
-      if (nearest) {
-        sampler[l]->nearest_rgb(cell[l], fraction[l], rgb);
-      } else {
-        sampler[l]->trilinear_rgb(cell[l], fraction[l], rgb);
-      }
-      batch.albedo_r[l] = rgb[0];
-      batch.albedo_g[l] = rgb[1];
-      batch.albedo_b[l] = rgb[2];
-    }
   }
 
   void write(Image& image) const {

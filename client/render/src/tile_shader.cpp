@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cassert>
 #include <cmath>
 
+#include "soltex/common/check.h"
 #include "soltex/render/shading.h"
 
 namespace soltex::render {
@@ -58,6 +60,7 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
       }
     }
   }
+  if (cached_.pending != 0) look_up_all(image);
   if (evaluated_.count > 0) evaluate(image);
   if (lit_.batch.count > 0) flush(image);
 }
@@ -106,22 +109,11 @@ void TileShader::shade_cached(const GBuffer& g, const Pixel& pixel, const Object
     const double spacing = std::ldexp(object.level0_spacing, static_cast<int>(std::ceil(lod)));
     p = inset(p, object.surface.normal(g.normal[pixel.index]), object.cached_inset * spacing);
   }
-  SampleResult result;
   if (object.rgb_fast_path) {
-    // The common case in two steps: locate and prefetch now, read at the flush.
-    const int level = static_cast<int>(lod);
-    glm::vec3 frac;
-    if (const uint8_t* cell = sampler.locate_rgb(p, level, frac)) {
-      ++counts_.shaded;
-      lit_.add_cell(lit_.batch.count++, pixel.x, pixel.y, pixel.index, cell, frac, sampler,
-                    object.material.material_specular, object.material.shininess);
-      if (lit_.batch.count == ShadeBatch::kCapacity) flush(image);
-      return;
-    }
-    result = sampler.sample_after_miss(p, level, options.filter, &missed_);
-  } else {
-    result = sampler.sample(p, lod, options.filter, &missed_);
+    add_cached(pixel, p, static_cast<int>(lod), object, sampler, image);
+    return;
   }
+  const SampleResult result = sampler.sample(p, lod, options.filter, &missed_);
   for (const BrickKey& key : missed_.view()) misses_.add(key);
   if (!result.complete) ++counts_.fallback;
   if (result.level < 0) ++counts_.empty;
@@ -131,6 +123,51 @@ void TileShader::shade_cached(const GBuffer& g, const Pixel& pixel, const Object
     return;
   }
   shade_values(pixel, object.material, result.values.data(), image);
+}
+
+void TileShader::add_cached(const Pixel& pixel, const glm::dvec3& p, int level,
+                            const ObjectShading& object, TextureSampler& sampler, Image& image) {
+  if (cached_.pending != 0 && cached_.object != &object) look_up_all(image);
+  cached_.object = &object;
+  cached_.sampler = &sampler;
+  const auto l = static_cast<std::size_t>(level);
+  SOLTEX_DCHECK(l < CachedPixels::kLevels);
+  CachedPixels::Group& group = cached_.groups[l];
+  group.pixels[group.count] = pixel;
+  group.points[group.count] = p;
+  ++group.count;
+  cached_.pending |= 1u << l;
+  if (group.count == CachedPixels::kCapacity) look_up(level, image);
+}
+
+void TileShader::look_up(int level, Image& image) {
+  const auto l = static_cast<std::size_t>(level);
+  CachedPixels::Group& group = cached_.groups[l];
+  const std::size_t n = group.count;
+  group.count = 0;
+  cached_.pending &= ~(1u << l);
+  const ObjectShading& object = *cached_.object;
+  TextureSampler& sampler = *cached_.sampler;
+  const SampleFilter filter = frame_.options.filter;
+  sampler.sample({group.points.data(), n}, static_cast<double>(level), filter,
+                 {cached_.results.data(), n});
+  for (std::size_t i = 0; i < n; ++i) {
+    const SampleResult& result = cached_.results[i];
+    if (result.complete) {
+      shade_values(group.pixels[i], object.material, result.values.data(), image);
+      continue;
+    }
+    // A miss (rare once warm): the single lookup again, for the bricks it names.
+    const SampleResult again = sampler.sample_after_miss(group.points[i], level, filter, &missed_);
+    for (const BrickKey& key : missed_.view()) misses_.add(key);
+    if (!again.complete) ++counts_.fallback;
+    if (again.level < 0) ++counts_.empty;
+    shade_values(group.pixels[i], object.material, again.values.data(), image);
+  }
+}
+
+void TileShader::look_up_all(Image& image) {
+  while (cached_.pending != 0) look_up(std::countr_zero(cached_.pending), image);
 }
 
 void TileShader::shade_values(const Pixel& pixel, const MaterialInputs& m, const float* values,
@@ -146,7 +183,6 @@ void TileShader::shade_values(const Pixel& pixel, const MaterialInputs& m, const
 }
 
 void TileShader::flush(Image& image) {
-  lit_.read_cells(frame_.options.filter == SampleFilter::nearest);
   frame_.unprojection.fill(*gbuffer_, lit_);
   shade_batch(frame_.lights, lit_.batch);
   lit_.write(image);

@@ -9,6 +9,7 @@
 #include "lit_pixels.h"
 #include "material_inputs.h"
 #include "miss_tally.h"
+#include "soltex/common/sampling_kernels.h"
 #include "soltex/common/texture_evaluator.h"
 #include "soltex/common/texture_sampler.h"
 #include "soltex/raster/gbuffer.h"
@@ -86,8 +87,29 @@ class TileShader {
     std::array<SampleFootprint, kCapacity> footprints;
     std::array<Texel, kCapacity> texels;
   };
+  // Cached pixels of one object on the fast path wait here, grouped by level, and each
+  // level's group is looked up together through TextureSampler's batch call: its kernels are
+  // dispatched once per group rather than the cell split and read run once per pixel.
+  struct CachedPixels {
+    static constexpr std::size_t kCapacity = kSampleChunk;
+    static constexpr std::size_t kLevels = SpecLimits::kMaxFinestLevelLog2 + 1;
+    struct Group {
+      std::size_t count = 0;
+      std::array<Pixel, kCapacity> pixels;
+      std::array<glm::dvec3, kCapacity> points;
+    };
+    const ObjectShading* object = nullptr;
+    TextureSampler* sampler = nullptr;
+    uint32_t pending = 0;  // bit l: groups[l] holds pixels
+    std::array<Group, kLevels> groups;
+    std::array<SampleResult, kCapacity> results;
+  };
   void shade_evaluated(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
                        Image& image);
+  void add_cached(const Pixel& pixel, const glm::dvec3& p, int level, const ObjectShading& object,
+                  TextureSampler& sampler, Image& image);
+  void look_up(int level, Image& image);
+  void look_up_all(Image& image);
   void evaluate(Image& image);
   void shade_cached(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
                     TextureSampler& sampler, Image& image);
@@ -102,6 +124,7 @@ class TileShader {
   const GBuffer* gbuffer_ = nullptr;  // the tile being shaded
   LitPixels lit_;                     // about 40 KB, uninitialised but for the count
   EvaluatedPixels evaluated_;         // about 6 KB, likewise
+  CachedPixels cached_;               // about 40 KB, likewise
 };
 
 }  // namespace soltex::render

@@ -12,6 +12,7 @@
 
 #include "json_reader.h"
 #include "soltex/common/spec_error.h"
+#include "soltex/scene/mesh_lod.h"
 #include "soltex/scene/mesh_order.h"
 #include "soltex/scene/obj_loader.h"
 #include "soltex/scene/scene_error.h"
@@ -507,6 +508,16 @@ Scene parse_scene(std::string_view json_text, const std::string& name_for_errors
     scene.objects[i].mesh = mesh;
   }
   for (std::size_t i = 0; i < scene.objects.size(); ++i) check_volume(scene.objects[i], i, file);
+  // Simplified once all meshes are in: a scene past the triangle bound costs no simplification.
+  std::map<std::string, std::shared_ptr<const std::vector<MeshLevel>>> simplified;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    auto& levels = simplified[meshes[i].cache_key];
+    if (!levels) {
+      levels =
+          std::make_shared<const std::vector<MeshLevel>>(simplified_levels(*scene.objects[i].mesh));
+    }
+    scene.objects[i].levels = levels;
+  }
   return scene;
 }
 

@@ -13,6 +13,7 @@
 #include "soltex/scene/lights.h"
 #include "soltex/scene/material.h"
 #include "soltex/scene/mesh.h"
+#include "soltex/scene/mesh_lod.h"
 #include "soltex/scene/transform.h"
 
 namespace soltex {
@@ -29,6 +30,9 @@ struct SceneObject {
   std::string name;
   MeshSource source;
   std::shared_ptr<const Mesh> mesh;  // shared by objects that name the same source
+  // The mesh simplified, finest first (mesh_lod.h): empty for meshes too small to need it. Null
+  // where the object was not loaded from a scene file.
+  std::shared_ptr<const std::vector<MeshLevel>> levels;
   Transform transform;
   Material material;
   std::vector<ClipPlane> clip_planes;  // the scene's planes that cut this object
