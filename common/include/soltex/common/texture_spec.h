@@ -2,8 +2,11 @@
 
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <memory>
 #include <variant>
 #include <vector>
+
+#include "soltex/common/graph_field.h"
 
 // The validated C++ form of a texture: one pattern with its parameters, a colour ramp and
 // the channels a client wants. Defaults are the lecture slides' values where they give one.
@@ -115,6 +118,11 @@ struct ScalarRange {
 
 struct TextureSpec {
   Pattern pattern;
+  // When set, the texture is this node graph (compiled and validated by
+  // soltex::graph::compile()) and `pattern` is unused: the graph's outputs give the channels
+  // and the ramp must be empty (graphs colour through ramp nodes). Kept beside the pattern
+  // rather than in the variant so that Pattern stays trivially copyable.
+  std::shared_ptr<const GraphField> graph;
   ColourRamp ramp;
   ChannelSet channels;
   ScalarRange opacity;
