@@ -167,6 +167,10 @@ const char* pattern_name(const Pattern& pattern) {
   return kNames[pattern.index()];
 }
 
+const char* texture_kind_name(const TextureSpec& spec) {
+  return spec.graph ? "graph" : pattern_name(spec.pattern);
+}
+
 glm::vec3 ColourRamp::at(float t) const noexcept {
   if (keys.empty()) return glm::vec3(std::clamp(std::isnan(t) ? 0.0f : t, 0.0f, 1.0f));
   if (!(t > keys.front().position)) return keys.front().colour;  // also NaN

@@ -50,7 +50,7 @@ class Lowering {
     for (Channel channel : {Channel::colour, Channel::opacity, Channel::specular}) {
       int reg = -1;
       for (const GraphOutput& out : graph_.outputs) {
-        if (out.channel == channel) reg = lower(index_.at(out.node), 1);
+        if (out.channel == channel) reg = lower(index_.at(out.node));
       }
       writer_.u32(static_cast<uint32_t>(reg + 1));
       (channel == Channel::colour    ? program_->colour
@@ -84,9 +84,8 @@ class Lowering {
     return new_register(comps, true, v, 0.0, {0, 0, 0});
   }
 
-  int lower(std::size_t node_index, int depth);
-  int lower_operand(const Node& node, const InputDef& def, ValueType working, int depth,
-                    Instruction& instr);
+  int lower(std::size_t node_index);
+  int lower_operand(const Node& node, const InputDef& def, ValueType working, Instruction& instr);
   void set_parameters(const Node& node, const NodeDef& def, Instruction& instr);
   Register result_register(const Node& node, const NodeDef& def, const Instruction& instr,
                            ValueType type, Deps& deps) const;
@@ -100,12 +99,12 @@ class Lowering {
   CanonicalWriter writer_;
 };
 
-int Lowering::lower_operand(const Node& node, const InputDef& def, ValueType working, int depth,
+int Lowering::lower_operand(const Node& node, const InputDef& def, ValueType working,
                             Instruction& instr) {
   const InputValue* value = find_input(node, def.name);
   int reg;
   if (value != nullptr && std::holds_alternative<NodeRef>(*value)) {
-    reg = lower(index_.at(std::get<NodeRef>(*value).node), depth + 1);
+    reg = lower(index_.at(std::get<NodeRef>(*value).node));
     writer_.u8(0x52);  // 'R'
     writer_.u32(static_cast<uint32_t>(reg));
   } else if (value == nullptr && def.slot == Slot::position) {
@@ -119,8 +118,7 @@ int Lowering::lower_operand(const Node& node, const InputDef& def, ValueType wor
   return reg;
 }
 
-int Lowering::lower(std::size_t node_index, int depth) {
-  program_->depth = std::max(program_->depth, depth);
+int Lowering::lower(std::size_t node_index) {
   if (node_register_[node_index] >= 0) return node_register_[node_index];
   const Node& node = graph_.nodes[node_index];
   const NodeDef& def = *find_node_def(node.category);
@@ -134,7 +132,7 @@ int Lowering::lower(std::size_t node_index, int depth) {
   Instruction instr;
   instr.op = def.op;
   for (const InputDef& input : def.inputs) {
-    if (connectable(input.slot)) lower_operand(node, input, working, depth, instr);
+    if (connectable(input.slot)) lower_operand(node, input, working, instr);
   }
   set_parameters(node, def, instr);
   Deps deps{0, 0, 0};
@@ -281,6 +279,22 @@ Register Lowering::result_register(const Node&, const NodeDef& def, const Instru
   return out;
 }
 
+// Nodes on the longest chain from an output back to the position or a constant: instructions
+// come after their inputs, so one pass finds it.
+int longest_chain(const Program& program) {
+  std::vector<int> chain(program.registers.size(), 0);
+  int longest = 0;
+  for (const Instruction& instr : program.instructions) {
+    int deepest = 0;
+    for (int k = 0; k < instr.operand_count; ++k) {
+      deepest = std::max(deepest, chain[static_cast<std::size_t>(instr.in[k])]);
+    }
+    chain[static_cast<std::size_t>(instr.out)] = deepest + 1;
+    longest = std::max(longest, deepest + 1);
+  }
+  return longest;
+}
+
 }  // namespace
 
 std::shared_ptr<const CompiledGraph> compile(TextureGraph graph) {
@@ -290,6 +304,7 @@ std::shared_ptr<const CompiledGraph> compile(TextureGraph graph) {
   check_outputs(graph, index, types);
   Lowering lowering(graph, index, types);
   std::unique_ptr<Program> program = lowering.run();
+  program->depth = longest_chain(*program);
   if (program->depth > GraphLimits::kMaxDepth) {
     throw SpecError("graph.nodes", "depth " + std::to_string(program->depth),
                     "at most " + std::to_string(GraphLimits::kMaxDepth) +

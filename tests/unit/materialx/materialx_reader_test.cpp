@@ -5,9 +5,12 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 
+#include "soltex/common/text_file.h"
 #include "soltex/common/texture_id.h"
+#include "soltex/materialx/example_graphs.h"
 #include "soltex/scene/scene_loader.h"
 
 namespace soltex::materialx {
@@ -109,6 +112,25 @@ TEST(MaterialxReader, ExampleDocumentsEqualTheirJsonGraphs) {
     EXPECT_EQ(texture_id(a, Volume{}, 16, MipSettings{}),
               texture_id(b, Volume{}, 16, MipSettings{}))
         << inline_graphs.objects[i].name;
+  }
+}
+
+// The built-in examples are the documents in deploy/scenes/graphs, as the files read now.
+TEST(MaterialxReader, BuiltInExamplesAreTheDocuments) {
+  const std::filesystem::path dir =
+      std::filesystem::path(SOLTEX_SOURCE_DIR) / "deploy/scenes/graphs";
+  ASSERT_EQ(example_graphs().size(), 4u);
+  for (const ExampleGraph& example : example_graphs()) {
+    std::string nodegraph = example.name;
+    std::replace(nodegraph.begin(), nodegraph.end(), '-', '_');
+    TextureSpec built_in, from_file;
+    built_in.graph = example.graph;
+    from_file.graph =
+        compile_nodegraph({read_text_file((dir / (example.name + ".mtlx")).string(), "MaterialX"),
+                           example.name, nodegraph, "out"});
+    EXPECT_EQ(texture_id(built_in, Volume{}, 16, MipSettings{}),
+              texture_id(from_file, Volume{}, 16, MipSettings{}))
+        << example.name;
   }
 }
 

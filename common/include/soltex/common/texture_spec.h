@@ -84,6 +84,10 @@ using Pattern = std::variant<StripesParams, CheckerParams, ColourCubeParams, Rin
 // Stable lower-case names ("stripes", "checker", ...), used in messages and file names.
 const char* pattern_name(const Pattern& pattern);
 
+struct TextureSpec;
+// What a spec is, in messages: "graph" for a graph, else its pattern's name.
+const char* texture_kind_name(const TextureSpec& spec);
+
 struct RampKey {
   float position = 0.0f;
   glm::vec3 colour{0.0f};
