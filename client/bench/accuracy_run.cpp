@@ -63,7 +63,7 @@ AccuracyRun run_accuracy_sweep(const Scene& scene, const std::string& scene_name
   run.scene_name = scene_name;
   for (const SceneObject& object : scene.objects) {
     const TextureSpec& texture = object.material.texture;
-    run.automatic_access.push_back({object.name, pattern_name(texture.pattern),
+    run.automatic_access.push_back({object.name, texture_kind_name(texture),
                                     evaluated_per_pixel(texture, TextureAccess::automatic)});
   }
   run.options = options;

@@ -1,5 +1,7 @@
 #include "gallery_scenes.h"
 
+#include "soltex/materialx/example_graphs.h"
+
 namespace soltex::gallery {
 
 std::vector<NamedTexture> gallery_textures() {
@@ -29,6 +31,14 @@ std::vector<NamedTexture> gallery_textures() {
   product.ripple = Ripple::product;
   product.frequency = 4.0;
   add("marble-xyz", "the slides' literal sin(2 pi x y z + A turb(p))", product);
+  // The example node graphs (deploy/scenes/graphs/*.mtlx, built in).
+  for (const materialx::ExampleGraph& example : materialx::example_graphs()) {
+    TextureSpec spec;
+    spec.graph = example.graph;
+    list.push_back({"graph-" + example.name,
+                    "node graph, deploy/scenes/graphs/" + example.name + ".mtlx",
+                    validated(std::move(spec))});
+  }
   return list;
 }
 

@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "soltex/materialx/example_graphs.h"
+
 namespace soltex::view {
 namespace {
 
@@ -29,6 +31,12 @@ std::vector<NamedTexture> make_lecture_textures() {
   product.frequency = 4.0;
   product.turbulence.basis = NoiseBasis::gradient;
   add("marble xyz", product);
+  // The example graphs, after the patterns: Tab reaches them.
+  for (const materialx::ExampleGraph& example : materialx::example_graphs()) {
+    TextureSpec spec;
+    spec.graph = example.graph;
+    list.push_back({example.name + " (graph)", validated(std::move(spec))});
+  }
   return list;
 }
 

@@ -42,6 +42,57 @@ struct RowScratch {
   std::vector<glm::vec3> colour;
 };
 
+// Graphs: the field a Texel carries is the graph's opacity output, else its specular output.
+void sample_graph(const GraphField& graph, std::span<const glm::dvec3> points,
+                  std::span<const SampleFootprint> footprints, std::span<Texel> out) {
+  const std::size_t n = points.size();
+  thread_local std::vector<double> widths;
+  thread_local std::vector<float> planes;
+  widths.resize(n);
+  planes.assign(4 * n, 0.0f);
+  for (std::size_t i = 0; i < n; ++i) widths[i] = footprints[i].width;
+  GraphPlanes to;
+  if (graph.has_colour()) {
+    for (int c = 0; c < 3; ++c) to.colour[c] = planes.data() + static_cast<std::size_t>(c) * n;
+  }
+  float* field = planes.data() + 3 * n;
+  if (graph.has_opacity()) {
+    to.opacity = field;
+  } else if (graph.has_specular()) {
+    to.specular = field;
+  }
+  graph.evaluate_points(points, widths, to);
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i].colour = {planes[i], planes[n + i], planes[2 * n + i]};
+    out[i].field = field[i];
+  }
+}
+
+// Graphs write their channels straight into the grid's planes; scalar channels then go
+// through the spec's ranges, as a pattern's field does.
+void evaluate_graph_grid(const GraphField& graph, const TextureSpec& spec, const Grid& grid,
+                         double filter_width, std::span<float> out) {
+  const std::size_t n = grid.size();
+  GraphPlanes to;
+  float* plane = out.data();
+  if (spec.channels.colour) {
+    for (int c = 0; c < 3; ++c, plane += n) to.colour[c] = plane;
+  }
+  float* opacity = spec.channels.opacity ? plane : nullptr;
+  if (opacity) plane += n;
+  float* specular = spec.channels.specular ? plane : nullptr;
+  to.opacity = opacity;
+  to.specular = specular;
+  graph.evaluate_grid(grid, filter_width, to);
+  for (const auto& [values, range] :
+       {std::pair{opacity, &spec.opacity}, {specular, &spec.specular}}) {
+    if (values == nullptr) continue;
+    for (std::size_t i = 0; i < n; ++i) {
+      values[i] = range->low + (range->high - range->low) * values[i];
+    }
+  }
+}
+
 }  // namespace
 
 TextureEvaluator::TextureEvaluator(const TextureSpec& spec)
@@ -56,6 +107,7 @@ OctavePlan TextureEvaluator::plan_for(double filter_width) const {
 }
 
 int TextureEvaluator::evaluated_octaves(double filter_width) const {
+  if (spec_.graph) return spec_.graph->evaluated_octaves(filter_width);
   return plan_for(filter_width).evaluated_octaves();
 }
 
@@ -77,6 +129,10 @@ void TextureEvaluator::sample(std::span<const glm::dvec3> points,
     throw std::invalid_argument("TextureEvaluator::sample: " + std::to_string(n) + " points, " +
                                 std::to_string(footprints.size()) + " footprints, " +
                                 std::to_string(out.size()) + " texels");
+  }
+  if (spec_.graph) {
+    sample_graph(*spec_.graph, points, footprints, out);
+    return;
   }
   const auto each = [&](auto&& field) {
     for (std::size_t i = 0; i < n; ++i) out[i].field = field(points[i], footprints[i].box);
@@ -158,6 +214,10 @@ void TextureEvaluator::evaluate_grid(const Grid& grid, double filter_width,
     throw std::invalid_argument("evaluate_grid: output holds " + std::to_string(out.size()) +
                                 " floats, the grid needs " +
                                 std::to_string(n * static_cast<std::size_t>(channels)));
+  }
+  if (spec_.graph) {
+    evaluate_graph_grid(*spec_.graph, spec_, grid, filter_width, out);
+    return;
   }
   const OctavePlan local_plan = filter_width > 0.0 ? plan_for(filter_width) : OctavePlan{};
   const OctavePlan& plan = filter_width > 0.0 ? local_plan : point_plan_;

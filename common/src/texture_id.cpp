@@ -43,19 +43,14 @@ class CanonicalWriter {
     u8(static_cast<uint8_t>(f.basis));
     u8(f.signed_octaves ? 1 : 0);
   }
+  void append_graph(const GraphField& graph) { graph.append_canonical(bytes_); }
   std::vector<uint8_t> take() { return std::move(bytes_); }
 
  private:
   std::vector<uint8_t> bytes_;
 };
 
-}  // namespace
-
-std::vector<uint8_t> canonical_encoding(const TextureSpec& spec, const Volume& volume,
-                                        int brick_size, const MipSettings& mip) {
-  CanonicalWriter w;
-  w.text(kFormatTag);
-  w.text(pattern_name(spec.pattern));
+void append_pattern(CanonicalWriter& w, const Pattern& pattern) {
   std::visit(Overloaded{
                  [&](const StripesParams& p) {
                    w.f64(p.width);
@@ -92,7 +87,10 @@ std::vector<uint8_t> canonical_encoding(const TextureSpec& spec, const Volume& v
                    w.fractal(p.turbulence);
                  },
              },
-             spec.pattern);
+             pattern);
+}
+
+void append_ramp_and_channels(CanonicalWriter& w, const TextureSpec& spec) {
   w.u32(static_cast<uint32_t>(spec.ramp.keys.size()));
   for (const RampKey& key : spec.ramp.keys) {
     w.f32(key.position);
@@ -106,6 +104,22 @@ std::vector<uint8_t> canonical_encoding(const TextureSpec& spec, const Volume& v
   w.f32(spec.opacity.high);
   w.f32(spec.specular.low);
   w.f32(spec.specular.high);
+}
+
+}  // namespace
+
+std::vector<uint8_t> canonical_encoding(const TextureSpec& spec, const Volume& volume,
+                                        int brick_size, const MipSettings& mip) {
+  CanonicalWriter w;
+  w.text(kFormatTag);
+  if (spec.graph) {
+    w.text("graph");
+    w.append_graph(*spec.graph);
+  } else {
+    w.text(pattern_name(spec.pattern));
+    append_pattern(w, spec.pattern);
+  }
+  append_ramp_and_channels(w, spec);
   w.vec(volume.min);
   w.vec(volume.max);
   w.i32(volume.finest_level_log2);

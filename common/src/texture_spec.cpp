@@ -137,6 +137,27 @@ void check_scalar_range(const char* name, const ScalarRange& range) {
   check.in_range("high", range.high, 0.0, 1.0);
 }
 
+// A graph gives each channel from an output of its own, so each wanted channel needs one.
+void check_graph_channels(const GraphField& graph, const TextureSpec& spec) {
+  if (!spec.ramp.keys.empty()) {
+    throw SpecError("ramp.keys", std::to_string(spec.ramp.keys.size()) + " keys",
+                    "must be empty for a graph: graphs colour through ramp nodes");
+  }
+  const struct {
+    bool wanted, present;
+    const char* name;
+  } channels[] = {{spec.channels.colour, graph.has_colour(), "colour"},
+                  {spec.channels.opacity, graph.has_opacity(), "opacity"},
+                  {spec.channels.specular, graph.has_specular(), "specular"}};
+  for (const auto& c : channels) {
+    if (c.wanted && !c.present) {
+      throw SpecError(std::string("graph.outputs.") + c.name, "absent",
+                      std::string("the spec asks for the ") + c.name +
+                          " channel, so the graph needs an output for it");
+    }
+  }
+}
+
 }  // namespace
 
 const char* pattern_name(const Pattern& pattern) {
@@ -144,6 +165,10 @@ const char* pattern_name(const Pattern& pattern) {
                                            "wood",    "noise",   "turbulence",  "marble"};
   static_assert(std::size(kNames) == std::variant_size_v<Pattern>);
   return kNames[pattern.index()];
+}
+
+const char* texture_kind_name(const TextureSpec& spec) {
+  return spec.graph ? "graph" : pattern_name(spec.pattern);
 }
 
 glm::vec3 ColourRamp::at(float t) const noexcept {
@@ -200,12 +225,16 @@ ColourRamp default_ramp(const Pattern& pattern) {
 }
 
 TextureSpec validated(TextureSpec spec) {
-  check_pattern(spec.pattern);
+  if (!spec.graph) check_pattern(spec.pattern);
   check_ramp(spec.ramp);
   check_scalar_range("opacity", spec.opacity);
   check_scalar_range("specular", spec.specular);
   if (spec.channels.sample_count() == 0) {
     throw SpecError("channels", "none", "at least one channel must be requested");
+  }
+  if (spec.graph) {
+    check_graph_channels(*spec.graph, spec);
+    return spec;
   }
   if (spec.ramp.keys.empty()) spec.ramp = default_ramp(spec.pattern);
   return spec;

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "soltex/common/brick_layout.h"
+#include "soltex/graph/graph_limits.h"
 
 namespace soltex::server {
 namespace {
@@ -31,6 +32,9 @@ v1::ServerInfo make_info(const ServerConfig& config, int threads) {
   limits->set_max_textures(config.max_textures);
   limits->set_max_message_bytes(config.max_message_bytes);
   limits->set_max_octaves(SpecLimits::kMaxOctaveCount);
+  limits->set_max_graph_nodes(graph::GraphLimits::kMaxNodes);
+  limits->set_max_graph_depth(graph::GraphLimits::kMaxDepth);
+  limits->set_max_graph_cost(graph::GraphLimits::kMaxCostPerSample);
   info.add_brick_sizes(kMinBrickSize);
   info.add_brick_sizes(kMaxBrickSize);
   info.add_codecs(v1::CODEC_ZSTD);

@@ -77,6 +77,15 @@ f 1 1 2
 constexpr NamedText kScenes[] = {
     {"minimal.json",
      R"({"objects": [{"mesh": "sphere", "material": {"texture": {"marble": {}}}}]})"},
+    {"graph.json", R"({"objects": [{"mesh": "sphere", "material": {"texture": {"graph": {
+       "nodes": [
+         {"name": "p", "category": "position"},
+         {"name": "p4", "category": "multiply", "inputs": {"in1": {"node": "p"}, "in2": 4}},
+         {"name": "f", "category": "turbulence", "inputs": {"position": {"node": "p4"},
+          "octaves": 5, "basis": "value"}},
+         {"name": "c", "category": "ramp", "inputs": {"in": {"node": "f"}, "keys": [
+           {"position": 0, "colour": [0, 0, 0]}, {"position": 1, "colour": [1, 0.9, 0.8]}]}}],
+       "outputs": {"colour": "c"}}}}}]})"},
     {"builtins.json", R"({
   "description": "every built-in mesh, both lights, an orbit and a clip plane",
   "image": {"width": 640, "height": 480},

@@ -135,6 +135,62 @@ std::vector<NamedSpec> seed_specs() {
     s.add_channels(v1::CHANNEL_SPECULAR);
     add("marble-product-all-channels", s);
   }
+  {
+    // A graph: position * 3 warped by a vector fractal, Worley cells mixed by a noise mask.
+    v1::TextureSpec s;
+    v1::Graph* g = s.mutable_graph();
+    const auto node = [&](const char* name, const char* category, const char* type) {
+      v1::GraphNode* n = g->add_nodes();
+      n->set_name(name);
+      n->set_category(category);
+      n->set_type(type);
+      return n;
+    };
+    const auto link = [](v1::GraphNode* n, const char* input, const char* from) {
+      v1::GraphInput* in = n->add_inputs();
+      in->set_name(input);
+      in->set_node(from);
+    };
+    const auto number = [](v1::GraphNode* n, const char* input, double value) {
+      v1::GraphInput* in = n->add_inputs();
+      in->set_name(input);
+      in->set_number(value);
+    };
+    node("p", "position", "");
+    v1::GraphNode* scaled = node("p3", "multiply", "");
+    link(scaled, "in1", "p");
+    number(scaled, "in2", 3.0);
+    v1::GraphNode* warp = node("warp", "fractal3d", "vector3");
+    link(warp, "position", "p3");
+    number(warp, "octaves", 4.0);
+    v1::GraphNode* warped = node("q", "add", "");
+    link(warped, "in1", "p3");
+    link(warped, "in2", "warp");
+    v1::GraphNode* cells = node("cells", "worleynoise3d", "");
+    link(cells, "position", "q");
+    v1::GraphInput* feature = cells->add_inputs();
+    feature->set_name("feature");
+    feature->set_choice("f2_minus_f1");
+    v1::GraphNode* mask = node("mask", "noise3d", "");
+    link(mask, "position", "p");
+    v1::GraphNode* grey = node("grey", "convert", "color3");
+    link(grey, "in", "cells");
+    v1::GraphNode* colour = node("colour", "mix", "color3");
+    v1::GraphInput* fg = colour->add_inputs();
+    fg->set_name("fg");
+    set_vec3(fg->mutable_vector(), 0.9, 0.8, 0.7);
+    link(colour, "bg", "grey");
+    link(colour, "mix", "mask");
+    v1::GraphOutput* out = g->add_outputs();
+    out->set_channel(v1::CHANNEL_COLOUR);
+    out->set_node("colour");
+    v1::GraphOutput* opacity = g->add_outputs();
+    opacity->set_channel(v1::CHANNEL_OPACITY);
+    opacity->set_node("cells");
+    s.add_channels(v1::CHANNEL_COLOUR);
+    s.add_channels(v1::CHANNEL_OPACITY);
+    add("graph-warped-cells", s);
+  }
   return specs;
 }
 

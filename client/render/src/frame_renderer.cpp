@@ -90,9 +90,10 @@ const char* texture_access_name(TextureAccess access) {
 // first picture). Cached: wood, whose grain filter leaves out the jitter's slope and which
 // costs 1.6 times, and the noise patterns, whose band limit fades octaves as the cache's
 // band-limited levels do, so evaluating them buys no exactness (single-octave noise 1.3 times,
-// turbulence and marble 2.4 and 2.7).
+// turbulence and marble 2.4 and 2.7). Cached too: graphs, whose cost per sample is open-ended.
 bool evaluated_per_pixel(const TextureSpec& texture, TextureAccess access) {
   if (access != TextureAccess::automatic) return access == TextureAccess::evaluated;
+  if (texture.graph) return false;
   return std::visit(Overloaded{
                         [](const StripesParams&) { return true; },      // 0.94
                         [](const CheckerParams&) { return true; },      // 2D 1.12, 3D 1.29

@@ -6,6 +6,7 @@
 namespace soltex::render {
 
 bool has_planar_edges(const TextureSpec& spec) {
+  if (spec.graph) return false;  // a graph's edges may lie in any direction
   return std::holds_alternative<StripesParams>(spec.pattern) ||
          std::holds_alternative<CheckerParams>(spec.pattern);
 }

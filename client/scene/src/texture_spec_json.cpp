@@ -1,11 +1,16 @@
 #include "soltex/scene/texture_spec_json.h"
 
+#include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "graph_json.h"
 #include "json_reader.h"
 #include "soltex/common/overloaded.h"
 #include "soltex/common/spec_error.h"
+#include "soltex/common/text_file.h"
+#include "soltex/graph/compiled_graph.h"
+#include "soltex/materialx/materialx_reader.h"
 #include "soltex/scene/scene_error.h"
 
 namespace soltex {
@@ -20,8 +25,36 @@ constexpr double kAnyHigh = std::numeric_limits<double>::max();
 constexpr int kAnyIntLow = std::numeric_limits<int>::min();
 constexpr int kAnyIntHigh = std::numeric_limits<int>::max();
 
-constexpr const char* kPatternNames[] = {"stripes", "checker", "colour_cube", "rings",
-                                         "wood",    "noise",   "turbulence",  "marble"};
+constexpr const char* kPatternNames[] = {"stripes", "checker",    "colour_cube", "rings", "wood",
+                                         "noise",   "turbulence", "marble",      "graph"};
+constexpr std::size_t kGraphChoice = 8;
+constexpr std::size_t kMaterialxChoice = 9;
+
+// {"path": "granite.mtlx", "nodegraph": "granite", "output": "out"}; the path is relative to the
+// scene file's folder.
+std::shared_ptr<const GraphField> read_materialx(const JsonValue& value) {
+  JsonObject object(value);
+  materialx::MaterialxSource source;
+  const JsonValue path = object.get("path");
+  const std::filesystem::path relative(path.string());
+  const std::filesystem::path resolved =
+      relative.is_absolute() ? relative
+                             : std::filesystem::path(value.file()).parent_path() / relative;
+  source.document = resolved.string();
+  source.nodegraph = object.get("nodegraph").string();
+  source.output = object.get("output").string();
+  object.reject_unknown_keys();
+  try {
+    source.text = read_text_file(source.document, "MaterialX");
+  } catch (const std::runtime_error& error) {
+    path.fail(error.what());
+  }
+  try {
+    return materialx::compile_nodegraph(source);
+  } catch (const materialx::MaterialxError& error) {
+    value.fail(error.what());
+  }
+}
 
 Axis read_axis(JsonObject& object, Axis fallback) {
   const auto found = object.find("axis");
@@ -234,11 +267,23 @@ TextureSpec texture_spec_from_json(const json& json_value, const std::string& fi
                                    const std::string& path) {
   JsonObject object(JsonValue(json_value, path, file));
   TextureSpec spec;
-  const std::size_t which =
-      object.one_of({kPatternNames[0], kPatternNames[1], kPatternNames[2], kPatternNames[3],
-                     kPatternNames[4], kPatternNames[5], kPatternNames[6], kPatternNames[7]},
-                    {"ramp", "channels", "opacity", "specular"});
-  spec.pattern = read_pattern(which, JsonObject(object.get(kPatternNames[which])));
+  const std::size_t which = object.one_of(
+      {kPatternNames[0], kPatternNames[1], kPatternNames[2], kPatternNames[3], kPatternNames[4],
+       kPatternNames[5], kPatternNames[6], kPatternNames[7], kPatternNames[8], "materialx"},
+      {"ramp", "channels", "opacity", "specular"});
+  const JsonValue pattern =
+      object.get(which == kMaterialxChoice ? "materialx" : kPatternNames[which]);
+  try {
+    if (which == kGraphChoice) {
+      spec.graph = graph::compile(graph_from_json(pattern));
+    } else if (which == kMaterialxChoice) {
+      spec.graph = read_materialx(pattern);
+    } else {
+      spec.pattern = read_pattern(which, JsonObject(pattern));
+    }
+  } catch (const SpecError& error) {
+    throw SceneError::from_spec_error(file, path, error);
+  }
   if (const auto ramp = object.find("ramp")) spec.ramp = read_ramp(*ramp);
   if (const auto channels = object.find("channels")) spec.channels = read_channels(*channels);
   spec.opacity = read_range(object.find("opacity"));
@@ -260,11 +305,13 @@ json texture_spec_to_json(const TextureSpec& spec) {
   if (spec.channels.colour) channels.push_back("colour");
   if (spec.channels.opacity) channels.push_back("opacity");
   if (spec.channels.specular) channels.push_back("specular");
-  return {{pattern_name(spec.pattern), pattern_to_json(spec.pattern)},
-          {"ramp", {{"keys", keys}}},
-          {"channels", channels},
-          {"opacity", {{"low", spec.opacity.low}, {"high", spec.opacity.high}}},
-          {"specular", {{"low", spec.specular.low}, {"high", spec.specular.high}}}};
+  json pattern = spec.graph ? json{{"graph", graph_to_json(graph::source_of(*spec.graph))}}
+                            : json{{pattern_name(spec.pattern), pattern_to_json(spec.pattern)}};
+  pattern.update(json{{"ramp", {{"keys", keys}}},
+                      {"channels", channels},
+                      {"opacity", {{"low", spec.opacity.low}, {"high", spec.opacity.high}}},
+                      {"specular", {{"low", spec.specular.low}, {"high", spec.specular.high}}}});
+  return pattern;
 }
 
 }  // namespace soltex

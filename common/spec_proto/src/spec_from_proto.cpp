@@ -2,8 +2,10 @@
 
 #include <string>
 
+#include "graph_proto.h"
 #include "soltex/common/overloaded.h"
 #include "soltex/common/spec_error.h"
+#include "soltex/graph/compiled_graph.h"
 
 namespace soltex {
 namespace {
@@ -139,12 +141,14 @@ Pattern pattern_from(const v1::TextureSpec& m) {
       p.turbulence = fractal_from(mm.turbulence(), "marble.turbulence");
       return p;
     }
+    case v1::TextureSpec::kGraph:
+      return {};  // from_proto() reads graphs
     case v1::TextureSpec::PATTERN_NOT_SET:
       break;
   }
   throw SpecError("pattern", "unset",
                   "exactly one of stripes, checker, colour_cube, rings, wood, noise, turbulence, "
-                  "marble must be set");
+                  "marble, graph must be set");
 }
 
 ScalarRange range_from(bool present, const v1::ScalarRange& r) {
@@ -155,7 +159,11 @@ ScalarRange range_from(bool present, const v1::ScalarRange& r) {
 
 TextureSpec from_proto(const v1::TextureSpec& m) {
   TextureSpec spec;
-  spec.pattern = pattern_from(m);
+  if (m.has_graph()) {
+    spec.graph = graph::compile(graph_from_proto(m.graph()));
+  } else {
+    spec.pattern = pattern_from(m);
+  }
   for (const auto& key : m.ramp().keys()) {
     spec.ramp.keys.push_back(
         {key.position(), {key.colour().r(), key.colour().g(), key.colour().b()}});
@@ -196,8 +204,9 @@ Volume from_proto(const v1::Volume& m) {
   return validated(volume);
 }
 
-v1::TextureSpec to_proto(const TextureSpec& spec) {
-  v1::TextureSpec m;
+namespace {
+
+void pattern_to(const Pattern& pattern, v1::TextureSpec& m) {
   std::visit(Overloaded{
                  [&](const StripesParams& p) {
                    auto* s = m.mutable_stripes();
@@ -248,7 +257,10 @@ v1::TextureSpec to_proto(const TextureSpec& spec) {
                    *mm->mutable_turbulence() = fractal_to(p.turbulence);
                  },
              },
-             spec.pattern);
+             pattern);
+}
+
+void ramp_and_channels_to(const TextureSpec& spec, v1::TextureSpec& m) {
   for (const RampKey& key : spec.ramp.keys) {
     auto* k = m.mutable_ramp()->add_keys();
     k->set_position(key.position);
@@ -263,6 +275,18 @@ v1::TextureSpec to_proto(const TextureSpec& spec) {
   m.mutable_opacity()->set_high(spec.opacity.high);
   m.mutable_specular()->set_low(spec.specular.low);
   m.mutable_specular()->set_high(spec.specular.high);
+}
+
+}  // namespace
+
+v1::TextureSpec to_proto(const TextureSpec& spec) {
+  v1::TextureSpec m;
+  if (spec.graph) {
+    *m.mutable_graph() = graph_to_proto(graph::source_of(*spec.graph));
+  } else {
+    pattern_to(spec.pattern, m);
+  }
+  ramp_and_channels_to(spec, m);
   return m;
 }
 

@@ -2,8 +2,11 @@
 
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <memory>
 #include <variant>
 #include <vector>
+
+#include "soltex/common/graph_field.h"
 
 // The validated C++ form of a texture: one pattern with its parameters, a colour ramp and
 // the channels a client wants. Defaults are the lecture slides' values where they give one.
@@ -81,6 +84,10 @@ using Pattern = std::variant<StripesParams, CheckerParams, ColourCubeParams, Rin
 // Stable lower-case names ("stripes", "checker", ...), used in messages and file names.
 const char* pattern_name(const Pattern& pattern);
 
+struct TextureSpec;
+// What a spec is, in messages: "graph" for a graph, else its pattern's name.
+const char* texture_kind_name(const TextureSpec& spec);
+
 struct RampKey {
   float position = 0.0f;
   glm::vec3 colour{0.0f};
@@ -115,6 +122,11 @@ struct ScalarRange {
 
 struct TextureSpec {
   Pattern pattern;
+  // When set, the texture is this node graph (compiled and validated by
+  // soltex::graph::compile()) and `pattern` is unused: the graph's outputs give the channels
+  // and the ramp must be empty (graphs colour through ramp nodes). Kept beside the pattern
+  // rather than in the variant so that Pattern stays trivially copyable.
+  std::shared_ptr<const GraphField> graph;
   ColourRamp ramp;
   ChannelSet channels;
   ScalarRange opacity;

@@ -1,0 +1,187 @@
+#include "soltex/materialx/materialx_reader.h"
+
+#include <algorithm>
+#include <array>
+#include <cstdlib>
+#include <map>
+#include <pugixml.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "soltex/common/spec_error.h"
+
+namespace soltex::materialx {
+namespace {
+
+// Standard nodes the node catalogue has under the same name and with the same meaning.
+constexpr std::array kSupported = {
+    "position", "constant", "add",        "subtract",    "multiply",     "divide",
+    "modulo",   "power",    "min",        "max",         "absval",       "floor",
+    "ceil",     "sin",      "cos",        "sqrt",        "clamp",        "smoothstep",
+    "remap",    "mix",      "dotproduct", "magnitude",   "extract",      "combine3",
+    "convert",  "noise3d",  "fractal3d",  "cellnoise3d", "worleynoise3d"};
+
+class Document {
+ public:
+  explicit Document(const MaterialxSource& source) : source_(source) {
+    const pugi::xml_parse_result parsed =
+        xml_.load_buffer(source.text.data(), source.text.size(), pugi::parse_default);
+    if (!parsed) {
+      fail(static_cast<std::ptrdiff_t>(parsed.offset),
+           std::string("not XML: ") + parsed.description());
+    }
+  }
+
+  [[noreturn]] void fail(std::ptrdiff_t offset, const std::string& problem) const {
+    throw MaterialxError(source_.document + ":" + std::to_string(line_of(offset)) + ": " + problem);
+  }
+  int line_of(std::ptrdiff_t offset) const {
+    const auto end =
+        source_.text.begin() +
+        std::clamp<std::ptrdiff_t>(offset, 0, static_cast<std::ptrdiff_t>(source_.text.size()));
+    return 1 + static_cast<int>(std::count(source_.text.begin(), end, '\n'));
+  }
+  const pugi::xml_document& xml() const { return xml_; }
+  const MaterialxSource& source() const { return source_; }
+
+ private:
+  const MaterialxSource& source_;
+  pugi::xml_document xml_;
+};
+
+std::string node_words(const pugi::xml_node& node) {
+  return "node \"" + std::string(node.attribute("name").value()) + "\" (" + node.name() + ")";
+}
+
+std::vector<double> numbers(const std::string& text) {
+  std::vector<double> values;
+  std::string item;
+  std::istringstream stream(text);
+  while (std::getline(stream, item, ',')) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    while (end && *end == ' ') ++end;
+    if (end == item.c_str() || (end && *end != '\0')) return {};
+    values.push_back(v);
+  }
+  return values;
+}
+
+graph::InputValue input_value(const Document& doc, const pugi::xml_node& node,
+                              const pugi::xml_node& input) {
+  const std::string where = node_words(node) + " input \"" + input.attribute("name").value() + "\"";
+  const auto offset = input.offset_debug();
+  if (input.attribute("interfacename")) {
+    doc.fail(offset, where + ": interface inputs are not supported; give a value or a nodename");
+  }
+  if (input.attribute("output")) {
+    doc.fail(offset, where + ": outputs of multi-output nodes are not supported");
+  }
+  if (const auto ref = input.attribute("nodename")) return graph::NodeRef{ref.value()};
+  const auto value = input.attribute("value");
+  if (!value) doc.fail(offset, where + ": needs a value or a nodename");
+  const std::string type = input.attribute("type").value();
+  const std::string text = value.value();
+  if (type == "boolean") {
+    if (text == "true") return 1.0;
+    if (text == "false") return 0.0;
+    doc.fail(offset, where + ": boolean \"" + text + "\" must be true or false");
+  }
+  if (type == "string") return text;
+  const std::vector<double> v = numbers(text);
+  if (v.size() == 1 && (type == "float" || type == "integer" || type.empty())) return v[0];
+  if (v.size() == 3 && (type == "vector3" || type == "color3" || type.empty())) {
+    return glm::dvec3(v[0], v[1], v[2]);
+  }
+  doc.fail(offset, where + ": value \"" + text + "\" is not a " +
+                       (type.empty() ? std::string("number") : type));
+}
+
+graph::Node read_node(const Document& doc, const pugi::xml_node& node) {
+  const std::string category = node.name();
+  if (!is_supported_category(category)) {
+    doc.fail(node.offset_debug(), node_words(node) +
+                                      ": not a supported MaterialX node (docs/SCENES.md, "
+                                      "\"MaterialX documents\", lists them)");
+  }
+  graph::Node out{node.attribute("name").value(), category, node.attribute("type").value(), {}};
+  if (out.type == "vector3" || out.type == "color3" || out.type == "float") {
+    // As written; compile() checks it against the node.
+  } else {
+    doc.fail(node.offset_debug(), node_words(node) + ": type \"" + out.type +
+                                      "\" is not supported (float, vector3, color3)");
+  }
+  for (const pugi::xml_node& input : node.children("input")) {
+    out.inputs.push_back({input.attribute("name").value(), input_value(doc, node, input)});
+  }
+  // MaterialX's position has a space input; the texture space is the only one here.
+  if (category == "position") out.inputs.clear();
+  return out;
+}
+
+pugi::xml_node find_nodegraph(const Document& doc) {
+  const pugi::xml_node root = doc.xml().child("materialx");
+  if (!root) doc.fail(0, "no <materialx> element");
+  const auto graph =
+      root.find_child_by_attribute("nodegraph", "name", doc.source().nodegraph.c_str());
+  if (!graph)
+    doc.fail(root.offset_debug(), "no nodegraph named \"" + doc.source().nodegraph + "\"");
+  return graph;
+}
+
+}  // namespace
+
+bool is_supported_category(const std::string& category) {
+  return std::find(kSupported.begin(), kSupported.end(), category) != kSupported.end();
+}
+
+graph::TextureGraph read_nodegraph(const MaterialxSource& source) {
+  const Document doc(source);
+  const pugi::xml_node nodegraph = find_nodegraph(doc);
+  graph::TextureGraph result;
+  bool found = false;
+  for (const pugi::xml_node& child : nodegraph.children()) {
+    if (child.type() != pugi::node_element) continue;
+    const std::string name = child.name();
+    if (name == "output") {
+      if (source.output == child.attribute("name").value()) {
+        if (std::string(child.attribute("type").value()) != "color3") {
+          doc.fail(child.offset_debug(), "output \"" + source.output + "\" must be color3");
+        }
+        result.outputs.push_back({Channel::colour, child.attribute("nodename").value()});
+        found = true;
+      }
+      continue;
+    }
+    if (name == "backdrop") continue;  // a note for editors
+    result.nodes.push_back(read_node(doc, child));
+  }
+  if (!found) {
+    doc.fail(nodegraph.offset_debug(),
+             "nodegraph \"" + source.nodegraph + "\" has no output \"" + source.output + "\"");
+  }
+  return result;
+}
+
+std::shared_ptr<const graph::CompiledGraph> compile_nodegraph(const MaterialxSource& source) {
+  graph::TextureGraph g = read_nodegraph(source);
+  try {
+    return graph::compile(std::move(g));
+  } catch (const SpecError& e) {
+    // "graph.nodes[<name>]...": point at the node's line.
+    const Document doc(source);
+    const pugi::xml_node nodegraph = find_nodegraph(doc);
+    const std::string& field = e.field();
+    const std::size_t open = field.find('['), close = field.find(']');
+    std::ptrdiff_t offset = nodegraph.offset_debug();
+    if (open != std::string::npos && close != std::string::npos) {
+      const std::string name = field.substr(open + 1, close - open - 1);
+      for (const pugi::xml_node& child : nodegraph.children()) {
+        if (name == child.attribute("name").value()) offset = child.offset_debug();
+      }
+    }
+    doc.fail(offset, e.what());
+  }
+}
+
+}  // namespace soltex::materialx

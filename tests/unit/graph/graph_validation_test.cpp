@@ -1,0 +1,177 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "graph_builders.h"
+#include "soltex/common/spec_error.h"
+#include "soltex/graph/compiled_graph.h"
+#include "soltex/graph/graph_limits.h"
+
+namespace soltex::graph {
+namespace {
+
+using testing::node;
+using testing::ref;
+
+SpecError error_of(const TextureGraph& g) {
+  try {
+    compile(g);
+  } catch (const SpecError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "the graph compiled";
+  return SpecError("", "", "");
+}
+
+TextureGraph grey(std::vector<Node> nodes, const std::string& out) {
+  return TextureGraph{std::move(nodes), {{Channel::colour, out}}};
+}
+
+TEST(GraphValidation, AcceptsTheExampleGraphs) {
+  EXPECT_NO_THROW(compile(testing::builtin_marble_graph()));
+  EXPECT_NO_THROW(compile(testing::warped_graph()));
+}
+
+TEST(GraphValidation, UnknownCategoryNamesTheNode) {
+  const SpecError e = error_of(grey({node("c", "convolve")}, "c"));
+  EXPECT_EQ(e.field(), "graph.nodes[c].category");
+  EXPECT_EQ(e.value(), "\"convolve\"");
+}
+
+TEST(GraphValidation, CycleNamesTheClosingInput) {
+  const SpecError e = error_of(grey(
+      {node("a", "add", {{"in1", ref("b")}}, "color3"), node("b", "multiply", {{"in1", ref("a")}})},
+      "a"));
+  EXPECT_NE(e.field().find("].in1"), std::string::npos) << e.what();
+  EXPECT_NE(e.bound().find("cycle"), std::string::npos) << e.what();
+}
+
+TEST(GraphValidation, SelfReferenceIsACycle) {
+  const SpecError e = error_of(grey({node("a", "absval", {{"in", ref("a")}})}, "a"));
+  EXPECT_EQ(e.field(), "graph.nodes[a].in");
+}
+
+TEST(GraphValidation, TypeMismatchNamesNodeInputAndTypes) {
+  const SpecError e = error_of(grey({node("p", "position"), node("n", "noise3d"),
+                                     node("c", "combine3", {{"in1", ref("p")}}, "color3")},
+                                    "c"));
+  EXPECT_EQ(e.field(), "graph.nodes[c].in1");
+  EXPECT_EQ(e.value(), "node \"p\" (vector3)");
+  EXPECT_EQ(e.bound(), "must be float");
+}
+
+TEST(GraphValidation, VectorAndColourDoNotMix) {
+  const SpecError e = error_of(grey(
+      {node("p", "position"), node("c", "constant", {{"value", glm::dvec3(1, 0, 0)}}, "color3"),
+       node("s", "add", {{"in1", ref("c")}, {"in2", ref("p")}})},
+      "s"));
+  EXPECT_EQ(e.field(), "graph.nodes[s].in2");
+}
+
+TEST(GraphValidation, MissingRequiredInput) {
+  const SpecError e = error_of(grey({node("c", "ramp", {{"in", 0.5}})}, "c"));
+  EXPECT_EQ(e.field(), "graph.nodes[c].keys");
+  EXPECT_EQ(e.value(), "absent");
+}
+
+TEST(GraphValidation, ExtraInputListsTheKnownOnes) {
+  const SpecError e = error_of(grey({node("n", "noise3d", {{"octaves", 3.0}})}, "n"));
+  EXPECT_EQ(e.field(), "graph.nodes[n].octaves");
+  EXPECT_NE(e.bound().find("amplitude, pivot, position, basis"), std::string::npos) << e.what();
+}
+
+TEST(GraphValidation, NonFiniteAndHugeConstants) {
+  for (double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(), 1e300}) {
+    const SpecError e =
+        error_of(grey({node("a", "add", {{"in1", 1.0}, {"in2", bad}}, "color3")}, "a"));
+    EXPECT_EQ(e.field(), "graph.nodes[a].in2");
+  }
+  const SpecError v =
+      error_of(grey({node("a", "add", {{"in1", glm::dvec3(1, std::nan(""), 0)}}, "color3")}, "a"));
+  EXPECT_EQ(v.field(), "graph.nodes[a].in1");
+}
+
+TEST(GraphValidation, ParametersOutOfRangeOrConnected) {
+  EXPECT_EQ(error_of(grey({node("n", "fractal3d", {{"octaves", 40.0}})}, "n")).field(),
+            "graph.nodes[n].octaves");
+  EXPECT_EQ(error_of(grey({node("n", "fractal3d", {{"octaves", 2.5}})}, "n")).bound(),
+            "must be an integer");
+  EXPECT_EQ(
+      error_of(grey({node("n", "fractal3d", {{"basis", std::string("simplex")}})}, "n")).bound(),
+      "must be one of gradient|value");
+  EXPECT_EQ(error_of(grey({node("k", "constant", {{"value", 3.0}}),
+                           node("n", "fractal3d", {{"octaves", ref("k")}})},
+                          "n"))
+                .field(),
+            "graph.nodes[n].octaves");
+  // Built-in pattern parameters keep the patterns' own bounds.
+  const SpecError s = error_of(grey({node("s", "stripes", {{"width", 0.0}})}, "s"));
+  EXPECT_EQ(s.field(), "graph.nodes[s].width");
+}
+
+TEST(GraphValidation, NamesAndReferences) {
+  EXPECT_EQ(error_of(grey({node("a", "position"), node("a", "position")}, "a")).field(),
+            "graph.nodes[a].name");
+  EXPECT_EQ(error_of(grey({node("", "position")}, "a")).field(), "graph.nodes[0].name");
+  EXPECT_EQ(error_of(grey({node("a", "absval", {{"in", ref("ghost")}})}, "a")).field(),
+            "graph.nodes[a].in");
+  EXPECT_EQ(error_of(grey({node("a", "position")}, "ghost")).field(), "graph.outputs.colour");
+}
+
+TEST(GraphValidation, OutputTypes) {
+  const SpecError e = error_of(grey({node("n", "noise3d")}, "n"));
+  EXPECT_EQ(e.field(), "graph.outputs.colour");
+  EXPECT_EQ(e.bound(), "must be color3");
+  TextureGraph opacity{{node("c", "constant", {{"value", glm::dvec3(1.0)}}, "color3")},
+                       {{Channel::opacity, "c"}}};
+  EXPECT_EQ(error_of(opacity).bound(), "must be float");
+}
+
+TEST(GraphValidation, NodeCountDepthAndCostBounds) {
+  std::vector<Node> chain{node("n0", "constant", {{"value", 0.5}})};
+  for (int i = 1; i <= GraphLimits::kMaxDepth + 1; ++i) {
+    chain.push_back(
+        node("n" + std::to_string(i), "absval", {{"in", ref("n" + std::to_string(i - 1))}}));
+  }
+  chain.push_back(node("c", "convert", {{"in", ref(chain.back().name)}}, "color3"));
+  const SpecError depth = error_of(grey(chain, "c"));
+  EXPECT_EQ(depth.field(), "graph.nodes");
+  EXPECT_NE(depth.value().find("depth"), std::string::npos);
+
+  std::vector<Node> many;
+  for (int i = 0; i <= GraphLimits::kMaxNodes; ++i) {
+    many.push_back(node("n" + std::to_string(i), "position"));
+  }
+  EXPECT_EQ(error_of(grey(many, "n0")).field(), "graph.nodes");
+
+  // Seven 16-octave vector fractals: 336 octaves per sample.
+  std::vector<Node> costly{node("s0", "fractal3d", {{"octaves", 16.0}}, "vector3")};
+  for (int i = 1; i < 7; ++i) {
+    costly.push_back(node("s" + std::to_string(i), "fractal3d",
+                          {{"octaves", 16.0}, {"position", ref("s" + std::to_string(i - 1))}},
+                          "vector3"));
+  }
+  costly.push_back(node("c", "convert", {{"in", ref("s6")}}, "color3"));
+  const SpecError cost = error_of(grey(costly, "c"));
+  EXPECT_NE(cost.value().find("estimated cost"), std::string::npos) << cost.what();
+}
+
+TEST(GraphValidation, SpecRefusesChannelsTheGraphLacks) {
+  TextureSpec spec;
+  spec.graph = compile(testing::builtin_marble_graph());
+  spec.channels.specular = true;
+  try {
+    validated(spec);
+    FAIL() << "validated a spec whose graph has no specular output";
+  } catch (const SpecError& e) {
+    EXPECT_EQ(e.field(), "graph.outputs.specular");
+  }
+  spec.channels.specular = false;
+  spec.ramp = default_ramp(MarbleParams{});
+  EXPECT_THROW(validated(spec), SpecError);
+}
+
+}  // namespace
+}  // namespace soltex::graph

@@ -1,0 +1,138 @@
+// MaterialX documents written by hand from the Standard Nodes specification, and the example
+// documents in deploy/scenes/graphs.
+#include "soltex/materialx/materialx_reader.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+
+#include "soltex/common/text_file.h"
+#include "soltex/common/texture_id.h"
+#include "soltex/materialx/example_graphs.h"
+#include "soltex/scene/scene_loader.h"
+
+namespace soltex::materialx {
+namespace {
+
+using ::testing::HasSubstr;
+
+MaterialxSource source(std::string text, std::string graph = "g", std::string output = "out") {
+  return {std::move(text), "hand.mtlx", std::move(graph), std::move(output)};
+}
+
+std::string error_of(const MaterialxSource& s) {
+  try {
+    compile_nodegraph(s);
+  } catch (const MaterialxError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+const char* kNoise = R"(<?xml version="1.0"?>
+<materialx version="1.38">
+  <nodegraph name="g">
+    <position name="p" type="vector3" />
+    <multiply name="p4" type="vector3">
+      <input name="in1" type="vector3" nodename="p" />
+      <input name="in2" type="float" value="4.0" />
+    </multiply>
+    <noise3d name="n" type="float">
+      <input name="position" type="vector3" nodename="p4" />
+      <input name="amplitude" type="float" value="0.5" />
+      <input name="pivot" type="float" value="0.5" />
+    </noise3d>
+    <mix name="c" type="color3">
+      <input name="fg" type="color3" value="1, 1, 1" />
+      <input name="bg" type="color3" value="0.1, 0.2, 0.3" />
+      <input name="mix" type="float" nodename="n" />
+    </mix>
+    <output name="out" type="color3" nodename="c" />
+  </nodegraph>
+</materialx>
+)";
+
+TEST(MaterialxReader, ReadsStandardNodes) {
+  const graph::TextureGraph g = read_nodegraph(source(kNoise));
+  ASSERT_EQ(g.nodes.size(), 4u);
+  EXPECT_EQ(g.nodes[2].category, "noise3d");
+  EXPECT_EQ(g.outputs.size(), 1u);
+  EXPECT_EQ(g.outputs[0].node, "c");
+  const auto compiled = compile_nodegraph(source(kNoise));
+  EXPECT_TRUE(compiled->has_colour());
+}
+
+TEST(MaterialxReader, RefusesUnsupportedNodesWithNameCategoryAndLine) {
+  std::string text = kNoise;
+  text.replace(text.find("<noise3d name=\"n\""), 8, "<blur");
+  text.replace(text.find("</noise3d>"), 10, "</blur>");
+  const std::string e = error_of(source(text));
+  EXPECT_THAT(e, HasSubstr("hand.mtlx:9:"));
+  EXPECT_THAT(e, HasSubstr("node \"n\" (blur)"));
+}
+
+TEST(MaterialxReader, GraphErrorsPointAtTheNodesLine) {
+  std::string text = kNoise;
+  text.replace(text.find("value=\"4.0\""), 11, "nodename=\"c\"");  // p4 <- c <- n <- p4
+  const std::string e = error_of(source(text));
+  EXPECT_THAT(e, HasSubstr("cycle"));
+  EXPECT_THAT(e, HasSubstr("hand.mtlx:"));
+  std::string wrong_type = kNoise;
+  const std::string colour_mix = "<mix name=\"c\" type=\"color3\"";
+  wrong_type.replace(wrong_type.find(colour_mix), colour_mix.size(),
+                     "<mix name=\"c\" type=\"vector3\"");
+  EXPECT_THAT(error_of(source(wrong_type)), HasSubstr("must be color3"));
+}
+
+TEST(MaterialxReader, DocumentProblems) {
+  EXPECT_THAT(error_of(source("<materialx><nodegraph")), HasSubstr("not XML"));
+  EXPECT_THAT(error_of(source(kNoise, "other")), HasSubstr("no nodegraph named \"other\""));
+  EXPECT_THAT(error_of(source(kNoise, "g", "colour")), HasSubstr("has no output \"colour\""));
+  std::string interface = kNoise;
+  interface.replace(interface.find("value=\"0.5\""), 11, "interfacename=\"amp\"");
+  EXPECT_THAT(error_of(source(interface)), HasSubstr("interface inputs are not supported"));
+  std::string bad_value = kNoise;
+  bad_value.replace(bad_value.find("value=\"4.0\""), 11, "value=\"four\"");
+  EXPECT_THAT(error_of(source(bad_value)), HasSubstr("is not a float"));
+}
+
+// The example scene's graphs, inline and from their .mtlx documents, are the same textures.
+TEST(MaterialxReader, ExampleDocumentsEqualTheirJsonGraphs) {
+  const std::filesystem::path scenes = std::filesystem::path(SOLTEX_SOURCE_DIR) / "deploy/scenes";
+  const Scene inline_graphs = load_scene(scenes / "graph-examples.json");
+  const Scene documents = load_scene(scenes / "graph-examples-mtlx.json");
+  ASSERT_EQ(inline_graphs.objects.size(), 4u);
+  ASSERT_EQ(documents.objects.size(), inline_graphs.objects.size());
+  for (std::size_t i = 0; i < documents.objects.size(); ++i) {
+    const TextureSpec& a = inline_graphs.objects[i].material.texture;
+    const TextureSpec& b = documents.objects[i].material.texture;
+    ASSERT_NE(a.graph, nullptr);
+    EXPECT_EQ(texture_id(a, Volume{}, 16, MipSettings{}),
+              texture_id(b, Volume{}, 16, MipSettings{}))
+        << inline_graphs.objects[i].name;
+  }
+}
+
+// The built-in examples are the documents in deploy/scenes/graphs, as the files read now.
+TEST(MaterialxReader, BuiltInExamplesAreTheDocuments) {
+  const std::filesystem::path dir =
+      std::filesystem::path(SOLTEX_SOURCE_DIR) / "deploy/scenes/graphs";
+  ASSERT_EQ(example_graphs().size(), 4u);
+  for (const ExampleGraph& example : example_graphs()) {
+    std::string nodegraph = example.name;
+    std::replace(nodegraph.begin(), nodegraph.end(), '-', '_');
+    TextureSpec built_in, from_file;
+    built_in.graph = example.graph;
+    from_file.graph =
+        compile_nodegraph({read_text_file((dir / (example.name + ".mtlx")).string(), "MaterialX"),
+                           example.name, nodegraph, "out"});
+    EXPECT_EQ(texture_id(built_in, Volume{}, 16, MipSettings{}),
+              texture_id(from_file, Volume{}, 16, MipSettings{}))
+        << example.name;
+  }
+}
+
+}  // namespace
+}  // namespace soltex::materialx
