@@ -8,6 +8,7 @@
 
 #include "brick_store.h"
 #include "grpc_call_metrics.h"
+#include "http_metrics.h"
 #include "metrics_exposition.h"
 #include "shared_brick_cache.h"
 #include "soltex/common/latency_histogram.h"
@@ -41,6 +42,7 @@ struct ServerMetrics {
   // From a brick entering a stream's queue to its batch being handed to gRPC, nanoseconds.
   LatencyHistogram brick_latency_ns;
   GrpcCallMetrics grpc_calls;  // every call, by method and status, from a server interceptor
+  HttpMetrics http;            // the HTTP brick endpoint (--http-listen)
 
   void count_error(int code) {
     if (code >= 0 && code < static_cast<int>(errors_by_code.size())) {
