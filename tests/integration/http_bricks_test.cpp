@@ -348,3 +348,32 @@ TEST(HttpBricks, MetricsPageStaysValidForPrometheus) {
 
 }  // namespace
 }  // namespace soltex
+
+namespace soltex {
+namespace {
+
+// soltex-load --http against the endpoint: every request answered, every brick verified.
+TEST(HttpBricks, SoltexLoadLoadsTheHttpPath) {
+  SoltexdProcess server(http_args());
+  const std::string out = ::testing::TempDir() + "/http_load.json";
+  const std::string command = std::string(SOLTEX_LOAD_BINARY) +
+                              " --http --server 127.0.0.1:" + std::to_string(server.http_port()) +
+                              " --connections 2 --mix uniform --finest-level 7"
+                              " --duration-s 0.5 --verify --format json --no-progress > " +
+                              out;
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::ifstream in(out);
+  const nlohmann::json report = nlohmann::json::parse(in);
+  EXPECT_EQ(report["mode"], "http");
+  EXPECT_GT(report["requests"].get<int>(), 0);
+  EXPECT_EQ(report["statuses"].size(), 1u) << report.dump();
+  EXPECT_EQ(report["statuses"]["200"], report["requests"]);
+  EXPECT_EQ(report["checksum_failures"], 0);
+  EXPECT_EQ(report["cache_statuses"]["none"], report["requests"]);  // no cache in front
+  EXPECT_GT(report["latency_us"]["p50"].get<double>(), 0.0);
+  EXPECT_EQ(testing::metric_value(testing::metrics(server), "soltex_http_bricks_served_total"),
+            report["bricks"].get<double>());
+}
+
+}  // namespace
+}  // namespace soltex
