@@ -21,7 +21,11 @@ packages=(
   libmeshoptimizer-dev                    # mesh ordering and clean-up (client/scene)
   libhwy-dev                              # Highway: SIMD kernels chosen at run time
   libpugixml-dev                          # MaterialX documents (XML)
+  chromium                                # the web viewer's test in a real (headless) browser
 )
+# The web viewer (client/web) builds and tests with Node.js and npm; vite 7 needs Node 20.19 or
+# later (Debian 13's nodejs; on Debian 12 install Node 20 from nodejs.org or NodeSource).
+command -v npm >/dev/null || packages+=(nodejs npm)
 
 missing=()
 for p in "${packages[@]}"; do
