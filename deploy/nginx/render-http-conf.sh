@@ -6,7 +6,8 @@
 # LISTEN_PORT may be PORT or ADDR:PORT; each UPSTREAM a soltexd --http-listen address.
 # Environment: NGINX_WORKERS (default auto), NGINX_ACCESS_LOG (default logs/access.log; "off"
 # also works), NGINX_CACHE_SIZE (default 1g), NGINX_MAX_FAILS (default 1),
-# NGINX_FAIL_TIMEOUT (default 5s).
+# NGINX_FAIL_TIMEOUT (default 5s), NGINX_WEB_ROOT (a folder to serve at /: the built web
+# viewer, client/web/dist, with its scenes; default none: / answers 404).
 set -euo pipefail
 
 if [ $# -lt 3 ]; then
@@ -38,6 +39,16 @@ while IFS= read -r line || [ -n "$line" ]; do
   fi
   case $line in
     @UPSTREAMS@) printf '%s\n' "$upstreams"; continue ;;
+    @PAGE@)
+      if [ -n "${NGINX_WEB_ROOT:-}" ]; then
+        # Module scripts need their MIME type; nothing else here names one.
+        printf '        location / {\n            root %s;\n            index index.html;\n' "$NGINX_WEB_ROOT"
+        printf '            types { text/html html; text/javascript js; application/json json; text/css css; }\n'
+        printf '        }\n' 
+      else
+        printf '        location / {\n            return 404 "no resource here; the routes are under /v1/textures\\n";\n        }\n'
+      fi
+      continue ;;
   esac
   line=${line//@LISTEN@/$listen}
   line=${line//@WORKERS@/${NGINX_WORKERS:-auto}}
