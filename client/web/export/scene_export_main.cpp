@@ -61,6 +61,25 @@ json geometry(const soltex::SceneObject& object, const soltex::Volume& volume) {
           {"indices", object.mesh->indices}};
 }
 
+// World position -> texture-volume coordinates, column-major: where a clip plane's cap (the
+// solid's cut face) takes its texture.
+json world_to_volume(const soltex::SceneObject& object, const soltex::Volume& volume) {
+  const glm::dmat4 to_texture_space = object.material.space == soltex::TextureSpace::world
+                                          ? glm::dmat4(1.0)
+                                          : glm::inverse(object.transform.matrix());
+  glm::dmat4 to_unit(1.0);
+  for (int k = 0; k < 3; ++k) {
+    to_unit[k][k] = 1.0 / (volume.max[k] - volume.min[k]);
+    to_unit[3][k] = -volume.min[k] / (volume.max[k] - volume.min[k]);
+  }
+  const glm::dmat4 m = to_unit * to_texture_space;
+  json out = json::array();
+  for (int c = 0; c < 4; ++c) {
+    for (int r = 0; r < 4; ++r) out.push_back(m[c][r]);
+  }
+  return out;
+}
+
 json lights_json(const soltex::Scene& scene) {
   json lights = json::array();
   for (const soltex::Light& light : scene.lights) {
@@ -93,7 +112,9 @@ json export_scene(const soltex::Scene& scene, int finest_level) {
   out["lights"] = lights_json(scene);
   out["objects"] = json::array();
   for (const soltex::SceneObject& object : scene.objects) {
-    json o = geometry(object, soltex::texture_volume(object, finest_level));
+    const soltex::Volume volume = soltex::texture_volume(object, finest_level);
+    json o = geometry(object, volume);
+    o["world_to_volume"] = world_to_volume(object, volume);
     o["name"] = object.name;
     o["double_sided"] = object.double_sided || !object.clip_planes.empty();
     o["registration"] = registration(object, finest_level);

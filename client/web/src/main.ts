@@ -89,6 +89,7 @@ async function main(): Promise<void> {
         unlit: o.unlit,
         doubleSided: o.double_sided,
         clipPlanes: o.clip_planes,
+        worldToVolume: new Float32Array(o.world_to_volume),
       },
       registration: o.registration,
       texture,

@@ -46,6 +46,7 @@ uniform bool unlit;
 uniform int clipCount;
 uniform vec4 clipPlanes[5];
 uniform bool showLevels;
+uniform mat4 worldToVolume;
 out vec4 colour;
 
 const float SLOT = 17.0;
@@ -89,10 +90,30 @@ void main() {
   for (int i = 0; i < clipCount; ++i) {
     if (dot(clipPlanes[i].xyz, vWorld) - clipPlanes[i].w > 0.0) discard;
   }
-  vec3 t = clamp(vTex, 0.0, 1.0);
+  // A clipped solid seen through its cut: what shows is the cut face (the cap), where the ray
+  // meets the nearest clip plane, textured there and lit with the plane's normal (it points
+  // out of the solid that is left).
+  vec3 surface = vWorld;
+  vec3 n = normalize(vNormal);
+  vec3 texcoord = vTex;
+  if (clipCount > 0 && !gl_FrontFacing) {
+    vec3 ray = vWorld - cameraPosition;
+    float best = 1.0;
+    for (int i = 0; i < clipCount; ++i) {
+      float along = dot(clipPlanes[i].xyz, ray);
+      if (along == 0.0) continue;
+      float s = (clipPlanes[i].w - dot(clipPlanes[i].xyz, cameraPosition)) / along;
+      if (s > 0.0 && s < best) { best = s; n = clipPlanes[i].xyz; }
+    }
+    surface = cameraPosition + best * ray;
+    texcoord = (worldToVolume * vec4(surface, 1.0)).xyz;
+  } else if (!gl_FrontFacing) {
+    n = -n;
+  }
+  vec3 t = clamp(texcoord, 0.0, 1.0);
   // Level 0 has bricks0 * 16 cells per axis: the footprint of a pixel in level-0 cells.
-  vec3 dx = dFdx(vTex) * bricks0 * BRICK;
-  vec3 dy = dFdy(vTex) * bricks0 * BRICK;
+  vec3 dx = dFdx(texcoord) * bricks0 * BRICK;
+  vec3 dy = dFdy(texcoord) * bricks0 * BRICK;
   float lod = clamp(log2(max(max(length(dx), length(dy)), 1e-8)) + lodBias, 0.0, float(levels - 1));
   int l0 = int(floor(lod));
   int used0, used1;
@@ -101,13 +122,11 @@ void main() {
   vec3 albedo = used0 == l0 ? mix(a0, a1, fract(lod)) : a0;
   if (showLevels) albedo = vec3(float(used0 % 3 == 0), float(used0 % 3 == 1), float(used0 % 3 == 2)) * 0.5 + albedo * 0.5;
   if (unlit) { colour = vec4(albedo, 1.0); return; }
-  vec3 n = normalize(vNormal);
-  if (!gl_FrontFacing) n = -n;
-  vec3 v = normalize(cameraPosition - vWorld);
+  vec3 v = normalize(cameraPosition - surface);
   vec3 c = albedo * ambient;
   for (int i = 0; i < directionalCount; ++i) c += lightTerm(albedo, n, v, toLight[i], directionalRadiance[i]);
   for (int i = 0; i < pointCount; ++i) {
-    vec3 offset = pointPosition[i] - vWorld;
+    vec3 offset = pointPosition[i] - surface;
     float d2 = max(dot(offset, offset), 1e-12);
     c += lightTerm(albedo, n, v, offset / sqrt(d2), pointRadiance[i] / d2);
   }
@@ -162,6 +181,7 @@ export interface DrawObject {
   unlit: boolean;
   doubleSided: boolean;
   clipPlanes: number[][];
+  worldToVolume: Float32Array;
 }
 
 export class Renderer {
@@ -216,6 +236,7 @@ export class Renderer {
       gl.uniform1f(this.u("specular"), o.specular);
       gl.uniform1f(this.u("shininess"), o.shininess);
       gl.uniform1i(this.u("unlit"), o.unlit ? 1 : 0);
+      gl.uniformMatrix4fv(this.u("worldToVolume"), false, o.worldToVolume);
       const planes = options.extraClip ? [...o.clipPlanes, options.extraClip] : o.clipPlanes;
       gl.uniform1i(this.u("clipCount"), Math.min(5, planes.length));
       planes.slice(0, 5).forEach((p, i) => gl.uniform4fv(this.u(`clipPlanes[${i}]`), p));

@@ -21,6 +21,7 @@ export interface SceneObject {
   unlit: boolean;
   double_sided: boolean;
   clip_planes: [number, number, number, number][];
+  world_to_volume: number[]; // column-major 4x4
 }
 
 export interface PreparedScene {
