@@ -17,6 +17,7 @@ packages=(
   python3-grpcio python3-protobuf python3-numpy python3-lz4 python3-zstandard python3-xxhash
                                           # the Python client of docs/PROTOCOL.md (tests/python/)
   openssl                                 # certificates for the TLS tests
+  libssl-dev                              # HTTPS bricks (--http-listen with --tls-cert)
   python3-matplotlib                      # soltex-bench accuracy's plot (client/bench/plot_accuracy.py)
   libmeshoptimizer-dev                    # mesh ordering and clean-up (client/scene)
   libhwy-dev                              # Highway: SIMD kernels chosen at run time

@@ -153,15 +153,15 @@ Daemon::Daemon(const ServerConfig& config)
   metrics_ = std::make_unique<MetricsHttpServer>(metrics_address.host, metrics_address.port,
                                                  [this] { return render_metrics(); });
   if (!config.http_listen.empty()) {
-    if (tls_) {
-      throw std::runtime_error(
-          "--http-listen serves plain HTTP only: with --tls-cert, terminate TLS for HTTP in a "
-          "proxy in front (deploy/nginx) and point it at a loopback --http-listen");
-    }
+    // With --tls-cert the HTTP endpoint is HTTPS, with the same files (and client CA) as gRPC.
+    std::optional<TlsFiles> http_tls;
+    if (tls_)
+      http_tls = TlsFiles{config.tls_cert_file, config.tls_key_file, config.tls_client_ca_file};
     const HostPort http_address = parse_host_port(config.http_listen);
     http_ = std::make_unique<HttpBrickServer>(
         http_address.host, http_address.port, http_limits(config),
-        HttpRequestHandler::Context{registry_, scheduler_, producer_, metrics_state_, access_});
+        HttpRequestHandler::Context{registry_, scheduler_, producer_, metrics_state_, access_},
+        http_tls);
   }
   // Health answers for the service by name as well as for the server ("").
   server_->GetHealthCheckService()->SetServingStatus(v1::BrickService::service_full_name(), true);
@@ -186,6 +186,7 @@ void Daemon::reload() {
     std::optional<std::vector<AccessToken>> tokens;
     if (!config_.token_file.empty()) tokens = read_access_tokens(config_.token_file);
     if (tls_) tls_->reload();
+    if (http_) http_->reload_tls();
     if (tokens) access_.replace_tokens(std::move(*tokens));
     reloads_ok_.fetch_add(1);
     spdlog::info("reloaded{}{}: open streams go on, new calls use what was read",

@@ -7,9 +7,11 @@
 #include <boost/asio/strand.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <type_traits>
 
 namespace soltex::server {
 namespace {
@@ -19,12 +21,20 @@ namespace http = beast::http;
 namespace net = boost::asio;
 using tcp = net::ip::tcp;
 
-// One connection: read a request, answer it, and again while the client keeps it alive.
-class HttpSession : public std::enable_shared_from_this<HttpSession> {
+using TlsStream = beast::ssl_stream<beast::tcp_stream>;
+
+// One connection: (a TLS handshake,) read a request, answer it, and again while the client
+// keeps it alive. Stream is beast::tcp_stream or TlsStream.
+template <class Stream>
+class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
+  static constexpr bool kTls = std::is_same_v<Stream, TlsStream>;
+  using std::enable_shared_from_this<HttpSession<Stream>>::shared_from_this;
+
  public:
-  HttpSession(tcp::socket socket, const HttpLimits& limits, HttpRequestHandler& handler,
-              ServerMetrics& metrics)
-      : stream_(std::move(socket)),
+  template <class... TlsContext>
+  HttpSession(tcp::socket connection, const HttpLimits& limits, HttpRequestHandler& handler,
+              ServerMetrics& metrics, TlsContext&... context)
+      : stream_(std::move(connection), context...),
         read_deadline_(stream_.get_executor()),
         limits_(limits),
         handler_(handler),
@@ -32,13 +42,25 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     metrics_.http.connections_opened.fetch_add(1, std::memory_order_relaxed);
     metrics_.http.connections_open.fetch_add(1, std::memory_order_relaxed);
     beast::error_code ec;
-    const tcp::endpoint peer = stream_.socket().remote_endpoint(ec);
+    const tcp::endpoint peer = socket().remote_endpoint(ec);
     peer_host_ = ec ? std::string("unknown") : peer.address().to_string();
   }
   ~HttpSession() { metrics_.http.connections_open.fetch_sub(1, std::memory_order_relaxed); }
 
   void start() {
-    net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->read(); });
+    net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->begin(); });
+  }
+
+  // TLS: the session holds the context it was made with (a reload replaces the server's).
+  void start_with(std::shared_ptr<net::ssl::context> context) {
+    context_ = std::move(context);
+    start();
+  }
+
+  // Too many connections, over TLS: no answer is possible before a handshake, so closed.
+  void close_now() {
+    metrics_.http.connections_refused.fetch_add(1, std::memory_order_relaxed);
+    net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->close(); });
   }
 
   // Too many connections: one 503, then closed.
@@ -57,20 +79,39 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   }
 
  private:
+  tcp::socket& socket() { return beast::get_lowest_layer(stream_).socket(); }
+
+  void begin() {
+    if constexpr (kTls) {
+      beast::get_lowest_layer(stream_).expires_after(limits_.timeout);
+      stream_.async_handshake(net::ssl::stream_base::server,
+                              [self = shared_from_this()](beast::error_code ec) {
+                                // No HTTP answer is possible without TLS: count and close.
+                                if (ec == beast::error::timeout) {
+                                  self->metrics_.http.timeouts.fetch_add(1);
+                                }
+                                if (ec) return self->close();
+                                self->read();
+                              });
+    } else {
+      read();
+    }
+  }
+
   void read() {
     parser_.emplace();
     parser_->header_limit(static_cast<std::uint32_t>(limits_.max_header_bytes));
     parser_->body_limit(limits_.max_body_bytes);
     // Our own deadline, not the stream's: the stream's closes the socket when it expires, and
     // a client whose request is cut short should hear a 408 first.
-    stream_.expires_never();
+    beast::get_lowest_layer(stream_).expires_never();
     read_timed_out_ = false;
     read_deadline_.expires_after(limits_.timeout);
     read_deadline_.async_wait([self = shared_from_this()](beast::error_code ec) {
       if (ec) return;  // cancelled: the read finished first
       self->read_timed_out_ = true;
       beast::error_code ignored;
-      self->stream_.socket().cancel(ignored);
+      self->socket().cancel(ignored);
     });
     http::async_read(
         stream_, buffer_, *parser_,
@@ -101,7 +142,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
                                      std::to_string(limits_.max_header_bytes) + " bytes");
     }
     if (ec) return refuse_request(400, "malformed HTTP request: " + ec.message());
-    stream_.expires_never();  // while a worker makes the brick; the write sets its own
+    // While a worker makes the brick; the write sets its own deadline.
+    beast::get_lowest_layer(stream_).expires_never();
     handler_.handle(parser_->get(), peer_host_, [self = shared_from_this()](HttpResponse response) {
       net::post(self->stream_.get_executor(), [self, response = std::move(response)]() mutable {
         const bool close = !response.keep_alive();
@@ -118,7 +160,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void send(HttpResponse response, bool close) {
     if (close) response.keep_alive(false);
     response_ = std::move(response);
-    stream_.expires_after(limits_.timeout);
+    beast::get_lowest_layer(stream_).expires_after(limits_.timeout);
     http::async_write(stream_, response_,
                       [self = shared_from_this(), close](beast::error_code ec, std::size_t) {
                         if (ec == beast::error::timeout) {
@@ -131,11 +173,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
 
   void close() {
     beast::error_code ignored;
-    stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);
-    stream_.close();
+    socket().shutdown(tcp::socket::shutdown_send, ignored);
+    beast::get_lowest_layer(stream_).close();
   }
 
-  beast::tcp_stream stream_;
+  std::shared_ptr<net::ssl::context> context_;  // TLS only; outlives stream_
+  Stream stream_;
   net::steady_timer read_deadline_;
   bool read_timed_out_ = false;
   const HttpLimits& limits_;
@@ -150,8 +193,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
 }  // namespace
 
 HttpBrickServer::HttpBrickServer(const std::string& host, uint16_t port, HttpLimits limits,
-                                 HttpRequestHandler::Context context)
-    : limits_(limits), metrics_(context.metrics), handler_(context), acceptor_(io_) {
+                                 HttpRequestHandler::Context context, std::optional<TlsFiles> tls)
+    : limits_(limits),
+      metrics_(context.metrics),
+      handler_(context),
+      tls_(tls ? std::make_unique<HttpTls>(*tls) : nullptr),
+      acceptor_(io_) {
   beast::error_code ec;
   const auto address = net::ip::make_address(host, ec);
   if (ec) throw std::runtime_error("HTTP address '" + host + "' is not an IP address");
@@ -181,11 +228,24 @@ void HttpBrickServer::accept() {
     if (!ec) {
       const bool full = metrics_.http.connections_open.load(std::memory_order_relaxed) >=
                         static_cast<int64_t>(limits_.max_connections);
-      auto session = std::make_shared<HttpSession>(std::move(socket), limits_, handler_, metrics_);
-      if (full) {
-        session->refuse();
+      if (tls_) {
+        // The session keeps the context it was made with: a reload changes later ones only.
+        const std::shared_ptr<net::ssl::context> context = tls_->context();
+        auto session = std::make_shared<HttpSession<TlsStream>>(std::move(socket), limits_,
+                                                                handler_, metrics_, *context);
+        if (full) {
+          session->close_now();
+        } else {
+          session->start_with(context);
+        }
       } else {
-        session->start();
+        auto session = std::make_shared<HttpSession<beast::tcp_stream>>(std::move(socket), limits_,
+                                                                        handler_, metrics_);
+        if (full) {
+          session->refuse();
+        } else {
+          session->start();
+        }
       }
     } else {
       // Out of file descriptors, say: wait a little rather than spin on the error.
@@ -196,6 +256,10 @@ void HttpBrickServer::accept() {
     }
     accept();
   });
+}
+
+void HttpBrickServer::reload_tls() {
+  if (tls_) tls_->reload();
 }
 
 void HttpBrickServer::stop() {

@@ -4,11 +4,14 @@
 #include <boost/asio/ip/tcp.hpp>
 #include <chrono>
 #include <cstdint>
+#include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "http_request_handler.h"
+#include "http_tls.h"
 
 namespace soltex::server {
 
@@ -27,13 +30,16 @@ struct HttpLimits {
 // response goes out on the connection's strand when the handler (or a worker) answers.
 class HttpBrickServer {
  public:
-  // Binds host:port (port 0: a free port); throws std::runtime_error naming the address.
+  // Binds host:port (port 0: a free port); throws std::runtime_error naming the address or
+  // the TLS file that cannot be used. With `tls`, every connection is HTTPS.
   HttpBrickServer(const std::string& host, uint16_t port, HttpLimits limits,
-                  HttpRequestHandler::Context context);
+                  HttpRequestHandler::Context context, std::optional<TlsFiles> tls = {});
   ~HttpBrickServer();
 
   uint16_t port() const { return port_; }
   void stop();
+  // SIGHUP: the TLS files read again for later connections; throws, keeping the old, on error.
+  void reload_tls();
 
  private:
   void accept();
@@ -41,6 +47,7 @@ class HttpBrickServer {
   const HttpLimits limits_;
   ServerMetrics& metrics_;
   HttpRequestHandler handler_;
+  std::unique_ptr<HttpTls> tls_;  // null: plain HTTP
   boost::asio::io_context io_;
   boost::asio::ip::tcp::acceptor acceptor_;
   uint16_t port_ = 0;

@@ -4,6 +4,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <boost/asio/ssl.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -16,6 +20,7 @@
 #include "http_test_client.h"
 #include "soltex/common/texture_id.h"
 #include "soltexd_process.h"
+#include "test_certificates.h"
 
 namespace soltex {
 namespace {
@@ -373,6 +378,55 @@ TEST(HttpBricks, SoltexLoadLoadsTheHttpPath) {
   EXPECT_GT(report["latency_us"]["p50"].get<double>(), 0.0);
   EXPECT_EQ(testing::metric_value(testing::metrics(server), "soltex_http_bricks_served_total"),
             report["bricks"].get<double>());
+}
+
+}  // namespace
+}  // namespace soltex
+
+namespace soltex {
+namespace {
+
+namespace ssl = boost::asio::ssl;
+
+// GET over HTTPS; the status, or 0 when the handshake or the exchange failed.
+int https_get(int port, const std::string& target, const testing::TestCertificates& certificates,
+              bool present_client_certificate) {
+  namespace beast = boost::beast;
+  namespace http = beast::http;
+  boost::asio::io_context io;
+  ssl::context context(ssl::context::tls_client);
+  context.load_verify_file(certificates.ca());
+  context.set_verify_mode(ssl::verify_peer);
+  if (present_client_certificate) {
+    context.use_certificate_chain_file(certificates.client_cert());
+    context.use_private_key_file(certificates.client_key(), ssl::context::pem);
+  }
+  beast::ssl_stream<beast::tcp_stream> stream(io, context);
+  beast::error_code ec;
+  beast::get_lowest_layer(stream).connect(
+      {boost::asio::ip::make_address("127.0.0.1"), static_cast<unsigned short>(port)}, ec);
+  if (!ec) stream.handshake(ssl::stream_base::client, ec);
+  http::request<http::empty_body> request{http::verb::get, target, 11};
+  request.set(http::field::host, "127.0.0.1");
+  if (!ec) http::write(stream, request, ec);
+  beast::flat_buffer buffer;
+  http::response<http::string_body> response;
+  if (!ec) http::read(stream, buffer, response, ec);
+  return ec ? 0 : response.result_int();
+}
+
+// With --tls-cert the HTTP endpoint speaks HTTPS with gRPC's files, client CA included.
+TEST(HttpBricks, TlsUsesTheGrpcCertificatesAndClientCa) {
+  testing::TestCertificates certificates;
+  SoltexdProcess server(
+      http_args({"--tls-cert", certificates.server_cert(), "--tls-key", certificates.server_key(),
+                 "--tls-client-ca", certificates.ca()}));
+  const std::string brick = brick_path("0123456789abcdef", 0, 0, 0, 0);
+  EXPECT_EQ(https_get(server.http_port(), brick, certificates, true), 404);  // answered
+  EXPECT_EQ(https_get(server.http_port(), brick, certificates, false), 0);   // no client cert
+  // Plain HTTP to the HTTPS port gets no HTTP answer.
+  EXPECT_EQ(http_request(server.http_port(), "GET", brick).status, 0);
+  EXPECT_EQ(https_get(server.http_port(), brick, certificates, true), 404);  // still serving
 }
 
 }  // namespace
