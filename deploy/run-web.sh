@@ -29,6 +29,7 @@ stop() {
   kill "$server" 2>/dev/null || true
 }
 trap stop EXIT
+trap 'exit 130' INT TERM  # through the EXIT trap: nothing is left running
 for _ in $(seq 1 200); do [ -s "$ready" ] && grep -q '^http=' "$ready" && break; sleep 0.05; done
 http=$(sed -n 's/^http=//p' "$ready")
 [ -n "$http" ] || { cat "$web/soltexd.log"; echo "run: soltexd did not start" >&2; exit 1; }
