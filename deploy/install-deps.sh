@@ -17,11 +17,16 @@ packages=(
   python3-grpcio python3-protobuf python3-numpy python3-lz4 python3-zstandard python3-xxhash
                                           # the Python client of docs/PROTOCOL.md (tests/python/)
   openssl                                 # certificates for the TLS tests
+  libssl-dev                              # HTTPS bricks (--http-listen with --tls-cert)
   python3-matplotlib                      # soltex-bench accuracy's plot (client/bench/plot_accuracy.py)
   libmeshoptimizer-dev                    # mesh ordering and clean-up (client/scene)
   libhwy-dev                              # Highway: SIMD kernels chosen at run time
   libpugixml-dev                          # MaterialX documents (XML)
+  chromium                                # the web viewer's test in a real (headless) browser
 )
+# The web viewer (client/web) builds and tests with Node.js and npm; vite 7 needs Node 20.19 or
+# later (Debian 13's nodejs; on Debian 12 install Node 20 from nodejs.org or NodeSource).
+command -v npm >/dev/null || packages+=(nodejs npm)
 
 missing=()
 for p in "${packages[@]}"; do

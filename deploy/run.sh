@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # The main job: install what is needed, build soltex, start soltexd on loopback, render the
 # default scene with soltex-view (headless) into a PNG, print what happened, stop the server.
+# With --web instead: start soltexd (HTTP bricks) and nginx serving the web viewer
+# (client/web) with a brick cache in front, all on loopback, print the page's URL and keep
+# running until interrupted. `--web SCENE.json` shows that scene instead of the default one.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 # ccache hits across clones in different directories: hash paths relative to the clone.
@@ -10,6 +13,9 @@ out=${SOLTEX_OUT_DIR:-$root/out}
 
 "$root/deploy/install-deps.sh"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+if [ "${1:-}" = "--web" ]; then
+  exec "$root/deploy/run-web.sh" "${@:2}"
+fi
 cmake --build "$build" --target soltexd soltex-view -j "${SOLTEX_JOBS:-2}"
 
 mkdir -p "$out"

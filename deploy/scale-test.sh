@@ -9,7 +9,9 @@
 #      the same two cores, so this measures the balancer's and the replicas' overhead, not
 #      scaling);
 #   5. two clients behind nginx are limited separately: one holding its stream limit does not
-#      refuse the other (limits follow the name of each client's bearer token).
+#      refuse the other (limits follow the name of each client's bearer token);
+#   6. HTTP bricks through nginx's proxy_cache: a second client's bricks all come from nginx's
+#      cache (X-Cache-Status HIT) while the replicas' counters stand still.
 # Every process listens on 127.0.0.1 on ports the kernel picks; everything is stopped on exit.
 # Usage: deploy/scale-test.sh            (builds nothing: run after the release build)
 # Environment: SOLTEX_BUILD_DIR (default build), SCALE_LOAD_SECONDS (default 5),
@@ -35,6 +37,7 @@ cleanup() {
   [ -f "$work/nginx/logs/nginx.pid" ] && nginx -p "$work/nginx" -c "$work/nginx/nginx.conf" -s stop 2>/dev/null || true
   [ -f "$work/nginx1/logs/nginx.pid" ] && nginx -p "$work/nginx1" -c "$work/nginx1/nginx.conf" -s stop 2>/dev/null || true
   [ -f "$work/nginx5/logs/nginx.pid" ] && nginx -p "$work/nginx5" -c "$work/nginx5/nginx.conf" -s stop 2>/dev/null || true
+  [ -f "$work/nginxh/logs/nginx.pid" ] && nginx -p "$work/nginxh" -c "$work/nginxh/nginx.conf" -s stop 2>/dev/null || true
   for pid in "${pids[@]}"; do kill -9 "$pid" 2>/dev/null || true; done
   wait 2>/dev/null || true
   [ -n "${SCALE_KEEP:-}" ] || rm -rf "$work"
@@ -84,12 +87,13 @@ for m in 0 1; do
 done
 nodes="127.0.0.1:${memcached_port[0]},127.0.0.1:${memcached_port[1]}"
 
-grpc_port=() metrics_port=() alive=()
+grpc_port=() metrics_port=() http_port=() alive=()
 start_replica() {  # start_replica R PORT [ARGS...]: replica R on 127.0.0.1:PORT (0: any), in the background
   local r=$1 port=$2
   rm -f "$work/ready$r"
   "$soltexd" --listen "127.0.0.1:$port" --metrics-listen 127.0.0.1:0 --ready-file "$work/ready$r" \
-    --memcached "$nodes" --memcached-timeout-ms 100 --trusted-proxies 127.0.0.1 --threads 2 "${@:3}" \
+    --memcached "$nodes" --memcached-timeout-ms 100 --trusted-proxies 127.0.0.1 --threads 2 \
+    --http-listen 127.0.0.1:0 "${@:3}" \
     --shutdown-grace-s 2 --log-level warn >>"$work/soltexd$r.log" 2>&1 &
   replica_pid[$r]=$!
   pids+=("$!")
@@ -99,6 +103,7 @@ replica_ready() {  # replica_ready R: wait for its ready file, read its ports
   for _ in $(seq 1 400); do [ -s "$work/ready$r" ] && break; sleep 0.05; done
   grpc_port[$r]=$(sed -n 's/^grpc=//p' "$work/ready$r")
   metrics_port[$r]=$(sed -n 's/^metrics=//p' "$work/ready$r")
+  http_port[$r]=$(sed -n 's/^http=//p' "$work/ready$r")
   alive[$r]=1
 }
 for r in 0 1 2; do start_replica "$r" 0; done
@@ -275,6 +280,44 @@ check "alice was held to her 4 streams" test "$alice_refused" -eq 4
 check "alice held all 4 when bob started" test "${held%.*}" -eq 4
 check "bob was served while alice held her limit" test "$bob_bricks" -gt 0 -a "$bob_errors" -eq 0
 check "the replica named alice by her token" grep -q "token:alice" "$work/soltexd3.log"
+
+echo "-- 6. HTTP bricks through nginx's cache: a second client costs the replicas nothing"
+http_lb_port=$(free_port)
+mkdir -p "$work/nginxh"
+"$root/deploy/nginx/render-http-conf.sh" "127.0.0.1:$http_lb_port" "$work/nginxh" \
+  "127.0.0.1:${http_port[0]}" "127.0.0.1:${http_port[1]}" "127.0.0.1:${http_port[2]}" \
+  >"$work/nginxh/nginx.conf"
+nginx -p "$work/nginxh" -c "$work/nginxh/nginx.conf" -e "$work/nginxh/logs/error.log"
+wait_port "$http_lb_port"
+# Both clients ask for the same 128 bricks (same seed), one request at a time per connection.
+http_load=(--http --connections 2 --mix hot --hot-set 128 --duration-s 1 --verify --no-progress
+           --format json --seed 11)
+replica_work() {  # bricks the replicas made or looked up for anyone, HTTP or gRPC
+  echo "$(sum_metric soltex_bricks_evaluated_total) $(sum_metric soltex_cache_hits_total)" \
+       "$(sum_metric soltex_cache_misses_total) $(sum_metric soltex_http_bricks_served_total)"
+}
+"$load" --server "127.0.0.1:$http_lb_port" "${http_load[@]}" >"$work/http-first.json"
+work_before=$(replica_work)
+"$load" --server "127.0.0.1:$http_lb_port" "${http_load[@]}" >"$work/http-second.json"
+work_after=$(replica_work)
+http_field() {  # http_field FILE EXPRESSION: a value of a soltex-load --http JSON report
+  python3 -c 'import json,sys; r=json.load(open(sys.argv[1])); print(eval(sys.argv[2]))' "$1" "$2"
+}
+first_hits=$(http_field "$work/http-first.json" 'r["cache_statuses"].get("HIT", 0)')
+first_requests=$(http_field "$work/http-first.json" 'r["requests"]')
+second_requests=$(http_field "$work/http-second.json" 'r["requests"]')
+second_hits=$(http_field "$work/http-second.json" 'r["cache_statuses"].get("HIT", 0)')
+second_ok=$(http_field "$work/http-second.json" 'r["statuses"].get("200", 0)')
+http_rate() { http_field "$1" 'round(r["bricks_per_second"])'; }
+http_p99() { http_field "$1" 'round(r["latency_us"]["p99"])'; }
+summary="HTTP through nginx's cache, 2 connections: first client $(http_rate "$work/http-first.json") bricks/s ($first_hits of $first_requests cache hits, p99 $(http_p99 "$work/http-first.json") us), second $(http_rate "$work/http-second.json") bricks/s ($second_hits of $second_requests hits, p99 $(http_p99 "$work/http-second.json") us)"
+echo "   $summary"
+echo "   replicas' bricks evaluated, cache hits, cache misses, HTTP bricks served: before the second client $work_before, after $work_after"
+check "the second client got every brick" test "$second_requests" -gt 0 -a "$second_ok" -eq "$second_requests"
+check "every one of them from nginx's cache (X-Cache-Status HIT)" test "$second_hits" -eq "$second_requests"
+check "the replicas did no work for it (their counters unchanged)" test "$work_before" = "$work_after"
+check "no checksum failures" test "$(http_field "$work/http-first.json" 'r["checksum_failures"]')$(http_field "$work/http-second.json" 'r["checksum_failures"]')" = "00"
+if [ -n "${SCALE_REPORT:-}" ]; then echo "$summary" >>"$SCALE_REPORT"; fi
 
 if [ "$failures" -gt 0 ]; then
   echo "scale-test: $failures checks failed; logs:"

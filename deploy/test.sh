@@ -14,6 +14,9 @@ jobs=${SOLTEX_JOBS:-2}
 
 "$root/deploy/install-deps.sh"
 
+echo "== web viewer: npm packages from package-lock.json"
+(cd "$root/client/web" && npm ci --no-audit --no-fund --loglevel=error)
+
 echo "== release build and all tests"
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j "$jobs"

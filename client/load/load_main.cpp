@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "http_load.h"
 #include "load_generator.h"
 #include "load_options.h"
 #include "load_report.h"
@@ -37,6 +38,18 @@ int main(int argc, char** argv) {
                  "soltex-load: warning: --in-flight %d exceeds --hot-set %d; at most %d bricks "
                  "can be outstanding per stream\n",
                  options.in_flight, options.hot_set, options.hot_set);
+  }
+  if (options.http) {
+    try {
+      std::cout << format_http_result(run_http_load(options), options.format) << std::flush;
+    } catch (const LoadOptionsError& e) {
+      std::fprintf(stderr, "soltex-load: %s\n", e.what());
+      return cli::kExitUsage;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "soltex-load: %s\n", e.what());
+      return cli::kExitFailure;
+    }
+    return cli::kExitOk;
   }
   soltex::ProgressBar bar;
   ProgressCallback progress;

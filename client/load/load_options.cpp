@@ -155,7 +155,11 @@ void add_load_options(CLI::App& app, LoadOptions& o) {
   // --target, --duration, --warmup and --drain-timeout are the old names, kept for scripts:
   // every tool now calls the server --server and names a flag's unit at its end.
   app.add_option("--server,--target", o.target, "soltexd gRPC address HOST:PORT")->required();
-  app.add_option("--connections", o.connections, "gRPC channels (separate TCP connections)")
+  app.add_flag("--http", o.http,
+               "load soltexd's HTTP bricks (--http-listen, or a cache in front) instead of gRPC: "
+               "--connections keep-alive connections, one request at a time each");
+  app.add_option("--connections", o.connections,
+                 "gRPC channels (separate TCP connections); with --http, HTTP connections")
       ->capture_default_str();
   app.add_option("--streams", o.streams, "StreamBricks streams, spread over the connections")
       ->capture_default_str();

@@ -40,6 +40,7 @@ struct LoadBounds {
 
 struct LoadOptions {
   std::string target;  // --server HOST:PORT
+  bool http = false;   // --http: the HTTP brick path (http_load.h) instead of gRPC streams
   net::ChannelSecurity security;
   int connections = 1;
   int streams = 1;

@@ -80,11 +80,19 @@ grpc::Status ClientAccess::identify(const grpc::ServerContextBase& context,
   if (!token_required_) return grpc::Status::OK;
   const auto& metadata = context.client_metadata();
   const auto it = metadata.find("authorization");
-  if (it == metadata.end()) {
+  if (it == metadata.end()) return check_token(nullptr, client);
+  const std::string_view value(it->second.data(), it->second.size());
+  return check_token(&value, client);
+}
+
+grpc::Status ClientAccess::check_token(const std::string_view* authorization,
+                                       std::string& client) const {
+  if (!token_required_) return grpc::Status::OK;
+  if (authorization == nullptr) {
     return {grpc::StatusCode::UNAUTHENTICATED,
             "this server requires a bearer token: send metadata 'authorization: Bearer <token>'"};
   }
-  const std::string_view value(it->second.data(), it->second.size());
+  const std::string_view value = *authorization;
   if (!value.starts_with(kBearer)) {
     return {grpc::StatusCode::UNAUTHENTICATED,
             "the 'authorization' metadata must read 'Bearer <token>'"};
@@ -100,6 +108,20 @@ grpc::Status ClientAccess::identify(const grpc::ServerContextBase& context,
   }
   if (!match->name.empty()) client = "token:" + match->name;
   return grpc::Status::OK;
+}
+
+std::string ClientAccess::address_of(const std::string& peer_host,
+                                     const std::vector<std::string_view>& forwarded) const {
+  if (config_.trusted_proxies.empty()) return peer_host;
+  std::vector<std::string_view> entries;
+  for (std::string_view value : forwarded) {
+    while (!value.empty()) {
+      const auto comma = value.find(',');
+      entries.push_back(trim(value.substr(0, comma)));
+      value.remove_prefix(comma == std::string_view::npos ? value.size() : comma + 1);
+    }
+  }
+  return client_address(peer_host, entries, config_.trusted_proxies);
 }
 
 std::string ClientAccess::address_of(const grpc::ServerContextBase& context) const {

@@ -74,6 +74,16 @@ class ClientAccess {
   // or wrong (`client` is then its address, for the log).
   grpc::Status identify(const grpc::ServerContextBase& context, std::string& client) const;
 
+  // The same check for a caller whose address is already known (an HTTP request):
+  // `authorization` is the header's value, nullptr when absent. `client` comes in as the
+  // address and leaves as the identity.
+  grpc::Status check_token(const std::string_view* authorization, std::string& client) const;
+
+  // An HTTP caller's address: the peer, or what x-forwarded-for names when the peer is a
+  // trusted proxy (`forwarded`: the header's values, in order).
+  std::string address_of(const std::string& peer_host,
+                         const std::vector<std::string_view>& forwarded) const;
+
   // The caller's address without its port: the client x-forwarded-for names when the peer is
   // a trusted proxy, else the peer.
   std::string address_of(const grpc::ServerContextBase& context) const;

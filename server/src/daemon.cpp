@@ -95,6 +95,16 @@ std::unique_ptr<ReloadableTls> server_tls(const ServerConfig& config) {
       TlsFiles{config.tls_cert_file, config.tls_key_file, config.tls_client_ca_file});
 }
 
+HttpLimits http_limits(const ServerConfig& config) {
+  HttpLimits limits;
+  limits.max_body_bytes = config.max_message_bytes;
+  limits.max_connections = config.http_max_connections;
+  limits.timeout =
+      std::chrono::milliseconds(static_cast<int64_t>(config.http_timeout_seconds * 1000.0));
+  limits.threads = config.http_threads;
+  return limits;
+}
+
 }  // namespace
 
 Daemon::Daemon(const ServerConfig& config)
@@ -146,6 +156,17 @@ Daemon::Daemon(const ServerConfig& config)
   const HostPort metrics_address = parse_host_port(config.metrics_listen);
   metrics_ = std::make_unique<MetricsHttpServer>(metrics_address.host, metrics_address.port,
                                                  [this] { return render_metrics(); });
+  if (!config.http_listen.empty()) {
+    // With --tls-cert the HTTP endpoint is HTTPS, with the same files (and client CA) as gRPC.
+    std::optional<TlsFiles> http_tls;
+    if (tls_)
+      http_tls = TlsFiles{config.tls_cert_file, config.tls_key_file, config.tls_client_ca_file};
+    const HostPort http_address = parse_host_port(config.http_listen);
+    http_ = std::make_unique<HttpBrickServer>(
+        http_address.host, http_address.port, http_limits(config),
+        HttpRequestHandler::Context{registry_, scheduler_, producer_, metrics_state_, access_},
+        http_tls);
+  }
   // Health answers for the service by name as well as for the server ("").
   server_->GetHealthCheckService()->SetServingStatus(v1::BrickService::service_full_name(), true);
   server_->GetHealthCheckService()->SetServingStatus(true);
@@ -169,6 +190,7 @@ void Daemon::reload() {
     std::optional<std::vector<AccessToken>> tokens;
     if (!config_.token_file.empty()) tokens = read_access_tokens(config_.token_file);
     if (tls_) tls_->reload();
+    if (http_) http_->reload_tls();
     if (tokens) access_.replace_tokens(std::move(*tokens));
     reloads_ok_.fetch_add(1);
     spdlog::info("reloaded{}{}: open streams go on, new calls use what was read",
@@ -190,6 +212,7 @@ void Daemon::shut_down() {
       std::chrono::duration<double>(config_.shutdown_grace_seconds));
   server_->Shutdown(std::chrono::system_clock::now() + grace);
   scheduler_.stop();
+  if (http_) http_->stop();
   metrics_->stop();
   spdlog::info("shut down");
 }

@@ -11,6 +11,7 @@
 #include "brick_store.h"
 #include "client_access.h"
 #include "fault_injection.h"
+#include "http_brick_server.h"
 #include "metrics_http_server.h"
 #include "refusal_log.h"
 #include "reloadable_tls.h"
@@ -30,6 +31,7 @@ class Daemon {
 
   int grpc_port() const { return grpc_port_; }
   int metrics_port() const { return metrics_->port(); }
+  int http_port() const { return http_ ? http_->port() : 0; }  // 0: no --http-listen
 
   // Graceful: health NOT_SERVING, open streams finished, gRPC shut down within the grace
   // period, workers joined, metrics stopped. Idempotent.
@@ -56,6 +58,7 @@ class Daemon {
   std::unique_ptr<BrickServiceImpl> service_;
   std::unique_ptr<grpc::Server> server_;
   std::unique_ptr<MetricsHttpServer> metrics_;
+  std::unique_ptr<HttpBrickServer> http_;  // null: no --http-listen
   int grpc_port_ = 0;
   bool shut_down_ = false;
   std::atomic<uint64_t> reloads_ok_{0};

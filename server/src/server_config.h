@@ -31,7 +31,13 @@ struct ServerConfig {
   uint32_t coalesce_bricks = 8;
   uint32_t coalesce_wait_us = 2000;
   double shutdown_grace_seconds = 5.0;
-  std::string ready_file;  // written once listening: "grpc=PORT\nmetrics=PORT\n"
+  std::string ready_file;  // written once listening: "grpc=PORT\nmetrics=PORT\n[http=PORT\n]"
+
+  // HTTP bricks (docs/PROTOCOL.md, HTTP): off while empty.
+  std::string http_listen;
+  uint32_t http_max_connections = 1024;
+  double http_timeout_seconds = 15.0;
+  int http_threads = 2;
 
   // Shared second-level cache (memcached); off while the list is empty.
   std::vector<std::string> memcached;  // HOST:PORT each

@@ -9,6 +9,7 @@
 
 #include "brick_store.h"
 #include "grpc_call_metrics.h"
+#include "http_metrics.h"
 #include "metrics_exposition.h"
 #include "shared_brick_cache.h"
 #include "soltex/common/latency_histogram.h"
@@ -54,6 +55,7 @@ struct ServerMetrics {
   LatencyHistogram brick_latency_ns;
   std::array<LatencyHistogram, kBrickStages> stage_ns;  // by BrickStage, nanoseconds
   GrpcCallMetrics grpc_calls;  // every call, by method and status, from a server interceptor
+  HttpMetrics http;            // the HTTP brick endpoint (--http-listen)
 
   void record(BrickStage stage, std::chrono::steady_clock::duration elapsed) {
     const auto ns = std::chrono::duration_cast<std::chrono::nanoseconds>(elapsed).count();

@@ -14,12 +14,13 @@ namespace {
 
 using soltex::server::ServerConfig;
 
-void write_ready_file(const std::string& path, int grpc_port, int metrics_port) {
+void write_ready_file(const std::string& path, int grpc_port, int metrics_port, int http_port) {
   // Written to a temporary name and renamed, so a reader never sees half a file.
   const std::string temporary = path + ".tmp";
   {
     std::ofstream out(temporary);
     out << "grpc=" << grpc_port << "\nmetrics=" << metrics_port << "\n";
+    if (http_port != 0) out << "http=" << http_port << "\n";
   }
   std::filesystem::rename(temporary, path);
 }
@@ -77,7 +78,24 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 600.0))
       ->capture_default_str();
   app.add_option("--ready-file", config.ready_file,
-                 "once listening, write 'grpc=PORT' and 'metrics=PORT' lines here");
+                 "once listening, write 'grpc=PORT', 'metrics=PORT' (and 'http=PORT') lines here");
+
+  auto* web = app.add_option_group("http", "bricks over HTTP/1.1 (docs/PROTOCOL.md, HTTP)");
+  web->add_option("--http-listen", config.http_listen,
+                  "HTTP brick address HOST:PORT (port 0: any free port); empty: off");
+  web->add_option("--http-max-connections", config.http_max_connections,
+                  "open HTTP connections; one more is answered 503 and closed")
+      ->check(CLI::Range(1u, 1u << 20))
+      ->capture_default_str();
+  web->add_option("--http-timeout-s", config.http_timeout_seconds,
+                  "seconds a request may take to arrive, a response to be written, or a "
+                  "keep-alive connection to idle")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
+  web->add_option("--http-threads", config.http_threads,
+                  "HTTP I/O threads (bricks are made on the brick workers)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
 
   auto* shared = app.add_option_group("shared cache", "second-level brick cache on memcached");
   shared
@@ -157,8 +175,12 @@ int main(int argc, char** argv) {
   spdlog::info("soltexd {} listening on {} (gRPC port {}), metrics on http://{}/metrics (port {})",
                SOLTEX_VERSION, config.listen, daemon->grpc_port(), config.metrics_listen,
                daemon->metrics_port());
+  if (daemon->http_port() != 0) {
+    spdlog::info("HTTP bricks on {} (port {})", config.http_listen, daemon->http_port());
+  }
   if (!config.ready_file.empty()) {
-    write_ready_file(config.ready_file, daemon->grpc_port(), daemon->metrics_port());
+    write_ready_file(config.ready_file, daemon->grpc_port(), daemon->metrics_port(),
+                     daemon->http_port());
   }
 
   soltex::server::wait_for_signals(*daemon);  // SIGHUP reloads; SIGINT or SIGTERM returns

@@ -53,6 +53,7 @@ SoltexdProcess::SoltexdProcess(std::vector<std::string> extra_args, int port)
     while (std::getline(in, line)) {
       if (line.rfind("grpc=", 0) == 0) grpc_port_ = std::stoi(line.substr(5));
       if (line.rfind("metrics=", 0) == 0) metrics_port_ = std::stoi(line.substr(8));
+      if (line.rfind("http=", 0) == 0) http_port_ = std::stoi(line.substr(5));
     }
     if (grpc_port_ > 0 && metrics_port_ > 0) return;
     int status = 0;

@@ -22,6 +22,7 @@ class SoltexdProcess {
 
   std::string grpc_address() const { return "127.0.0.1:" + std::to_string(grpc_port_); }
   int metrics_port() const { return metrics_port_; }
+  int http_port() const { return http_port_; }  // 0 without --http-listen
 
   // Sends SIGTERM and returns the exit status (or -signal if killed), waiting up to 30 s.
   int terminate();
@@ -37,6 +38,7 @@ class SoltexdProcess {
   pid_t pid_ = -1;
   int grpc_port_ = 0;
   int metrics_port_ = 0;
+  int http_port_ = 0;
   std::string directory_;
 };
 

@@ -1,0 +1,9 @@
+import { defineConfig } from "vitest/config";
+
+export default defineConfig({
+  test: {
+    globalSetup: ["test/soltexd.ts"],
+    include: ["test/**/*.test.ts"],
+    testTimeout: 20000,
+  },
+});

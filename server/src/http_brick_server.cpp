@@ -1,0 +1,276 @@
+#include "http_brick_server.h"
+
+#include <spdlog/spdlog.h>
+
+#include <boost/asio/ip/address.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <boost/asio/strand.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/ssl.hpp>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <type_traits>
+
+namespace soltex::server {
+namespace {
+
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace net = boost::asio;
+using tcp = net::ip::tcp;
+
+using TlsStream = beast::ssl_stream<beast::tcp_stream>;
+
+// One connection: (a TLS handshake,) read a request, answer it, and again while the client
+// keeps it alive. Stream is beast::tcp_stream or TlsStream.
+template <class Stream>
+class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
+  static constexpr bool kTls = std::is_same_v<Stream, TlsStream>;
+  using std::enable_shared_from_this<HttpSession<Stream>>::shared_from_this;
+
+ public:
+  template <class... TlsContext>
+  HttpSession(tcp::socket connection, const HttpLimits& limits, HttpRequestHandler& handler,
+              ServerMetrics& metrics, TlsContext&... context)
+      : stream_(std::move(connection), context...),
+        read_deadline_(stream_.get_executor()),
+        limits_(limits),
+        handler_(handler),
+        metrics_(metrics) {
+    metrics_.http.connections_opened.fetch_add(1, std::memory_order_relaxed);
+    metrics_.http.connections_open.fetch_add(1, std::memory_order_relaxed);
+    beast::error_code ec;
+    const tcp::endpoint peer = socket().remote_endpoint(ec);
+    peer_host_ = ec ? std::string("unknown") : peer.address().to_string();
+  }
+  ~HttpSession() { metrics_.http.connections_open.fetch_sub(1, std::memory_order_relaxed); }
+
+  void start() {
+    net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->begin(); });
+  }
+
+  // TLS: the session holds the context it was made with (a reload replaces the server's).
+  void start_with(std::shared_ptr<net::ssl::context> context) {
+    context_ = std::move(context);
+    start();
+  }
+
+  // Too many connections, over TLS: no answer is possible before a handshake, so closed.
+  void close_now() {
+    metrics_.http.connections_refused.fetch_add(1, std::memory_order_relaxed);
+    net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->close(); });
+  }
+
+  // Too many connections: one 503, then closed.
+  void refuse() {
+    metrics_.http.connections_refused.fetch_add(1, std::memory_order_relaxed);
+    metrics_.http.count(HttpMetrics::Route::other, 503);
+    HttpResponse response =
+        handler_.error(11, 503,
+                       "this server has " + std::to_string(limits_.max_connections) +
+                           " HTTP connections open (--http-max-connections); try again later");
+    response.set(http::field::retry_after, "1");
+    net::dispatch(stream_.get_executor(),
+                  [self = shared_from_this(), response = std::move(response)]() mutable {
+                    self->send(std::move(response), /*close=*/true);
+                  });
+  }
+
+ private:
+  tcp::socket& socket() { return beast::get_lowest_layer(stream_).socket(); }
+
+  void begin() {
+    if constexpr (kTls) {
+      beast::get_lowest_layer(stream_).expires_after(limits_.timeout);
+      stream_.async_handshake(net::ssl::stream_base::server,
+                              [self = shared_from_this()](beast::error_code ec) {
+                                // No HTTP answer is possible without TLS: count and close.
+                                if (ec == beast::error::timeout) {
+                                  self->metrics_.http.timeouts.fetch_add(1);
+                                }
+                                if (ec) return self->close();
+                                self->read();
+                              });
+    } else {
+      read();
+    }
+  }
+
+  void read() {
+    parser_.emplace();
+    parser_->header_limit(static_cast<std::uint32_t>(limits_.max_header_bytes));
+    parser_->body_limit(limits_.max_body_bytes);
+    // Our own deadline, not the stream's: the stream's closes the socket when it expires, and
+    // a client whose request is cut short should hear a 408 first.
+    beast::get_lowest_layer(stream_).expires_never();
+    read_timed_out_ = false;
+    read_deadline_.expires_after(limits_.timeout);
+    read_deadline_.async_wait([self = shared_from_this()](beast::error_code ec) {
+      if (ec) return;  // cancelled: the read finished first
+      self->read_timed_out_ = true;
+      beast::error_code ignored;
+      self->socket().cancel(ignored);
+    });
+    http::async_read(
+        stream_, buffer_, *parser_,
+        [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_read(ec); });
+  }
+
+  void on_read(beast::error_code ec) {
+    read_deadline_.cancel();
+    if (read_timed_out_) ec = beast::error::timeout;
+    if (ec == http::error::end_of_stream || ec == net::error::connection_reset ||
+        ec == net::error::eof) {
+      return close();
+    }
+    if (ec == beast::error::timeout) {
+      metrics_.http.timeouts.fetch_add(1, std::memory_order_relaxed);
+      // An idle keep-alive connection just closes; a request cut short hears why.
+      if (!parser_->got_some()) return close();
+      return refuse_request(408, "the request did not arrive whole within " +
+                                     std::to_string(limits_.timeout.count()) + " ms");
+    }
+    if (ec == http::error::body_limit) {
+      return refuse_request(413, "the request body is over " +
+                                     std::to_string(limits_.max_body_bytes) +
+                                     " bytes (--max-message-bytes)");
+    }
+    if (ec == http::error::header_limit) {
+      return refuse_request(431, "the request line and headers are over " +
+                                     std::to_string(limits_.max_header_bytes) + " bytes");
+    }
+    if (ec) return refuse_request(400, "malformed HTTP request: " + ec.message());
+    // While a worker makes the brick; the write sets its own deadline.
+    beast::get_lowest_layer(stream_).expires_never();
+    handler_.handle(parser_->get(), peer_host_, [self = shared_from_this()](HttpResponse response) {
+      net::post(self->stream_.get_executor(), [self, response = std::move(response)]() mutable {
+        const bool close = !response.keep_alive();
+        self->send(std::move(response), close);
+      });
+    });
+  }
+
+  void refuse_request(unsigned status, const std::string& message) {
+    metrics_.http.count(HttpMetrics::Route::other, status);
+    send(handler_.error(11, status, message), /*close=*/true);
+  }
+
+  void send(HttpResponse response, bool close) {
+    if (close) response.keep_alive(false);
+    response_ = std::move(response);
+    beast::get_lowest_layer(stream_).expires_after(limits_.timeout);
+    http::async_write(stream_, response_,
+                      [self = shared_from_this(), close](beast::error_code ec, std::size_t) {
+                        if (ec == beast::error::timeout) {
+                          self->metrics_.http.timeouts.fetch_add(1, std::memory_order_relaxed);
+                        }
+                        if (ec || close) return self->close();
+                        self->read();
+                      });
+  }
+
+  void close() {
+    beast::error_code ignored;
+    socket().shutdown(tcp::socket::shutdown_send, ignored);
+    beast::get_lowest_layer(stream_).close();
+  }
+
+  std::shared_ptr<net::ssl::context> context_;  // TLS only; outlives stream_
+  Stream stream_;
+  net::steady_timer read_deadline_;
+  bool read_timed_out_ = false;
+  const HttpLimits& limits_;
+  HttpRequestHandler& handler_;
+  ServerMetrics& metrics_;
+  std::string peer_host_;
+  beast::flat_buffer buffer_;
+  std::optional<http::request_parser<http::string_body>> parser_;
+  HttpResponse response_;
+};
+
+}  // namespace
+
+HttpBrickServer::HttpBrickServer(const std::string& host, uint16_t port, HttpLimits limits,
+                                 HttpRequestHandler::Context context, std::optional<TlsFiles> tls)
+    : limits_(limits),
+      metrics_(context.metrics),
+      handler_(context),
+      tls_(tls ? std::make_unique<HttpTls>(*tls) : nullptr),
+      acceptor_(io_) {
+  beast::error_code ec;
+  const auto address = net::ip::make_address(host, ec);
+  if (ec) throw std::runtime_error("HTTP address '" + host + "' is not an IP address");
+  const tcp::endpoint endpoint(address, port);
+  acceptor_.open(endpoint.protocol(), ec);
+  if (!ec) acceptor_.set_option(net::socket_base::reuse_address(true), ec);
+  if (!ec) acceptor_.bind(endpoint, ec);
+  if (!ec) acceptor_.listen(net::socket_base::max_listen_connections, ec);
+  if (ec) {
+    throw std::runtime_error("cannot listen for HTTP on " + host + ":" + std::to_string(port) +
+                             ": " + ec.message());
+  }
+  port_ = acceptor_.local_endpoint().port();
+  accept();
+  for (int i = 0; i < std::max(1, limits_.threads); ++i) {
+    threads_.emplace_back([this] { io_.run(); });
+  }
+}
+
+HttpBrickServer::~HttpBrickServer() {
+  stop();
+}
+
+void HttpBrickServer::accept() {
+  acceptor_.async_accept(net::make_strand(io_), [this](beast::error_code ec, tcp::socket socket) {
+    if (ec == net::error::operation_aborted) return;  // closed: stopping
+    if (!ec) {
+      const bool full = metrics_.http.connections_open.load(std::memory_order_relaxed) >=
+                        static_cast<int64_t>(limits_.max_connections);
+      if (tls_) {
+        // The session keeps the context it was made with: a reload changes later ones only.
+        const std::shared_ptr<net::ssl::context> context = tls_->context();
+        auto session = std::make_shared<HttpSession<TlsStream>>(std::move(socket), limits_,
+                                                                handler_, metrics_, *context);
+        if (full) {
+          session->close_now();
+        } else {
+          session->start_with(context);
+        }
+      } else {
+        auto session = std::make_shared<HttpSession<beast::tcp_stream>>(std::move(socket), limits_,
+                                                                        handler_, metrics_);
+        if (full) {
+          session->refuse();
+        } else {
+          session->start();
+        }
+      }
+    } else {
+      // Out of file descriptors, say: wait a little rather than spin on the error.
+      spdlog::warn("accepting an HTTP connection failed: {}", ec.message());
+      auto timer = std::make_shared<net::steady_timer>(io_, std::chrono::milliseconds(50));
+      timer->async_wait([this, timer](beast::error_code) { accept(); });
+      return;
+    }
+    accept();
+  });
+}
+
+void HttpBrickServer::reload_tls() {
+  if (tls_) tls_->reload();
+}
+
+void HttpBrickServer::stop() {
+  if (threads_.empty()) return;
+  net::post(acceptor_.get_executor(), [this] {
+    beast::error_code ignored;
+    acceptor_.close(ignored);
+  });
+  io_.stop();
+  for (std::thread& thread : threads_) thread.join();
+  threads_.clear();
+}
+
+}  // namespace soltex::server
