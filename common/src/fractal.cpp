@@ -44,14 +44,18 @@ OctavePlan plan_octaves(const FractalParams& params, double filter_width) {
         small ? params.scale * static_cast<double>(uint32_t{1} << k) : std::ldexp(params.scale, k);
     const float weight = small ? 1.0f / static_cast<float>(uint32_t{1} << k) : std::ldexp(1.0f, -k);
     const float alpha = 1.0f - smoothstep(0.25f, 0.5f, static_cast<float>(frequency * width));
-    const Octave octave{frequency, weight * alpha, weight * (1.0f - alpha) * mean};
-    plan.lane_frequency[plan.count] = octave.frequency;
-    plan.lane_noise_weight[plan.count] = octave.noise_weight;
-    plan.lane_mean_term[plan.count] = octave.mean_term;
-    plan.octaves[plan.count++] = octave;
-    plan.total_weight += weight;
+    plan.add({frequency, weight * alpha, weight * (1.0f - alpha) * mean}, weight);
   }
   return plan;
+}
+
+void OctavePlan::add(const Octave& octave, float weight) {
+  SOLTEX_DCHECK(count < SpecLimits::kMaxOctaveCount);
+  lane_frequency[count] = octave.frequency;
+  lane_noise_weight[count] = octave.noise_weight;
+  lane_mean_term[count] = octave.mean_term;
+  octaves[count++] = octave;
+  total_weight += weight;
 }
 
 float basis_noise(NoiseBasis basis, const glm::dvec3& t) noexcept {

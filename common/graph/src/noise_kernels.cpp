@@ -122,8 +122,7 @@ OctavePlan graph_octave_plan(const NoiseSetup& setup, double filter_width) {
   const int octaves = std::min(setup.octaves, static_cast<int>(plan.octaves.size()));
   for (int k = 0; k < octaves; ++k) {
     const float alpha = 1.0f - smoothstep(0.25f, 0.5f, static_cast<float>(frequency * width));
-    plan.octaves[plan.count++] = {frequency, weight * alpha, weight * (1.0f - alpha) * mean};
-    plan.total_weight += weight;
+    plan.add({frequency, weight * alpha, weight * (1.0f - alpha) * mean}, weight);
     frequency *= setup.lacunarity;
     weight *= static_cast<float>(setup.diminish);
   }

@@ -43,6 +43,9 @@ struct OctavePlan {
   alignas(64) std::array<float, kLaneRoom> lane_noise_weight{};
   alignas(64) std::array<float, kLaneRoom> lane_mean_term{};
   int evaluated_octaves() const;  // octaves with a nonzero noise weight
+  // Appends one octave to both layouts; `weight` is its (1/2)^k before fading. Every plan is
+  // built through it, so the per-lane copies never disagree with `octaves`.
+  void add(const Octave& octave, float weight);
 };
 
 // filter_width = 0 means point sampling: every octave is fully present.
