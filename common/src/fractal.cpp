@@ -9,19 +9,16 @@
 #include "soltex/common/value_noise.h"
 
 namespace soltex {
-namespace {
 
-float smoothstep(float lo, float hi, float x) {
-  const float t = std::clamp((x - lo) / (hi - lo), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
+float octave_visibility(float cells_per_sample) noexcept {
+  const float t = std::clamp((cells_per_sample - 0.25f) / (0.5f - 0.25f), 0.0f, 1.0f);
+  return 1.0f - t * t * (3.0f - 2.0f * t);
 }
 
-float basis_mean(const OctavePlan& plan) {
-  if (plan.basis == NoiseBasis::value) return noise_tables().value_mean;
-  return plan.absolute ? kGradientAbsMean : 0.0f;
+float basis_mean(NoiseBasis basis, bool absolute) noexcept {
+  if (basis == NoiseBasis::value) return noise_tables().value_mean;
+  return absolute ? kGradientAbsMean : 0.0f;
 }
-
-}  // namespace
 
 int OctavePlan::evaluated_octaves() const {
   int n = 0;
@@ -33,7 +30,7 @@ OctavePlan plan_octaves(const FractalParams& params, double filter_width) {
   OctavePlan plan;
   plan.basis = params.basis;
   plan.absolute = params.basis == NoiseBasis::gradient && !params.signed_octaves;
-  const float mean = basis_mean(plan);
+  const float mean = basis_mean(plan.basis, plan.absolute);
   const double width = std::isfinite(filter_width) ? std::max(filter_width, 0.0) : 0.0;
   for (int k = params.octave_min;
        k <= params.octave_max && plan.count < SpecLimits::kMaxOctaveCount; ++k) {
@@ -43,7 +40,7 @@ OctavePlan plan_octaves(const FractalParams& params, double filter_width) {
     const double frequency =
         small ? params.scale * static_cast<double>(uint32_t{1} << k) : std::ldexp(params.scale, k);
     const float weight = small ? 1.0f / static_cast<float>(uint32_t{1} << k) : std::ldexp(1.0f, -k);
-    const float alpha = 1.0f - smoothstep(0.25f, 0.5f, static_cast<float>(frequency * width));
+    const float alpha = octave_visibility(static_cast<float>(frequency * width));
     plan.add({frequency, weight * alpha, weight * (1.0f - alpha) * mean}, weight);
   }
   return plan;

@@ -16,16 +16,6 @@ namespace {
 constexpr glm::dvec3 kComponentOffset[3] = {
     {0.0, 0.0, 0.0}, {31.416, 47.853, 12.793}, {-73.117, 19.271, 57.331}};
 
-float smoothstep(float lo, float hi, float x) {
-  const float t = std::clamp((x - lo) / (hi - lo), 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
-
-float basis_mean(const NoiseSetup& setup) {
-  if (setup.basis == NoiseBasis::value) return noise_tables().value_mean;
-  return setup.absolute ? kGradientAbsMean : 0.0f;
-}
-
 // Plans for the widths of a batch: one for a uniform batch, else remade when the width changes.
 class PlanCache {
  public:
@@ -108,20 +98,20 @@ void run_cells(const Program& program, const Instruction& instr, Batch& batch, f
 
 float lattice_visibility(double filter_width) {
   const double w = std::isfinite(filter_width) ? std::max(filter_width, 0.0) : 0.0;
-  return 1.0f - smoothstep(0.25f, 0.5f, static_cast<float>(w));
+  return octave_visibility(static_cast<float>(w));
 }
 
 OctavePlan graph_octave_plan(const NoiseSetup& setup, double filter_width) {
   OctavePlan plan;
   plan.basis = setup.basis;
   plan.absolute = setup.absolute;
-  const float mean = basis_mean(setup);
+  const float mean = basis_mean(setup.basis, setup.absolute);
   const double width = std::isfinite(filter_width) ? std::max(filter_width, 0.0) : 0.0;
   double frequency = 1.0;
   float weight = 1.0f;
   const int octaves = std::min(setup.octaves, static_cast<int>(plan.octaves.size()));
   for (int k = 0; k < octaves; ++k) {
-    const float alpha = 1.0f - smoothstep(0.25f, 0.5f, static_cast<float>(frequency * width));
+    const float alpha = octave_visibility(static_cast<float>(frequency * width));
     plan.add({frequency, weight * alpha, weight * (1.0f - alpha) * mean}, weight);
     frequency *= setup.lacunarity;
     weight *= static_cast<float>(setup.diminish);

@@ -48,6 +48,14 @@ struct OctavePlan {
   void add(const Octave& octave, float weight);
 };
 
+// An octave's visibility alpha_k for f_k * w given as `cells_per_sample`:
+// 1 - smoothstep(0.25, 0.5, cells_per_sample). Every fractal, built-in or graph, fades by it.
+float octave_visibility(float cells_per_sample) noexcept;
+
+// The mean a faded octave is replaced by: value noise's table mean, |gradient| noise's
+// measured mean, or 0 for signed gradient noise.
+float basis_mean(NoiseBasis basis, bool absolute) noexcept;
+
 // filter_width = 0 means point sampling: every octave is fully present.
 OctavePlan plan_octaves(const FractalParams& params, double filter_width);
 
