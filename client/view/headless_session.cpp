@@ -27,7 +27,10 @@ HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedSce
   int stalled = 0;  // frames in a row that missed bricks while nothing was on its way
   for (;;) {
     const uint64_t received_before_frame = source.stats().received;
+    const auto frame_start = Clock::now();
     Frame frame = renderer.render(scene, camera, width, height);
+    result.drawing_ms +=
+        std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count();
     ++result.frames;
     if (result.frames == 1) result.first_frame_ms = elapsed_ms();
     result.last_frame_ms = frame.stats.raster_ms + frame.stats.shade_ms;
@@ -74,7 +77,10 @@ HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedSce
     // shares the machine, from evaluation. The interactive viewer draws every frame.
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         start + options.max_time - Clock::now());
+    const auto wait_start = Clock::now();
     source.wait_idle(std::max(left, std::chrono::milliseconds(1)));
+    result.waiting_ms +=
+        std::chrono::duration<double, std::milli>(Clock::now() - wait_start).count();
   }
 }
 

@@ -39,6 +39,10 @@ struct HeadlessResult {
   // refetch): nothing was on its way any more, so it stopped before max_time.
   bool bricks_failed = false;
   double last_frame_ms = 0.0;  // raster + shade of the final frame
+  // Where the time to converged went, wall: drawing frames, and waiting for bricks with
+  // nothing new to draw (the server's evaluation and the link, less what the frames hid).
+  double drawing_ms = 0.0;
+  double waiting_ms = 0.0;
   FrameStats last_stats;
 };
 
