@@ -20,6 +20,11 @@ struct HeadlessOptions {
   // (level_cap.h). 0, or no cache: draw at the prepared levels from the start.
   int start_level_log2 = 0;
   const BrickCache* cache = nullptr;
+  // Draw the first frame for its misses alone, in false-colour levels: it asks for the same
+  // bricks as a shaded frame (the same levels and lookups) without lighting and without
+  // evaluating any texture per pixel. Its picture is never the output: should it miss
+  // nothing, the next frame, drawn at once, is shaded.
+  bool first_frame_for_misses = true;
   // Called with each frame's misses before they go to the source (e.g. to record them).
   std::function<void(double seconds, const std::vector<net::BrickWant>& misses)> on_misses;
 };
