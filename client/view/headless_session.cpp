@@ -2,13 +2,22 @@
 
 #include <algorithm>
 #include <climits>
+#include <ctime>
 
 #include "level_cap.h"
 
 namespace soltex::view {
-HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedScene& scene,
-                                      const Camera& camera, int width, int height,
-                                      net::BrickSource& source, const HeadlessOptions& options) {
+namespace {
+
+double process_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) / 1e6;
+}
+
+HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, const Camera& camera,
+                        int width, int height, net::BrickSource& source,
+                        const HeadlessOptions& options) {
   using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const auto elapsed_ms = [&] {
@@ -99,6 +108,17 @@ HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedSce
     result.waiting_ms +=
         std::chrono::duration<double, std::milli>(Clock::now() - wait_start).count();
   }
+}
+
+}  // namespace
+
+HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedScene& scene,
+                                      const Camera& camera, int width, int height,
+                                      net::BrickSource& source, const HeadlessOptions& options) {
+  const double cpu_start = process_cpu_ms();
+  HeadlessResult result = converge(renderer, scene, camera, width, height, source, options);
+  result.cpu_ms = process_cpu_ms() - cpu_start;
+  return result;
 }
 
 }  // namespace soltex::view

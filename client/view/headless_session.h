@@ -48,6 +48,7 @@ struct HeadlessResult {
   // nothing new to draw (the server's evaluation and the link, less what the frames hid).
   double drawing_ms = 0.0;
   double waiting_ms = 0.0;
+  double cpu_ms = 0.0;  // this process's CPU time (all threads) until converged or given up
   FrameStats last_stats;
 };
 

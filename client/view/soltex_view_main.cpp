@@ -376,8 +376,9 @@ int main(int argc, char** argv) {
       std::printf("NOT converged within %.1f s (%zu bricks still missing)\n", max_seconds,
                   fetched.waiting + fetched.in_flight);
     }
-    std::printf("time:       %.1f ms drawing %d frames, %.1f ms waiting for bricks\n",
-                result.drawing_ms, result.frames, result.waiting_ms);
+    std::printf(
+        "time:       %.1f ms drawing %d frames, %.1f ms waiting for bricks; %.1f ms of CPU here\n",
+        result.drawing_ms, result.frames, result.waiting_ms, result.cpu_ms);
     std::printf(
         "last frame: %.2f ms (raster %.2f, shade %.2f), %zu pixels covered, %zu from a "
         "coarser level\n",
