@@ -223,9 +223,6 @@ TEST(ViewRender, StartingCoarseRefinesToTheSamePicture) {
   EXPECT_LT(tight.refined_level_log2, 8);
 }
 
-// Every brick arrives corrupt, so every brick fails after its refetches. The headless loop
-// notices that nothing is on its way any more and stops, not converged, without waiting for
-// its time limit, with the picture drawn from what it has.
 // The first frame, drawn in false colour only for its misses, asks for what a shaded one
 // does: the run converges in as many frames to the same picture. With every brick resident
 // already it misses nothing, and the shaded frame after it is the output.
@@ -256,6 +253,9 @@ TEST(ViewRender, AFirstFrameDrawnForItsMissesConvergesToTheSamePicture) {
   EXPECT_TRUE(warm.image == shaded.image);
 }
 
+// Every brick arrives corrupt, so every brick fails after its refetches. The headless loop
+// notices that nothing is on its way any more and stops, not converged, without waiting for
+// its time limit, with the picture drawn from what it has.
 TEST(ViewRender, HeadlessStopsEarlyWhenBricksFailForGood) {
   const Scene scene = default_scene();
   SoltexdProcess server({"--fault-corrupt-every", "1"});

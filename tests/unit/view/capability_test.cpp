@@ -179,7 +179,6 @@ TEST(Choose, ASlowLinkStartsCoarserAndEndsAtTheSameFinestLevel) {
   EXPECT_LE(slow_choice.start_level_log2, slow_choice.finest_level_log2);
 }
 
-// Too little memory for the finest level: the cache budget, not the link, lowers the end.
 // A headless run's start may take as long as its time limit allows (soltex-view gives it half
 // of --max-time-s): a link the window starts coarser on starts a headless run at the finest.
 TEST(Choose, ALongerFetchBudgetStartsFiner) {
@@ -195,6 +194,7 @@ TEST(Choose, ALongerFetchBudgetStartsFiner) {
   EXPECT_EQ(run.finest_level_log2, window.finest_level_log2);
 }
 
+// Too little memory for the finest level: the cache budget, not the link, lowers the end.
 TEST(Choose, TheCacheBudgetBoundsTheFinestLevel) {
   const Scene scene = default_scene();
   Capability roomy = strong_machine();
