@@ -94,7 +94,10 @@ TEST(MeasureLink, FiftyMillisecondsAwayIsNotASlowLink) {
   Capability c = strong_machine();
   measure_link(link, TextureSpec{}, c);
   EXPECT_NEAR(c.brick_latency_ms, 50.0, 15.0);
-  EXPECT_GT(c.bandwidth_mb_per_s, 20.0) << "a 200 MB/s link measured as a slow one";
+  // 0 is unlimited: the large burst came no slower than the small one, as it may when the
+  // 0.8 ms its extra bytes take is lost in a late wake-up.
+  EXPECT_TRUE(c.bandwidth_mb_per_s == 0.0 || c.bandwidth_mb_per_s > 20.0)
+      << c.bandwidth_mb_per_s << " MB/s: a 200 MB/s link measured as a slow one";
   const Choice choice = choose(c, default_scene(), 1280, 720);
   EXPECT_EQ(choice.start_level_log2, choice.finest_level_log2) << choice.reason;
 }
