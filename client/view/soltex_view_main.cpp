@@ -77,7 +77,7 @@ Codec choose_codec(std::optional<Codec> forced, const capability::Capability& me
   Codec codec = measured.codec;
   std::string link = measured.raw_link_mb_per_s > 0.0
                          ? fmt::format("{:.0f} MB/s", measured.raw_link_mb_per_s)
-                         : std::string("faster than the probe tells");
+                         : std::string("more MB/s than the probe can tell");
   if (override.bandwidth_mb_per_s) {
     codec = capability::codec_for_link(*override.bandwidth_mb_per_s, zstd_ratio,
                                        measured.zstd_decode_ns_per_byte);
@@ -273,7 +273,6 @@ int main(int argc, char** argv) {
       capability::measure_link(*source, scene.objects.front().material.texture, measured,
                                !forced_codec.has_value());
     }
-    if (!local) fetcher_options.codec = choose_codec(forced_codec, measured, override);
     const capability::Capability effective = capability::apply(measured, override);
     // Headless output, and a window given a size, keep the size asked for exactly; a window
     // showing the scene's size shrinks it to what this machine draws in time.
@@ -300,6 +299,8 @@ int main(int argc, char** argv) {
       spdlog::info("choice: {}", choice.reason.substr(begin, end - begin));
       begin = end == std::string::npos ? choice.reason.size() : end + 1;
     }
+
+    if (!local) fetcher_options.codec = choose_codec(forced_codec, measured, override);
 
     // The real cache, with the chosen budget; the probe's cache goes with its source.
     source.reset();
