@@ -15,6 +15,22 @@ double process_cpu_ms() {
   return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) / 1e6;
 }
 
+// One frame, counted and timed into `result`; in false-colour levels when it is drawn only
+// for its misses.
+Frame draw(FrameRenderer& renderer, const PreparedScene& scene, const Camera& camera, int width,
+           int height, bool for_misses, HeadlessResult& result) {
+  const auto start = std::chrono::steady_clock::now();
+  if (for_misses) renderer.set_false_colour_levels(true);
+  Frame frame = renderer.render(scene, camera, width, height);
+  if (for_misses) renderer.set_false_colour_levels(false);
+  result.drawing_ms +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  ++result.frames;
+  result.last_frame_ms = frame.stats.raster_ms + frame.stats.shade_ms;
+  result.last_stats = frame.stats;
+  return frame;
+}
+
 HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, const Camera& camera,
                         int width, int height, net::BrickSource& source,
                         const HeadlessOptions& options) {
@@ -39,16 +55,8 @@ HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, con
   bool for_misses = options.first_frame_for_misses && !renderer.options().false_colour_levels;
   for (;;) {
     const uint64_t received_before_frame = source.stats().received;
-    const auto frame_start = Clock::now();
-    if (for_misses) renderer.set_false_colour_levels(true);
-    Frame frame = renderer.render(scene, camera, width, height);
-    if (for_misses) renderer.set_false_colour_levels(false);
-    result.drawing_ms +=
-        std::chrono::duration<double, std::milli>(Clock::now() - frame_start).count();
-    ++result.frames;
+    Frame frame = draw(renderer, scene, camera, width, height, for_misses, result);
     if (result.frames == 1) result.first_frame_ms = elapsed_ms();
-    result.last_frame_ms = frame.stats.raster_ms + frame.stats.shade_ms;
-    result.last_stats = frame.stats;
     const FrameNeeds needs =
         needs_of(frame, cap, options.cache, source.stats().received != received_before_frame);
     if (options.on_misses && !needs.wants.empty())
@@ -84,8 +92,9 @@ HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, con
     if (elapsed_ms() > static_cast<double>(options.max_time.count())) {
       // Out of time after a frame drawn only for its misses: the output is the scene as the
       // cache holds it, shaded.
-      if (result.image.rgb.empty())
-        result.image = renderer.render(scene, camera, width, height).image;
+      if (result.image.rgb.empty()) {
+        result.image = draw(renderer, scene, camera, width, height, false, result).image;
+      }
       return result;
     }
     // Bricks missing, none on its way and none arrived since the last frame: they failed (a
