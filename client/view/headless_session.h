@@ -20,6 +20,11 @@ struct HeadlessOptions {
   // (level_cap.h). 0, or no cache: draw at the prepared levels from the start.
   int start_level_log2 = 0;
   const BrickCache* cache = nullptr;
+  // Draw the first frame for its misses alone, in false-colour levels: it asks for the same
+  // bricks as a shaded frame (the same levels and lookups) without lighting and without
+  // evaluating any texture per pixel. Its picture is never the output: should it miss
+  // nothing, the next frame, drawn at once, is shaded.
+  bool first_frame_for_misses = true;
   // Called with each frame's misses before they go to the source (e.g. to record them).
   std::function<void(double seconds, const std::vector<net::BrickWant>& misses)> on_misses;
 };
@@ -39,6 +44,11 @@ struct HeadlessResult {
   // refetch): nothing was on its way any more, so it stopped before max_time.
   bool bricks_failed = false;
   double last_frame_ms = 0.0;  // raster + shade of the final frame
+  // Where the time to converged went, wall: drawing frames, and waiting for bricks with
+  // nothing new to draw (the server's evaluation and the link, less what the frames hid).
+  double drawing_ms = 0.0;
+  double waiting_ms = 0.0;
+  double cpu_ms = 0.0;  // this process's CPU time (all threads) until converged or given up
   FrameStats last_stats;
 };
 

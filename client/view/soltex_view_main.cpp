@@ -52,10 +52,42 @@ TextureAccess access_from(const std::string& name) {
   return TextureAccess::automatic;
 }
 
+std::optional<Codec> codec_from(const std::string& name) {
+  if (name == "zstd") return Codec::zstd;
+  if (name == "lz4") return Codec::lz4;
+  if (name == "raw") return Codec::raw;
+  return std::nullopt;  // auto: the link probe's choice
+}
+
 MipMode mip_from(const std::string& name) {
   if (name == "point") return MipMode::point;
   if (name == "supersampled") return MipMode::supersampled;
   return MipMode::band_limited;
+}
+
+// The codec bricks travel in: --codec's, else the one the link warrants (the probe's, or a
+// simulated --capability bandwidth's), logged with why.
+Codec choose_codec(std::optional<Codec> forced, const capability::Capability& measured,
+                   const capability::CapabilityOverride& override) {
+  if (forced) {
+    spdlog::info("codec: {} (--codec)", codec_name(*forced));
+    return *forced;
+  }
+  const double zstd_ratio = capability::kRawBrickBytes / measured.bytes_per_brick;
+  Codec codec = measured.codec;
+  std::string link = measured.raw_link_mb_per_s > 0.0
+                         ? fmt::format("{:.0f} MB/s", measured.raw_link_mb_per_s)
+                         : std::string("more MB/s than the probe can tell");
+  if (override.bandwidth_mb_per_s) {
+    codec = capability::codec_for_link(*override.bandwidth_mb_per_s, zstd_ratio,
+                                       measured.zstd_decode_ns_per_byte);
+    link = fmt::format("{} MB/s (simulated)", *override.bandwidth_mb_per_s);
+  }
+  spdlog::info(
+      "codec: {}: the link carries raw bricks at {}, zstd shrinks them {:.1f} times and "
+      "decodes at {:.2f} ns per byte (--codec overrides)",
+      codec_name(codec), link, zstd_ratio, measured.zstd_decode_ns_per_byte);
+  return codec;
 }
 
 #ifdef SOLTEX_HAVE_SDL2
@@ -115,6 +147,7 @@ int main(int argc, char** argv) {
   std::string filter_name = "trilinear";
   std::string mip_name = "band-limited";
   std::string access_name = "auto";
+  std::string codec_name = "auto";
   int antialias = 1;
   double level_bias = 0.0;
   bool false_colour = false;
@@ -192,6 +225,12 @@ int main(int argc, char** argv) {
       ->excludes(headless_flag);
   app.add_option("--screenshot", screenshot, "window: write the last frame shown to this PNG")
       ->excludes(headless_flag);
+  app.add_option("--codec", codec_name,
+                 "how bricks travel: auto takes whichever of zstd and raw brought the link "
+                 "probe's bricks faster (raw where encoding costs more than the bytes, as over "
+                 "loopback); zstd, lz4 or raw force one")
+      ->check(CLI::IsMember({"auto", "zstd", "lz4", "raw"}))
+      ->capture_default_str();
   app.add_option("--record", record_path,
                  "write every brick request to FILE (soltex-load --mix replay plays it back)");
   net::ChannelSecurityOptions security_options;
@@ -229,14 +268,19 @@ int main(int argc, char** argv) {
       measured.round_trip_ms = static_cast<double>(fetcher->measure_round_trip().count()) / 1e3;
       source = std::move(fetcher);
     }
+    const std::optional<Codec> forced_codec = codec_from(codec_name);
     if (!scene.objects.empty()) {
-      capability::measure_link(*source, scene.objects.front().material.texture, measured);
+      capability::measure_link(*source, scene.objects.front().material.texture, measured,
+                               !forced_codec.has_value());
     }
     const capability::Capability effective = capability::apply(measured, override);
     // Headless output, and a window given a size, keep the size asked for exactly; a window
     // showing the scene's size shrinks it to what this machine draws in time.
     capability::ChoiceLimits limits;
     limits.scale_frame = !headless && width == 0 && height == 0;
+    // A headless run shows nothing before it converges: a coarse start only guards its time
+    // limit, so the start level's bricks may take half of it (a window starts within 1.5 s).
+    if (headless) limits.fetch_seconds = std::max(limits.fetch_seconds, max_seconds / 2.0);
     capability::Choice choice =
         capability::choose(effective, scene, width > 0 ? width : scene.image.width,
                            height > 0 ? height : scene.image.height, limits);
@@ -255,6 +299,8 @@ int main(int argc, char** argv) {
       spdlog::info("choice: {}", choice.reason.substr(begin, end - begin));
       begin = end == std::string::npos ? choice.reason.size() : end + 1;
     }
+
+    if (!local) fetcher_options.codec = choose_codec(forced_codec, measured, override);
 
     // The real cache, with the chosen budget; the probe's cache goes with its source.
     source.reset();
@@ -331,6 +377,9 @@ int main(int argc, char** argv) {
       std::printf("NOT converged within %.1f s (%zu bricks still missing)\n", max_seconds,
                   fetched.waiting + fetched.in_flight);
     }
+    std::printf(
+        "time:       %.1f ms drawing %d frames, %.1f ms waiting for bricks; %.1f ms of CPU here\n",
+        result.drawing_ms, result.frames, result.waiting_ms, result.cpu_ms);
     std::printf(
         "last frame: %.2f ms (raster %.2f, shade %.2f), %zu pixels covered, %zu from a "
         "coarser level\n",

@@ -98,6 +98,43 @@ TEST(BrickFetcher, FetchedBricksEqualLocalEvaluation) {
   expect_cached_brick_is_local(cache, id, 1, {2, 1, 3});
 }
 
+// The codec changes on the live stream: later wants come in the new one, and decode to the
+// same samples.
+TEST(BrickFetcher, AsksForTheCodecSetAndSwitchesMidStream) {
+  FetcherAgainstServer setup;
+  auto& [server, cache, fetcher, id] = setup;
+  const auto raw = static_cast<std::size_t>(Codec::raw);
+  const auto zstd = static_cast<std::size_t>(Codec::zstd);
+  fetcher.want(level(id, 2, 2));
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
+  const net::SourceStats packed = fetcher.stats();
+  EXPECT_EQ(packed.decoded_bytes[raw], 0u);
+  EXPECT_EQ(packed.decoded_bytes[zstd], 8u * 9 * 9 * 9 * 3);
+
+  fetcher.set_codec(Codec::raw);
+  fetcher.want(level(id, 1, 4));
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
+  const net::SourceStats both = fetcher.stats();
+  EXPECT_EQ(both.received, 72u);
+  EXPECT_EQ(both.decoded_bytes[zstd], packed.decoded_bytes[zstd]);
+  EXPECT_EQ(both.decoded_bytes[raw], 64u * 9 * 9 * 9 * 3);
+  // Raw bricks carry every sample and a 28-byte header.
+  EXPECT_EQ(both.bytes - packed.bytes, 64u * (9 * 9 * 9 * 3 + 28));
+  expect_cached_brick_is_local(cache, id, 1, {2, 1, 3});
+  expect_cached_brick_is_local(cache, id, 2, {1, 0, 1});
+
+  net::FetcherOptions options;
+  options.codec = Codec::lz4;
+  BrickCache lz4_cache{64 << 20};
+  net::BrickFetcher lz4_fetcher(server.grpc_address(), lz4_cache, options);
+  const uint64_t lz4_id = lz4_fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  lz4_fetcher.want(level(lz4_id, 2, 2));
+  ASSERT_TRUE(lz4_fetcher.wait_idle(std::chrono::seconds(30)));
+  EXPECT_EQ(lz4_fetcher.stats().decoded_bytes[static_cast<std::size_t>(Codec::lz4)],
+            8u * 9 * 9 * 9 * 3);
+  expect_cached_brick_is_local(lz4_cache, lz4_id, 2, {1, 0, 1});
+}
+
 TEST(BrickFetcher, DuplicatesResidentAndStaleWantsAreNotFetchedTwice) {
   FetcherAgainstServer setup;
   auto& [server, cache, fetcher, id] = setup;

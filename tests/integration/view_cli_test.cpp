@@ -114,6 +114,20 @@ TEST_F(ViewCli, ADelayedServerConvergesToTheUndelayedPicture) {
   EXPECT_TRUE(file_bytes(thin.image) == file_bytes(undelayed.image)) << thin.output;
 }
 
+// Every codec brings the same samples: the picture is the same byte for byte whichever the
+// link probe picks (auto) or --codec forces, and the log says which travelled.
+TEST_F(ViewCli, EveryCodecConvergesToTheSamePicture) {
+  SoltexdProcess server;
+  const ViewRun zstd = view("codec-zstd", against(server, {"--codec", "zstd"}));
+  ASSERT_EQ(zstd.exit_code, 0) << zstd.output;
+  EXPECT_NE(zstd.output.find("codec: zstd (--codec)"), std::string::npos) << zstd.output;
+  for (const char* codec : {"auto", "lz4", "raw"}) {
+    const ViewRun run = view(std::string("codec-") + codec, against(server, {"--codec", codec}));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    EXPECT_TRUE(file_bytes(run.image) == file_bytes(zstd.image)) << run.output;
+  }
+}
+
 // The output is the size asked for, however slow this machine measures.
 TEST_F(ViewCli, HeadlessKeepsTheRequestedImageSize) {
   const ViewRun scene_size = view(

@@ -223,6 +223,36 @@ TEST(ViewRender, StartingCoarseRefinesToTheSamePicture) {
   EXPECT_LT(tight.refined_level_log2, 8);
 }
 
+// The first frame, drawn in false colour only for its misses, asks for what a shaded one
+// does: the run converges in as many frames to the same picture. With every brick resident
+// already it misses nothing, and the shaded frame after it is the output.
+TEST(ViewRender, AFirstFrameDrawnForItsMissesConvergesToTheSamePicture) {
+  const Scene scene = default_scene();
+  const auto run = [&](BrickCache& cache, bool for_misses) {
+    net::LocalBrickSource source(cache);
+    const PreparedScene prepared = prepare_scene(scene, TextureResolution{7, 16, {}}, source);
+    FrameRenderer renderer(cache, RenderOptions{});
+    view::HeadlessOptions headless;
+    headless.max_time = std::chrono::seconds(60);
+    headless.first_frame_for_misses = for_misses;
+    return view::render_until_converged(renderer, prepared, scene.camera, kWidth, kHeight, source,
+                                        headless);
+  };
+  BrickCache shaded_cache(256u << 20);
+  const view::HeadlessResult shaded = run(shaded_cache, false);
+  BrickCache cache(256u << 20);
+  const view::HeadlessResult for_misses = run(cache, true);
+  ASSERT_GE(shaded.converged_ms, 0.0);
+  ASSERT_GE(for_misses.converged_ms, 0.0);
+  EXPECT_EQ(for_misses.frames, shaded.frames);
+  EXPECT_TRUE(for_misses.image == shaded.image);
+
+  const view::HeadlessResult warm = run(cache, true);
+  ASSERT_GE(warm.converged_ms, 0.0);
+  EXPECT_EQ(warm.frames, 2);
+  EXPECT_TRUE(warm.image == shaded.image);
+}
+
 // Every brick arrives corrupt, so every brick fails after its refetches. The headless loop
 // notices that nothing is on its way any more and stops, not converged, without waiting for
 // its time limit, with the picture drawn from what it has.

@@ -162,16 +162,77 @@ std::vector<net::BrickWant> probe_level(uint64_t id, int level) {
 
 }  // namespace
 
-void measure_link(net::BrickSource& source, const TextureSpec& texture, Capability& capability) {
+Codec codec_for_link(double bandwidth_mb_per_s, double zstd_ratio, double zstd_decode_ns_per_byte) {
+  if (bandwidth_mb_per_s <= 0.0 || zstd_ratio <= 1.0) return Codec::zstd;
+  // Per decoded byte: zstd saves (1 - 1 / ratio) bytes on the link and costs this much CPU.
+  const double saved_link_ns = (1.0 - 1.0 / zstd_ratio) / bandwidth_mb_per_s * 1e3;
+  const double extra_cpu_ns = kZstdExtraCpuPerDecode * zstd_decode_ns_per_byte;
+  return saved_link_ns < extra_cpu_ns ? Codec::raw : Codec::zstd;
+}
+
+namespace {
+
+// The link's bandwidth alone: the same number of colour-cube bricks (which the server makes in
+// microseconds) once in zstd, which shrinks them to a few hundred bytes, and once raw; the
+// extra time of the raw burst is its extra bytes on the link, as the server's work per brick
+// is nearly the same. Bursts of 8 first, and of 64 only where those leave the choice open,
+// so that a thin link pays for about 120 kB of probe, not a megabyte. 0: the raw bursts were
+// no slower (the link is faster than the probe can tell).
+double raw_link_mb_per_s(net::BrickSource& source, const Volume& volume, double zstd_ratio,
+                         double decode_ns) {
+  const TextureSpec cube = validated(TextureSpec{ColourCubeParams{0.5}, {}, {}, {}, {}});
+  const MipSettings point{MipMode::point, 1};
+  const auto shifted = [&](double by) {
+    Volume v = volume;
+    v.min += by;
+    v.max += by;
+    return v;
+  };
+  const uint64_t packed = source.register_texture(cube, shifted(4.0), 16, point);
+  const uint64_t raw = source.register_texture(cube, shifted(8.0), 16, point);
+  const auto extra_bandwidth = [&](int level) {
+    source.set_codec(Codec::zstd);
+    const LinkTiming small = burst(source, probe_level(packed, level));
+    source.set_codec(Codec::raw);
+    const LinkTiming large = burst(source, probe_level(raw, level));
+    const double extra_seconds = large.seconds - small.seconds;
+    return extra_seconds > 0.0 ? (large.bytes - small.bytes) / extra_seconds / 1e6 : 0.0;
+  };
+  double mb_per_s = extra_bandwidth(2);
+  if (mb_per_s <= 0.0 || codec_for_link(2.0 * mb_per_s, zstd_ratio, decode_ns) == Codec::raw) {
+    mb_per_s = extra_bandwidth(1);
+  }
+  source.set_codec(Codec::zstd);
+  return mb_per_s;
+}
+
+}  // namespace
+
+void measure_link(net::BrickSource& source, const TextureSpec& texture, Capability& capability,
+                  bool choose_codec) {
   Volume probe;
   probe.min = glm::dvec3(-1.0);
   probe.max = glm::dvec3(1.0);
   probe.finest_level_log2 = 7;  // 16^3-cell bricks: levels 3, 2, 1 hold 1, 8 and 64 of them
+  source.set_codec(Codec::zstd);
   const uint64_t id = source.register_texture(texture, probe, 16, {});
   burst(source, probe_level(id, 3));  // opens the stream: its set-up is no part of the link
   const LinkTiming small = burst(source, probe_level(id, 2));
   const LinkTiming large = burst(source, probe_level(id, 1));
   fit_link(small, large, capability);
+  if (!choose_codec || large.bytes <= 0.0) return;
+  const net::SourceStats stats = source.stats();
+  const auto zstd = static_cast<std::size_t>(Codec::zstd);
+  if (stats.decoded_bytes[zstd] == 0) return;
+  capability.zstd_decode_ns_per_byte =
+      stats.decode_seconds[zstd] * 1e9 / static_cast<double>(stats.decoded_bytes[zstd]);
+  const double ratio = kRawBrickBytes / capability.bytes_per_brick;
+  capability.raw_link_mb_per_s =
+      raw_link_mb_per_s(source, probe, ratio, capability.zstd_decode_ns_per_byte);
+  capability.codec =
+      capability.raw_link_mb_per_s > 0.0
+          ? codec_for_link(capability.raw_link_mb_per_s, ratio, capability.zstd_decode_ns_per_byte)
+          : Codec::raw;
 }
 
 namespace {

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <iterator>
 #include <stdexcept>
 
 #include "soltex/common/brick_codec.h"
@@ -29,7 +30,8 @@ BrickFetcher::BrickFetcher(std::string server_address, BrickCache& cache, Fetche
     : address_(std::move(server_address)),
       cache_(cache),
       options_(options),
-      channel_(std::make_unique<Channel>()) {
+      channel_(std::make_unique<Channel>()),
+      codec_(options.codec) {
   grpc::ChannelArguments args;
   args.SetMaxReceiveMessageSize(64 << 20);
   // Reconnect promptly after a server restart; our own backoff paces the streams.
@@ -165,17 +167,30 @@ void BrickFetcher::supervise() {
 void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& payloads) {
   for (const auto& [key, payload] : payloads) {
     bool ok = false;
+    std::size_t codec = std::size(stats_.decode_seconds);  // none: not decoded
+    double decode_seconds = 0.0;
+    std::size_t decoded_bytes = 0;
     try {
+      const auto start = std::chrono::steady_clock::now();
       const DecodedBrick decoded =
           decode_brick(std::span(reinterpret_cast<const uint8_t*>(payload.data()), payload.size()));
+      decode_seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       cache_.insert(key, decoded.brick_size, decoded.channels, decoded.samples);
       ok = true;
+      // A brick that decoded has a whole header; its byte 7 is the codec (docs/PROTOCOL.md).
+      codec = static_cast<uint8_t>(payload[7]);
+      decoded_bytes = decoded.samples.size();
     } catch (const CodecError& e) {
       spdlog::warn("corrupt brick from {}: {}", address_, e.what());
     }
     std::lock_guard lock(mutex_);
     in_flight_.erase(key);
     stats_.bytes += payload.size();
+    if (codec < std::size(stats_.decode_seconds)) {
+      stats_.decode_seconds[codec] += decode_seconds;
+      stats_.decoded_bytes[codec] += decoded_bytes;
+    }
     if (ok) {
       ++stats_.received;
       refetches_.erase(key);
@@ -224,8 +239,9 @@ void BrickFetcher::write_loop() {
   for (;;) {
     changed_.wait(lock, [this] {
       return stopping_ ||
-             (stream_ && (resend_ || !to_cancel_.empty() || !unsent_registrations_.empty() ||
-                          (!waiting_.empty() && in_flight_.size() < options_.max_in_flight)));
+             (stream_ &&
+              (resend_ || codec_changed_ || !to_cancel_.empty() || !unsent_registrations_.empty() ||
+               (!waiting_.empty() && in_flight_.size() < options_.max_in_flight)));
     });
     if (stopping_) return;
     std::shared_ptr<Stream> stream = stream_;
@@ -238,12 +254,14 @@ void BrickFetcher::write_loop() {
       // texture, then everything still in flight.
       for (const auto& [id, serialized] : registrations_) add_texture(serialized);
       for (const BrickKey& key : in_flight_) *request.add_want()->mutable_key() = to_proto(key);
-      request.add_accept_codecs(v1::CODEC_ZSTD);
       resend_ = false;
+      codec_changed_ = true;
     } else {
       for (const uint64_t id : unsent_registrations_) add_texture(registrations_.at(id));
     }
     unsent_registrations_.clear();
+    if (codec_changed_) request.add_accept_codecs(to_proto(codec_));
+    codec_changed_ = false;
     for (const BrickKey& key : to_cancel_) *request.add_cancel() = to_proto(key);
     to_cancel_.clear();
     std::size_t taken = 0;
@@ -270,6 +288,16 @@ void BrickFetcher::write_loop() {
       changed_.wait_for(lock, std::chrono::milliseconds(50));
     }
   }
+}
+
+void BrickFetcher::set_codec(Codec codec) {
+  {
+    std::lock_guard lock(mutex_);
+    if (codec == codec_) return;
+    codec_ = codec;
+    codec_changed_ = true;
+  }
+  changed_.notify_all();
 }
 
 bool BrickFetcher::idle() const {

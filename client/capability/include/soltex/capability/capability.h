@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "soltex/common/brick_codec.h"
 #include "soltex/net/brick_source.h"
 #include "soltex/scene/scene.h"
 
@@ -22,6 +23,13 @@ struct Capability {
   // in-process source, or a link faster than the probe could tell).
   double bandwidth_mb_per_s = 0.0;
   double bytes_per_brick = 6000.0;  // measured mean encoded brick size
+  // The codec the link warrants (codec_for_link), and the link's bandwidth measured with raw
+  // bricks that cost the server next to nothing (0: not measured, or faster than the probe
+  // tells). bandwidth_mb_per_s above is the scene texture's bricks, which on a fast link
+  // measures the server's evaluation rather than the link.
+  Codec codec = Codec::zstd;
+  double raw_link_mb_per_s = 0.0;
+  double zstd_decode_ns_per_byte = 0.0;  // the probe's zstd bricks, decoded here
 };
 
 // `--capability cpu=F,mem=MB,bandwidth=MBPS`: a weaker machine, simulated. cpu scales the
@@ -58,7 +66,28 @@ void fit_link(const LinkTiming& small, const LinkTiming& large, Capability& capa
 // Fetches a throw-away probe volume of `texture` through `source` in bursts of 1 (to open the
 // stream), 8 and 64 bricks, and fits the last two (fit_link). A source that moves no bytes
 // (in-process) leaves the bandwidth at 0: unlimited, and the latency at 0.
-void measure_link(net::BrickSource& source, const TextureSpec& texture, Capability& capability);
+//
+// With `choose_codec`, it then measures the link with raw bricks of the colour cube (cheap to
+// make, so the server's evaluation does not hide the link) and sets Capability::codec and
+// raw_link_mb_per_s. Leaves the source asking for zstd.
+void measure_link(net::BrickSource& source, const TextureSpec& texture, Capability& capability,
+                  bool choose_codec = false);
+
+// 17^3 8-bit RGB samples and the 28-byte header: a 16^3-cell RGB brick, raw.
+inline constexpr double kRawBrickBytes = 17.0 * 17.0 * 17.0 * 3.0 + 28.0;
+
+// zstd's extra CPU over raw, soltexd's encoding and the client's decoding together, in
+// multiples of the client's zstd decoding alone: about (40 + 18 - 7) / 18 us for a 14.7 kB
+// marble brick (docs/PERFORMANCE.md, "Brick codec", "soltexd's encoder"). The probe times
+// the decoding on this machine, under its current load, as it times the link.
+inline constexpr double kZstdExtraCpuPerDecode = 2.8;
+
+// The codec for a link of `bandwidth_mb_per_s` (0: unknown) carrying bricks that zstd
+// shrinks `zstd_ratio` times, where decoding zstd takes `zstd_decode_ns_per_byte` per
+// decoded byte: raw when the bytes zstd saves take less time on the link than compressing
+// and decompressing them take CPU (loopback, a fast LAN), else zstd. lz4 sits between and is
+// left to --codec.
+Codec codec_for_link(double bandwidth_mb_per_s, double zstd_ratio, double zstd_decode_ns_per_byte);
 
 // The capability sets where a client starts, not where it ends: every client prepares its
 // textures at the same finest level (the level the picture needs, as far as the cache holds

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "soltex/common/brick_cache.h"
+#include "soltex/common/brick_codec.h"
 #include "soltex/common/brick_evaluator.h"
 #include "soltex/common/brick_key.h"
 #include "soltex/common/texture_spec.h"
@@ -27,6 +28,8 @@ struct FetcherOptions {
   std::chrono::milliseconds max_backoff{4000};
   std::chrono::milliseconds register_timeout{10000};
   int max_refetches = 3;  // a brick that arrives corrupt is asked for again this many times
+  // The codec bricks are asked in (accept_codecs); set_codec() changes it on a live stream.
+  Codec codec = Codec::zstd;
   ChannelSecurity security;
 };
 
@@ -53,6 +56,9 @@ class BrickFetcher final : public BrickSource {
   // keys in flight that this frame no longer wants are cancelled; the rest are sent in order,
   // up to the in-flight bound.
   void want(std::vector<BrickWant> wants) override;
+
+  // Asks for the bricks of later wants in `codec` (bricks in flight keep theirs).
+  void set_codec(Codec codec) override;
 
   // Nothing requested, waiting or in flight.
   bool idle() const override;
@@ -88,6 +94,8 @@ class BrickFetcher final : public BrickSource {
   std::unordered_map<BrickKey, int, BrickKeyHash> refetches_;  // corrupt arrivals per key
   std::vector<BrickKey> to_cancel_;
   bool resend_ = false;  // a new stream: everything in flight must be asked for again
+  Codec codec_;
+  bool codec_changed_ = false;  // codec_ goes out with the next request
   SourceStats stats_;
   bool stopping_ = false;
   std::thread supervisor_;

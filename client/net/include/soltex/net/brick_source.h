@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "soltex/common/brick_codec.h"
 #include "soltex/common/brick_evaluator.h"
 #include "soltex/common/brick_key.h"
 #include "soltex/common/texture_spec.h"
@@ -31,6 +32,10 @@ struct SourceStats {
   uint64_t errors = 0;     // refused bricks, and bricks still corrupt after every refetch
   uint64_t corrupt = 0;    // bricks that failed their checksum and were asked for again
   uint64_t reconnects = 0;
+  // Time spent decoding arrived bricks (wall, on the receiving thread) and their decoded
+  // bytes, per codec (index: Codec): what a codec costs this machine, as the link probe sees.
+  double decode_seconds[3] = {0.0, 0.0, 0.0};
+  uint64_t decoded_bytes[3] = {0, 0, 0};
   std::size_t in_flight = 0;
   std::size_t waiting = 0;
   bool connected = false;
@@ -48,6 +53,8 @@ class BrickSource {
                                     const MipSettings& mip) = 0;
   // This frame's misses; replaces the previous frame's wants (stale ones are cancelled).
   virtual void want(std::vector<BrickWant> wants) = 0;
+  // The codec later bricks travel in; a source that moves no bytes (in-process) ignores it.
+  virtual void set_codec(Codec) {}
   virtual bool idle() const = 0;
   virtual bool wait_idle(std::chrono::milliseconds timeout) = 0;
   virtual SourceStats stats() const = 0;

@@ -99,6 +99,7 @@ class FrameRenderer {
   // unless RenderOptions::keep_gbuffer.
   const GBuffer& last_gbuffer() const { return gbuffer_; }
   void set_level_bias(double bias) { options_.level_bias = bias; }
+  void set_false_colour_levels(bool on) { options_.false_colour_levels = on; }
 
  private:
   // Samplers (per render thread and object) and evaluators (per object), kept across frames
