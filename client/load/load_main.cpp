@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   soltex::net::add_channel_security_options(app, security);
   if (const auto exit_code = cli::parse(app, "soltex-load", argc, argv)) return *exit_code;
   cli::start_logging("soltex-load", log_level);
+  cli::keep_freed_memory();
   try {
     options.security = soltex::net::finish_channel_security(security);
   } catch (const std::exception& e) {

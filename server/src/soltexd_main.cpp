@@ -164,6 +164,7 @@ int main(int argc, char** argv) {
     return soltex::cli::kExitUsage;
   }
   soltex::cli::start_logging("soltexd", config.log_level, soltex::cli::LogStyle::timestamped);
+  soltex::cli::keep_freed_memory();
 
   std::unique_ptr<soltex::server::Daemon> daemon;
   try {
