@@ -7,6 +7,7 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config curl
   clang libclang-rt-14-dev        # libFuzzer and the sanitizer runtimes
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler
+  libabsl-dev                             # abseil (gRPC's): its mutex deadlock tracking is turned off
   libboost-dev libglm-dev libspdlog-dev libcli11-dev libstb-dev libxxhash-dev libzstd-dev liblz4-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   nlohmann-json3-dev

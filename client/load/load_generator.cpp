@@ -73,6 +73,7 @@ struct Signal {
 // The connections and what the server said before the load starts.
 struct ServerSetup {
   std::vector<std::unique_ptr<v1::BrickService::Stub>> stubs;  // one per connection
+  std::vector<std::unique_ptr<BrickStreamStub>> stream_stubs;  // the same connections
   v1::ServerInfo info;
   v1::RegisterTextureRequest registration;
   v1::TextureHandle handle;
@@ -83,7 +84,9 @@ ServerSetup set_up_server(const LoadOptions& options) {
   ServerSetup setup;
   setup.registration = texture_registration(options);
   for (int c = 0; c < options.connections; ++c) {
-    setup.stubs.push_back(v1::BrickService::NewStub(connect(options.target, options.security, c)));
+    const std::shared_ptr<grpc::Channel> channel = connect(options.target, options.security, c);
+    setup.stubs.push_back(v1::BrickService::NewStub(channel));
+    setup.stream_stubs.push_back(std::make_unique<BrickStreamStub>(channel));
   }
   call_with_deadline("GetServerInfo", options.security, [&](grpc::ClientContext& context) {
     return setup.stubs[0]->GetServerInfo(&context, {}, &setup.info);
@@ -158,7 +161,7 @@ LoadResult run_load(LoadOptions options, const ProgressCallback& progress) {
   std::vector<std::unique_ptr<LoadStream>> streams;
   for (int s = 0; s < options.streams; ++s) {
     streams.push_back(std::make_unique<LoadStream>(
-        *server.stubs[static_cast<std::size_t>(s % options.connections)], settings,
+        *server.stream_stubs[static_cast<std::size_t>(s % options.connections)], settings,
         std::move(mixes[static_cast<std::size_t>(s)]), recorder, budget, [&signal] {
           std::lock_guard lock(signal.mutex);
           ++signal.streams_done;

@@ -1,12 +1,14 @@
 #include "load_stream.h"
 
+#include <grpcpp/support/proto_buffer_reader.h>
+
 #include <span>
 
 #include "soltex/common/brick_codec.h"
 #include "soltex/spec_proto/brick_proto.h"
 
 namespace soltex::load {
-LoadStream::LoadStream(v1::BrickService::Stub& stub, const Settings& settings,
+LoadStream::LoadStream(BrickStreamStub& stub, const Settings& settings,
                        std::unique_ptr<RequestMix> mix, LoadRecorder& recorder,
                        RequestBudget& budget, std::function<void()> on_done)
     : settings_(settings),
@@ -18,7 +20,7 @@ LoadStream::LoadStream(v1::BrickService::Stub& stub, const Settings& settings,
 
 void LoadStream::start() {
   if (settings_.security) net::authorize(*settings_.security, context_);
-  stub_.async()->StreamBricks(&context_, this);
+  stub_.PrepareBidiStreamingCall(&context_, kStreamBricksMethod, grpc::StubOptions(), this);
   AddHold();  // writes are also started from outside reactions (issue, close)
   StartRead(&read_);
   StartCall();
@@ -160,16 +162,16 @@ void LoadStream::OnWriteDone(bool ok) {
   perform(starts);
 }
 
-void LoadStream::check_bricks(const v1::BrickBatch& batch) {
-  for (const v1::Brick& brick : batch.bricks()) {
-    const std::string& payload = brick.payload();
-    bool good = payload.size() >= kBrickHeaderSize &&
-                encoded_brick_checksum(std::span(reinterpret_cast<const uint8_t*>(payload.data()),
-                                                 payload.size())) == brick.checksum();
+void LoadStream::check_bricks() {
+  for (const BrickBatchReader::Brick& brick : batch_.bricks()) {
+    const auto payload =
+        std::span(reinterpret_cast<const uint8_t*>(batch_.payloads().data()) + brick.payload_offset,
+                  brick.payload_size);
+    bool good =
+        payload.size() >= kBrickHeaderSize && encoded_brick_checksum(payload) == brick.checksum;
     if (good) {
       try {
-        (void)decode_brick(
-            std::span(reinterpret_cast<const uint8_t*>(payload.data()), payload.size()));
+        (void)decode_brick(payload);
       } catch (const CodecError&) {
         good = false;
       }
@@ -178,9 +180,8 @@ void LoadStream::check_bricks(const v1::BrickBatch& batch) {
   }
 }
 
-void LoadStream::answer_locked(const v1::BrickKey& answered, Clock::time_point now,
-                               std::size_t bytes, int error_code) {
-  const BrickKey key = from_proto(answered);
+void LoadStream::answer_locked(const BrickKey& key, Clock::time_point now, std::size_t bytes,
+                               int error_code) {
   const auto it = outstanding_.find(key);
   if (it == outstanding_.end()) {
     recorder_.unexpected();
@@ -206,23 +207,33 @@ void LoadStream::OnReadDone(bool ok) {
     return;
   }
   const Clock::time_point now = Clock::now();
-  if (settings_.verify) check_bricks(read_);  // outside the lock: decoding is the slow part
+  bool parsed;
+  {
+    grpc::ProtoBufferReader bytes(&read_);
+    parsed = batch_.read(bytes, settings_.verify);
+  }
+  read_.Clear();
+  if (!parsed) {
+    // Not a BrickBatch: the typed API would have failed the call; end it, counted.
+    recorder_.unexpected();
+    context_.TryCancel();
+    StartRead(&read_);  // completes not ok, which ends the reads
+    return;
+  }
+  if (settings_.verify) check_bricks();  // outside the lock: decoding is the slow part
   Starts starts;
   {
     std::lock_guard lock(mutex_);
-    for (const v1::Brick& brick : read_.bricks()) {
-      answer_locked(brick.key(), now, brick.payload().size(), 0);
+    for (const BrickBatchReader::Brick& brick : batch_.bricks()) {
+      answer_locked(brick.key, now, brick.payload_size, 0);
     }
-    for (const v1::BrickError& error : read_.errors()) {
+    for (const BrickBatchReader::Error& error : batch_.errors()) {
       // A per-brick error never has code OK; count a malformed one as UNKNOWN.
-      answer_locked(error.key(), now, 0, error.code() == 0 ? 2 : error.code());
+      answer_locked(error.key, now, 0, error.code == 0 ? 2 : error.code);
     }
-    for (const v1::RequestError& error : read_.request_errors()) {
-      recorder_.request_error(error.code());
-    }
+    for (const int32_t code : batch_.request_errors()) recorder_.request_error(code);
     starts = next_starts_locked();
   }
-  read_.Clear();
   StartRead(&read_);
   perform(starts);
 }

@@ -41,7 +41,7 @@ void BrickProducer::produce(const WorkItem& item, Deliver deliver) {
   store_.publish(brick);
   deliver(brick);
   // After the client has it: the other replicas need not evaluate it again.
-  if (shared_) shared_->store(item.key, item.codec, brick->payload);
+  if (shared_) shared_->store(item.key, item.codec, brick->payload());
 }
 
 EncodedBrickPtr BrickProducer::cached(const BrickKey& key, Codec codec) {
@@ -57,8 +57,7 @@ EncodedBrickPtr BrickProducer::from_shared_cache(const WorkItem& item) {
     const uint64_t checksum = encoded_brick_checksum(
         std::span(reinterpret_cast<const uint8_t*>(payload->data()), payload->size()));
     metrics_.bricks_from_shared_cache.fetch_add(1, std::memory_order_relaxed);
-    return std::make_shared<const EncodedBrick>(
-        EncodedBrick{item.key, item.codec, std::move(*payload), checksum});
+    return std::make_shared<const EncodedBrick>(item.key, item.codec, *payload, checksum);
   } catch (const CodecError& e) {
     spdlog::warn("shared-cache value for brick {} level {} has no valid header: {}",
                  texture_id_hex(item.key.texture), item.key.level, e.what());
@@ -83,8 +82,7 @@ EncodedBrickPtr BrickProducer::evaluate(const WorkItem& item) {
   metrics_.record(BrickStage::evaluate, evaluated - start);
   metrics_.record(BrickStage::encode, std::chrono::steady_clock::now() - evaluated);
   metrics_.bricks_evaluated.fetch_add(1, std::memory_order_relaxed);
-  return std::make_shared<const EncodedBrick>(
-      EncodedBrick{item.key, item.codec, std::move(encoded), checksum});
+  return std::make_shared<const EncodedBrick>(item.key, item.codec, encoded, checksum);
 }
 
 }  // namespace soltex::server

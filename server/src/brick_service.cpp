@@ -8,7 +8,7 @@ namespace soltex::server {
 namespace {
 
 // A stream refused before it starts (no token, too many streams): finishes at once.
-class RefusedStream final : public grpc::ServerBidiReactor<v1::BrickRequest, v1::BrickBatch> {
+class RefusedStream final : public BrickStream::ServerReactor {
  public:
   explicit RefusedStream(const grpc::Status& status) { Finish(status); }
   void OnDone() override { delete this; }
@@ -69,8 +69,7 @@ grpc::ServerUnaryReactor* BrickServiceImpl::RegisterTexture(
   return reactor;
 }
 
-grpc::ServerBidiReactor<v1::BrickRequest, v1::BrickBatch>* BrickServiceImpl::StreamBricks(
-    grpc::CallbackServerContext* context) {
+BrickStream::ServerReactor* BrickServiceImpl::StreamBricks(grpc::CallbackServerContext* context) {
   std::string client;
   if (grpc::Status admitted = admit(*context, client); !admitted.ok()) {
     return new RefusedStream(admitted);

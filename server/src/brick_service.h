@@ -12,8 +12,14 @@
 namespace soltex::server {
 
 // The gRPC service (callback API): server info, texture registration and brick streams,
-// each call admitted by ClientAccess (token, per-client stream bound) first.
-class BrickServiceImpl final : public v1::BrickService::CallbackService {
+// each call admitted by ClientAccess (token, per-client stream bound) first. StreamBricks is
+// a raw method: its messages are bytes, so that bricks go out as their cached serialized
+// entries (EncodedBrick) rather than through a protobuf message.
+using BrickServiceBase = v1::BrickService::WithCallbackMethod_GetServerInfo<
+    v1::BrickService::WithCallbackMethod_RegisterTexture<
+        v1::BrickService::WithRawCallbackMethod_StreamBricks<v1::BrickService::Service>>>;
+
+class BrickServiceImpl final : public BrickServiceBase {
  public:
   BrickServiceImpl(BrickStream::Context context, ClientAccess& access, v1::ServerInfo info);
 
@@ -23,8 +29,7 @@ class BrickServiceImpl final : public v1::BrickService::CallbackService {
   grpc::ServerUnaryReactor* RegisterTexture(grpc::CallbackServerContext* context,
                                             const v1::RegisterTextureRequest* request,
                                             v1::TextureHandle* response) override;
-  grpc::ServerBidiReactor<v1::BrickRequest, v1::BrickBatch>* StreamBricks(
-      grpc::CallbackServerContext* context) override;
+  BrickStream::ServerReactor* StreamBricks(grpc::CallbackServerContext* context) override;
 
   // Finishes every open stream (UNAVAILABLE) once its current write is done.
   void shut_down_streams();

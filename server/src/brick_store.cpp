@@ -11,8 +11,8 @@ BrickStore::Shard& BrickStore::shard_for(const CodecKey& key) {
 }
 
 std::size_t BrickStore::cost(const EncodedBrick& brick) {
-  // Payload plus what the entry costs in the maps and the list, roughly.
-  return brick.payload.size() + sizeof(EncodedBrick) + 96;
+  // The serialized brick plus what the entry costs in the maps and the list, roughly.
+  return brick.element().size() + sizeof(EncodedBrick) + 96;
 }
 
 BrickStore::Claim BrickStore::claim(const BrickKey& key, Codec codec, EncodedBrickPtr& cached,

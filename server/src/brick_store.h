@@ -11,21 +11,11 @@
 #include <unordered_map>
 #include <vector>
 
+#include "encoded_brick.h"
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/brick_key.h"
 
 namespace soltex::server {
-
-// One brick encoded with one codec, as sent on the wire. Immutable and shared: the server
-// quantizes, filters and compresses a brick once, however many streams receive it.
-struct EncodedBrick {
-  BrickKey key;
-  Codec codec;
-  std::string payload;
-  uint64_t checksum;
-};
-
-using EncodedBrickPtr = std::shared_ptr<const EncodedBrick>;
 
 struct BrickStoreStats {
   uint64_t hits = 0;

@@ -10,8 +10,7 @@
 
 namespace soltex::server {
 
-class BrickStream::Reactor final
-    : public grpc::ServerBidiReactor<v1::BrickRequest, v1::BrickBatch> {
+class BrickStream::Reactor final : public BrickStream::ServerReactor {
  public:
   explicit Reactor(std::shared_ptr<BrickStream> stream) : stream_(std::move(stream)) {}
 
@@ -28,6 +27,15 @@ class BrickStream::Reactor final
 };
 
 namespace {
+
+// A brick's entry as sent, with the last payload byte flipped when fault injection says this
+// send is due for it; otherwise the cached entry itself.
+grpc::Slice element_to_send(const EncodedBrick& brick, FaultInjection& faults) {
+  if (!faults.corrupts()) return brick.element();
+  std::string payload(brick.payload());
+  if (!faults.corrupt_if_due(payload)) return brick.element();
+  return EncodedBrick(brick.key, brick.codec, payload, brick.checksum).element();
+}
 
 std::string describe(const v1::BrickKey& key) {
   return "brick (" + std::to_string(key.x()) + ", " + std::to_string(key.y()) + ", " +
@@ -71,7 +79,7 @@ void BrickStream::count_queued(int64_t delta) {
   lease_->usage().queued.fetch_add(delta, std::memory_order_relaxed);
 }
 
-grpc::ServerBidiReactor<v1::BrickRequest, v1::BrickBatch>* BrickStream::start() {
+BrickStream::ServerReactor* BrickStream::start() {
   std::lock_guard lock(mutex_);
   reactor_ = new Reactor(shared_from_this());
   spdlog::info("stream {} opened by {}", id_, peer_);
@@ -88,7 +96,16 @@ void BrickStream::on_read_done(bool ok) {
       reads_done_ = true;  // the client half-closed (or the call is over)
     } else {
       context_.metrics.stream_messages.fetch_add(1, std::memory_order_relaxed);
-      added = accept_request();
+      request_.Clear();
+      const grpc::Status parsed =
+          grpc::SerializationTraits<v1::BrickRequest>::Deserialize(&request_bytes_, &request_);
+      if (parsed.ok()) {
+        added = accept_request();
+      } else {
+        add_request_error(grpc::StatusCode::INVALID_ARGUMENT,
+                          "request message is not a soltex.v1.BrickRequest (" +
+                              parsed.error_message() + "); nothing in it was queued");
+      }
     }
     pump();
   }
@@ -298,47 +315,46 @@ void BrickStream::add_request_error(grpc::StatusCode code, std::string message) 
 
 void BrickStream::write_outbox() {
   const StreamLimits& limits = context_.limits;
-  batch_.Clear();
+  batch_slices_.clear();
+  batch_errors_.Clear();
   batch_enqueued_.clear();
   batch_ready_.clear();
   std::size_t bytes = 0;
+  uint32_t bricks = 0;
   while (!outbox_.empty()) {
     Outgoing& next = outbox_.front();
     if (next.brick) {
-      if (static_cast<uint32_t>(batch_.bricks_size()) >= limits.max_batch_bricks ||
-          (batch_.bricks_size() > 0 &&
-           bytes + next.brick->payload.size() > limits.max_batch_bytes)) {
+      const std::size_t size = next.brick->payload().size();
+      if (bricks >= limits.max_batch_bricks ||
+          (bricks > 0 && bytes + size > limits.max_batch_bytes)) {
         break;
       }
-      v1::Brick* b = batch_.add_bricks();
-      const BrickKey& key = next.brick->key;
-      v1::BrickKey* k = b->mutable_key();
-      k->set_texture_id(key.texture);
-      k->set_level(static_cast<uint32_t>(key.level));
-      k->set_x(key.brick.x);
-      k->set_y(key.brick.y);
-      k->set_z(key.brick.z);
-      b->set_codec(to_proto(next.brick->codec));
-      b->set_payload(next.brick->payload);
-      context_.faults.corrupt_if_due(*b->mutable_payload());
-      b->set_checksum(next.brick->checksum);
-      bytes += next.brick->payload.size();
+      batch_slices_.push_back(element_to_send(*next.brick, context_.faults));
+      ++bricks;
+      bytes += size;
       batch_enqueued_.push_back(next.enqueued);
       batch_ready_.push_back(next.ready);
     } else if (next.error) {
-      *batch_.add_errors() = std::move(*next.error);
+      *batch_errors_.add_errors() = std::move(*next.error);
     } else {
-      *batch_.add_request_errors() = std::move(*next.request_error);
+      *batch_errors_.add_request_errors() = std::move(*next.request_error);
     }
     outbox_.pop_front();
   }
+  // The errors' fields (2 and 3) after the bricks' (1): the bytes protobuf would write for the
+  // whole message.
+  const auto errors =
+      static_cast<uint64_t>(batch_errors_.errors_size() + batch_errors_.request_errors_size());
+  if (errors > 0) batch_slices_.emplace_back(batch_errors_.SerializeAsString());
+  grpc::ByteBuffer message(batch_slices_.data(), batch_slices_.size());
+  batch_.Swap(&message);
+  batch_slices_.clear();  // the message holds its own references
   writing_ = true;
   ++batches_sent_;
-  bricks_sent_ += static_cast<uint64_t>(batch_.bricks_size());
+  bricks_sent_ += bricks;
   bytes_sent_ += bytes;
-  errors_sent_ += static_cast<uint64_t>(batch_.errors_size() + batch_.request_errors_size());
-  context_.metrics.bricks_served.fetch_add(static_cast<uint64_t>(batch_.bricks_size()),
-                                           std::memory_order_relaxed);
+  errors_sent_ += errors;
+  context_.metrics.bricks_served.fetch_add(bricks, std::memory_order_relaxed);
   context_.metrics.bytes_served.fetch_add(bytes, std::memory_order_relaxed);
   const auto now = std::chrono::steady_clock::now();
   for (const auto& enqueued : batch_enqueued_) {
@@ -367,8 +383,7 @@ void BrickStream::pump() {
   const bool room = owed() + limits.max_keys_per_request <= limits.max_queued_per_stream;
   if (!reading_ && !reads_done_ && !shutting_down_ && !cancelled_ && room) {
     reading_ = true;
-    request_.Clear();
-    reactor_->StartRead(&request_);
+    reactor_->StartRead(&request_bytes_);
   }
 
   const bool idle = !writing_ && outbox_.empty() && queue_.drained();

@@ -60,8 +60,12 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   BrickStream(Context context, uint64_t id, std::string peer, std::unique_ptr<StreamLease> lease);
   ~BrickStream() override;
 
+  // The call's messages travel as raw bytes: requests are parsed here, and a message of
+  // bricks is written as the bricks' serialized entries side by side (EncodedBrick).
+  using ServerReactor = grpc::ServerBidiReactor<grpc::ByteBuffer, grpc::ByteBuffer>;
+
   // Creates the gRPC reactor bound to this stream and starts reading.
-  grpc::ServerBidiReactor<v1::BrickRequest, v1::BrickBatch>* start();
+  ServerReactor* start();
 
   // Server shutdown: drop queued work and finish with UNAVAILABLE once the current write is done.
   void shut_down();
@@ -111,9 +115,12 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
 
   // Recursive: gRPC may run a reaction inline from an operation we start under the lock.
   std::recursive_mutex mutex_;
-  Reactor* reactor_ = nullptr;  // null once gRPC has called OnDone
-  v1::BrickRequest request_;
-  v1::BrickBatch batch_;
+  Reactor* reactor_ = nullptr;      // null once gRPC has called OnDone
+  grpc::ByteBuffer request_bytes_;  // owned by the read in flight
+  v1::BrickRequest request_;        // the last request read, parsed
+  grpc::ByteBuffer batch_;          // owned by the write in flight
+  std::vector<grpc::Slice> batch_slices_;
+  v1::BrickBatch batch_errors_;  // the errors of the message being assembled
   std::vector<std::chrono::steady_clock::time_point> batch_enqueued_;
   std::vector<std::chrono::steady_clock::time_point> batch_ready_;
   std::chrono::steady_clock::time_point write_started_;

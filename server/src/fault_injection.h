@@ -21,6 +21,8 @@ class FaultInjection {
 
   std::chrono::milliseconds delay() const { return std::chrono::milliseconds(config_.delay_ms); }
 
+  bool corrupts() const { return config_.corrupt_every > 0; }
+
   // Flips a byte of `payload` (a copy about to be sent) when this send is due for corruption.
   // The byte is past the header, so the client's checksum, not its header check, catches it.
   bool corrupt_if_due(std::string& payload) {

@@ -68,7 +68,7 @@ std::string hex64(uint64_t value) {
 
 // A strong validator: a hash of the exact bytes sent, so two replicas that encode a brick
 // differently (another zstd level) never share an ETag.
-std::string etag_of(const std::string& payload) {
+std::string etag_of(std::string_view payload) {
   return "\"" + hex64(XXH64(payload.data(), payload.size(), 0)) + "\"";
 }
 
@@ -288,7 +288,7 @@ void HttpRequestHandler::handle_brick(const Route& route, std::shared_ptr<Call> 
                           "evaluating " + describe(route) + " failed (see the server log)"));
       return;
     }
-    const std::string etag = etag_of(brick->payload);
+    const std::string etag = etag_of(brick->payload());
     const bool fresh = !call->if_none_match.empty() && none_match_hits(call->if_none_match, etag);
     HttpResponse response{fresh ? http::status::not_modified : http::status::ok, call->version};
     response.set(http::field::etag, etag);
@@ -298,10 +298,10 @@ void HttpRequestHandler::handle_brick(const Route& route, std::shared_ptr<Call> 
       response.set(http::field::content_type, "application/vnd.soltex.brick");
       response.set("X-Soltex-Codec", codec_name(brick->codec));
       response.set("X-Soltex-Checksum", hex64(brick->checksum));
-      response.body() = brick->payload;
+      response.body() = std::string(brick->payload());
       if (!call->head) {
         context_.metrics.http.bricks_served.fetch_add(1, std::memory_order_relaxed);
-        context_.metrics.http.brick_bytes.fetch_add(brick->payload.size(),
+        context_.metrics.http.brick_bytes.fetch_add(brick->payload().size(),
                                                     std::memory_order_relaxed);
       }
     }

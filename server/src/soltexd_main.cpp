@@ -1,4 +1,5 @@
 // soltexd: evaluates procedural texture bricks on request and streams them over gRPC.
+#include <absl/synchronization/mutex.h>
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
@@ -164,6 +165,10 @@ int main(int argc, char** argv) {
     return soltex::cli::kExitUsage;
   }
   soltex::cli::start_logging("soltexd", config.log_level, soltex::cli::LogStyle::timestamped);
+  soltex::cli::keep_freed_memory();
+  // gRPC locks abseil mutexes several times per message; Debian's abseil tracks their lock
+  // order for deadlock detection on every acquisition unless told not to.
+  absl::SetMutexDeadlockDetectionMode(absl::OnDeadlockCycle::kIgnore);
 
   std::unique_ptr<soltex::server::Daemon> daemon;
   try {

@@ -1,5 +1,6 @@
 #include "soltex/cli/tool_cli.h"
 
+#include <malloc.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -88,6 +89,12 @@ void start_logging(const std::string& tool, const std::string& level, LogStyle s
   spdlog::set_pattern(style == LogStyle::timestamped
                           ? "%Y-%m-%dT%H:%M:%S.%e %^%l%$ " + tool + ": %v"
                           : "%^%l%$ " + tool + ": %v");
+}
+
+void keep_freed_memory() {
+  // 32 MiB is glibc's largest mmap threshold; blocks above it are rare and long-lived here.
+  mallopt(M_MMAP_THRESHOLD, 32 << 20);
+  mallopt(M_TRIM_THRESHOLD, 256 << 20);
 }
 
 }  // namespace soltex::cli

@@ -44,6 +44,12 @@ std::optional<int> parse(CLI::App& app, const std::string& tool, int argc, char*
 // The environment variable an option's long name maps to: "--max-time-s" -> "SOLTEX_MAX_TIME_S".
 std::string environment_name(const std::string& long_name);
 
+// For the network tools (soltexd, soltex-load): fixed glibc malloc thresholds, so that freed
+// memory stays in the process. By default glibc serves large blocks with mmap and gives the
+// free top of a heap back to the kernel; gRPC's message and socket buffers (tens of KB, made
+// and freed per message) then cost a page fault per 4 KB on every message.
+void keep_freed_memory();
+
 enum class LogStyle { plain, timestamped };
 
 // Sends spdlog's default logger to stderr (spdlog's own default writes to stdout, where the
