@@ -180,32 +180,45 @@ void EdgeSampler::draw_at(const ScreenTriangle& t, const AffineForm* forms, int 
     along_y[k][static_cast<std::size_t>(grid_)] = ex[k] * (kSubpixelScale / 2);
     along_x[k][static_cast<std::size_t>(grid_)] = ey[k] * (kSubpixelScale / 2);
   }
+  // Which samples are inside, as a mask: compares without branches, then only those samples
+  // go on to depth (most of a pixel's samples are outside most triangles that reach it).
+  const int grid_samples = grid_ * grid_;
+  uint64_t inside = grid_samples == 64 ? ~uint64_t{0} : (uint64_t{1} << grid_samples) - 1;
+  for (std::size_t k = 0; k < 3; ++k) {
+    uint64_t mask = 0;
+    for (int j = 0; j < grid_; ++j) {
+      const int64_t row = corner[k] + along_y[k][static_cast<std::size_t>(j)];
+      for (int i = 0; i < grid_; ++i) {
+        const auto in = static_cast<uint64_t>(row - along_x[k][static_cast<std::size_t>(i)] >= 0);
+        mask |= in << (j * grid_ + i);
+      }
+    }
+    inside &= mask;
+  }
+  const auto centre = static_cast<std::size_t>(grid_);
+  bool centre_inside = true;
+  for (std::size_t k = 0; k < 3; ++k) {
+    centre_inside &= corner[k] + along_y[k][centre] - along_x[k][centre] >= 0;
+  }
   const float vertex_x = t.x0_pixels(), vertex_y = t.y0_pixels();
-  for (int s = 0; s < samples_; ++s) {
-    const bool centre = s + 1 == samples_;
-    const auto i = static_cast<std::size_t>(centre ? grid_ : s % grid_);
-    const auto j = static_cast<std::size_t>(centre ? grid_ : s / grid_);
-    const int64_t e0 = corner[0] + along_y[0][j] - along_x[0][i];
-    const int64_t e1 = corner[1] + along_y[1][j] - along_x[1][i];
-    const int64_t e2 = corner[2] + along_y[2][j] - along_x[2][i];
-    if ((e0 | e1 | e2) < 0) continue;
+  const auto test = [&](int s) {
     const glm::vec2 f = offsets_px_[static_cast<std::size_t>(s)];
     const float dx = static_cast<float>(x) + f.x - vertex_x;
     const float dy = static_cast<float>(y) + f.y - vertex_y;
     const float depth = t.depth.at_vertex0 + t.depth.per_x * dx + t.depth.per_y * dy;
     const std::size_t sample = slot_sample(slot, s);
-    if (!(depth < depth_[sample]) || depth > kFarDepth) continue;
-    bool kept = true;
+    if (!(depth < depth_[sample]) || depth > kFarDepth) return;
     if (forms != nullptr) {
-      for (uint32_t planes = t.clip_mask; planes != 0 && kept; planes &= planes - 1) {
+      for (uint32_t planes = t.clip_mask; planes != 0; planes &= planes - 1) {
         const AffineForm& form = forms[std::countr_zero(planes)];
-        kept = !(form.at_vertex0 + form.per_x * dx + form.per_y * dy < 0.0f);
+        if (form.at_vertex0 + form.per_x * dx + form.per_y * dy < 0.0f) return;
       }
     }
-    if (!kept) continue;
     depth_[sample] = depth;
     winner_[sample] = &t;
-  }
+  };
+  for (; inside != 0; inside &= inside - 1) test(std::countr_zero(inside));
+  if (centre_inside) test(samples_ - 1);
 }
 
 int EdgeSampler::group(std::size_t slot, std::array<Surface, EdgePixel::kExtraSurfaces>& extra,

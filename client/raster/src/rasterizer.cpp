@@ -359,6 +359,9 @@ void Rasterizer::sample_edges(int x0, int y0, std::span<const glm::ivec2> pixels
     const SetupChunk& chunk = impl.chunks[c];
     const uint32_t end = chunk.bin_start[tile + 1];
     for (uint32_t k = chunk.bin_start[tile]; k < end; ++k) {
+      if (k + kPrefetchAhead < end) {
+        __builtin_prefetch(&chunk.triangles[chunk.bin_items[k + kPrefetchAhead]]);
+      }
       sampler->draw(chunk.triangles[chunk.bin_items[k]], chunk.clip_forms);
     }
   }

@@ -27,63 +27,64 @@ std::array<uint8_t, 3> background_bytes() {
 void find_edge_pixels(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
                       float near, float far, std::vector<glm::ivec2>& out) {
   const int width = x1 - x0, height = y1 - y0;
-  std::array<uint32_t, kTileSize * kTileSize> key;
-  std::array<float, kTileSize * kTileSize> depth;
-  const auto at = [](int lx, int ly) { return static_cast<std::size_t>(ly * kTileSize + lx); };
-  uint8_t drawn = 0;
+  // The tile's surfaces and depths with a border of one pixel all round, so that every pixel
+  // has four neighbours: the border repeats the surface beside it (no change of surface across
+  // the tile's edge) and extends the depth linearly (no second difference either).
+  constexpr int kStride = kTileSize + 2;
+  std::array<uint32_t, kStride * kStride> key;
+  std::array<float, kStride * kStride> depth;
+  const auto at = [](int px, int py) { return static_cast<std::size_t>(py * kStride + px); };
+  uint8_t drawn = 0;  // most tiles around one object are empty: a quick look first
+  for (int ly = 0; ly < height; ++ly) {
+    const uint8_t* flags = g.flags.data() + g.index(x0 - origin_x, y0 + ly - origin_y);
+    for (int lx = 0; lx < width; ++lx) drawn |= flags[lx];
+  }
+  if ((drawn & GBuffer::kCovered) == 0) return;
   for (int ly = 0; ly < height; ++ly) {
     const std::size_t first = g.index(x0 - origin_x, y0 + ly - origin_y);
     const uint8_t* flags = g.flags.data() + first;
     const uint32_t* object = g.object_id.data() + first;
-    const float* z = g.depth.data() + first;
-    uint32_t* keys = key.data() + at(0, ly);
+    uint32_t* keys = key.data() + at(1, ly + 1);
     for (int lx = 0; lx < width; ++lx) {
       const uint8_t f = flags[lx];
       const uint32_t sides = static_cast<uint32_t>(f & (GBuffer::kBackFace | GBuffer::kCap)) >> 1;
       keys[lx] = (f & GBuffer::kCovered) != 0 ? (object[lx] << 2) | sides : kNoSurface;
-      drawn |= f;
     }
-    std::copy_n(z, width, depth.data() + at(0, ly));
+    std::copy_n(g.depth.data() + first, width, depth.data() + at(1, ly + 1));
   }
-  if ((drawn & GBuffer::kCovered) == 0) return;
-  // Bit lx of mask[ly]: pixel (x0 + lx, y0 + ly) is an edge pixel.
-  std::array<uint64_t, kTileSize> mask{};
-  for (int ly = 0; ly < height; ++ly) {
-    uint64_t right = 0, below = 0;  // bit lx: differs from the pixel right of it, below it
-    for (int lx = 0; lx + 1 < width; ++lx) {
-      right |= static_cast<uint64_t>(key[at(lx, ly)] != key[at(lx + 1, ly)]) << lx;
-    }
-    if (ly + 1 < height) {
-      for (int lx = 0; lx < width; ++lx) {
-        below |= static_cast<uint64_t>(key[at(lx, ly)] != key[at(lx, ly + 1)]) << lx;
-      }
-      mask[static_cast<std::size_t>(ly + 1)] |= below;
-    }
-    mask[static_cast<std::size_t>(ly)] |= right | (right << 1) | below;
+  const auto extend = [&](std::size_t pad, std::size_t edge, std::size_t inner, bool has_inner) {
+    key[pad] = key[edge];
+    depth[pad] = has_inner ? 2.0f * depth[edge] - depth[inner] : depth[edge];
+  };
+  for (int py = 1; py <= height; ++py) {
+    extend(at(0, py), at(1, py), at(2, py), width > 1);
+    extend(at(width + 1, py), at(width, py), at(width - 1, py), width > 1);
+  }
+  for (int px = 0; px <= width + 1; ++px) {
+    extend(at(px, 0), at(px, 1), at(px, 2), height > 1);
+    extend(at(px, height + 1), at(px, height), at(px, height - 1), height > 1);
   }
   // Inverse view depth 1/d = (far - z (far - near)) / (far near) is affine on screen across a
   // plane, as window depth z is; its second difference relative to 1/d at the pixel, above
   // kDepthBreak, is a fold or a jump in the surface, not its slope.
   const float span = far - near;
-  const auto breaks = [&](float before, float here, float after) {
-    const float second = (before + after) - 2.0f * here;
-    return std::fabs(second) * span > kDepthBreak * (far - here * span);
-  };
-  for (int ly = 0; ly < height; ++ly) {
-    uint64_t& row = mask[static_cast<std::size_t>(ly)];
-    for (int lx = 0; lx < width; ++lx) {
-      const std::size_t i = at(lx, ly);
-      if (((row >> lx) & 1u) != 0 || key[i] == kNoSurface) continue;
+  std::array<uint8_t, kTileSize> edge_row;
+  for (int py = 1; py <= height; ++py) {
+    // Selects, not branches: the loop runs in vector lanes.
+    for (int px = 1; px <= width; ++px) {
+      const std::size_t i = at(px, py);
+      const uint32_t k = key[i];
+      const bool changes =
+          (k != key[i - 1]) | (k != key[i + 1]) | (k != key[i - kStride]) | (k != key[i + kStride]);
       const float z = depth[i];
-      const bool fold =
-          (lx > 0 && lx + 1 < width && breaks(depth[i - 1], z, depth[i + 1])) ||
-          (ly > 0 && ly + 1 < height && breaks(depth[i - kTileSize], z, depth[i + kTileSize]));
-      row |= static_cast<uint64_t>(fold) << lx;
+      const float along_x = std::fabs((depth[i - 1] + depth[i + 1]) - 2.0f * z);
+      const float along_y = std::fabs((depth[i - kStride] + depth[i + kStride]) - 2.0f * z);
+      const float second = along_x < along_y ? along_y : along_x;
+      const bool fold = (second * span > kDepthBreak * (far - z * span)) & (k != kNoSurface);
+      edge_row[static_cast<std::size_t>(px - 1)] = static_cast<uint8_t>(changes | fold);
     }
-  }
-  for (int ly = 0; ly < height; ++ly) {
-    for (uint64_t bits = mask[static_cast<std::size_t>(ly)]; bits != 0; bits &= bits - 1) {
-      out.emplace_back(x0 + std::countr_zero(bits), y0 + ly);
+    for (int lx = 0; lx < width; ++lx) {
+      if (edge_row[static_cast<std::size_t>(lx)] != 0) out.emplace_back(x0 + lx, y0 + py - 1);
     }
   }
 }
@@ -133,7 +134,7 @@ void EdgeAntialiasing::antialias_tile(Rasterizer& rasterizer, TileShader& shader
   if (surfaces.pixels.empty()) return;
   // The extra surfaces are the same pixels again: the frame's counts stay those of its pixels.
   const TileCounts counted = shader.counts();
-  shade_layers(shader, worker, x1, y1);
+  shade_layers(shader, worker);
   const std::chrono::steady_clock::duration shading = shader.counts().shading;
   shader.counts() = counted;
   shader.counts().shading = shading;
@@ -148,30 +149,17 @@ void EdgeAntialiasing::antialias_tile(Rasterizer& rasterizer, TileShader& shader
   worker.blended += surfaces.pixels.size();
 }
 
-// Each layer shaded where it holds surfaces: the rows of each 32 x 32 piece of the tile that
-// hold one, then its colours copied out per pixel.
-void EdgeAntialiasing::shade_layers(TileShader& shader, Worker& worker, int x1, int y1) {
+// Each layer's surfaces shaded at their pixels, then their colours copied out per pixel.
+void EdgeAntialiasing::shade_layers(TileShader& shader, Worker& worker) {
   const EdgeSurfaces& surfaces = worker.surfaces;
   worker.colours.resize(surfaces.pixels.size());
-  constexpr int kPiece = TileShader::kTile;
-  constexpr int kPieces = kTileSize / kPiece;
   for (std::size_t j = 0; j < EdgePixel::kExtraSurfaces; ++j) {
-    std::array<int, kPieces * kPieces> first{}, last{};
-    first.fill(kTileSize);
-    last.fill(-1);
+    worker.layer_pixels.clear();
     for (const EdgePixel& p : surfaces.pixels) {
-      if (p.extra[j] == 0) continue;
-      const int lx = p.x - surfaces.x0, ly = p.y - surfaces.y0;
-      const auto piece = static_cast<std::size_t>((ly / kPiece) * kPieces + lx / kPiece);
-      first[piece] = std::min(first[piece], ly);
-      last[piece] = std::max(last[piece], ly);
+      if (p.extra[j] > 0) worker.layer_pixels.emplace_back(p.x, p.y);
     }
-    for (std::size_t piece = 0; piece < first.size(); ++piece) {
-      if (last[piece] < 0) continue;
-      const int tx = surfaces.x0 + static_cast<int>(piece % kPieces) * kPiece;
-      shader.shade(surfaces.layers[j], surfaces.x0, surfaces.y0, tx, surfaces.y0 + first[piece],
-                   std::min(x1, tx + kPiece), std::min(y1, surfaces.y0 + last[piece] + 1), layer_);
-    }
+    if (worker.layer_pixels.empty()) break;  // a pixel's surfaces fill layers in order
+    shader.shade_pixels(surfaces.layers[j], surfaces.x0, surfaces.y0, worker.layer_pixels, layer_);
     for (std::size_t p = 0; p < surfaces.pixels.size(); ++p) {
       const EdgePixel& pixel = surfaces.pixels[p];
       if (pixel.extra[j] == 0) continue;

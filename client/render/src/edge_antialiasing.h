@@ -62,11 +62,12 @@ class EdgeAntialiasing {
  private:
   struct Worker {
     std::vector<glm::ivec2> pixels;
+    std::vector<glm::ivec2> layer_pixels;
     EdgeSurfaces surfaces;
     std::vector<std::array<uint8_t, 3 * EdgePixel::kExtraSurfaces>> colours;
     std::size_t blended = 0;
   };
-  void shade_layers(TileShader& shader, Worker& worker, int x1, int y1);
+  void shade_layers(TileShader& shader, Worker& worker);
 
   float near_ = 0.1f, far_ = 100.0f;
   int grid_ = 4;

@@ -6,6 +6,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <unordered_map>
 
 #include "edge_antialiasing.h"
@@ -116,7 +118,13 @@ glm::dmat4 view_projection(const Camera& camera, int width, int height) {
 }
 
 FrameRenderer::FrameRenderer(BrickCache& cache, RenderOptions options)
-    : cache_(cache), options_(options), rasterizer_(RasterOptions{options.threads, false}) {}
+    : cache_(cache), options_(options), rasterizer_(RasterOptions{options.threads, false}) {
+  if (options.edge_antialias < 0 || options.edge_antialias > kMaxEdgeGrid) {
+    throw std::invalid_argument("RenderOptions::edge_antialias must be 0 (off) to " +
+                                std::to_string(kMaxEdgeGrid) + ", got " +
+                                std::to_string(options.edge_antialias));
+  }
+}
 
 void FrameRenderer::prepare_readers(const PreparedScene& scene) {
   const auto threads = static_cast<std::size_t>(rasterizer_.thread_count());
