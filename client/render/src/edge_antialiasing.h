@@ -31,7 +31,7 @@ class TileShader;
 // view depth, above kDepthBreak; `near` and `far` are the camera's. Within the tile only: the
 // frame's tiles are drawn in any order, and a change of surface right on a tile's border is
 // seen from the pixels beside it inside each tile, unless it runs along the border.
-inline constexpr float kDepthBreak = 0.02f;
+inline constexpr float kDepthBreak = 0.05f;
 void find_edge_pixels(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
                       float near, float far, std::vector<glm::ivec2>& out);
 
