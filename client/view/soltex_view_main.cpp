@@ -149,6 +149,7 @@ int main(int argc, char** argv) {
   std::string access_name = "auto";
   std::string codec_name = "auto";
   int antialias = 1;
+  int edge_antialias = 0;
   double level_bias = 0.0;
   bool false_colour = false;
   double max_seconds = 30.0;
@@ -193,6 +194,11 @@ int main(int argc, char** argv) {
                  "sub-pixels per axis for silhouettes and clip edges (1: off); costs about "
                  "antialias^2 times the frame")
       ->check(CLI::Range(1, 4))
+      ->capture_default_str();
+  app.add_option("--edge-antialias", edge_antialias,
+                 "coverage samples per axis at edge pixels only (silhouettes, object and clip "
+                 "edges, depth breaks), each surface there shaded once (0: off; 2 to 8)")
+      ->check(CLI::IsMember({0, 2, 3, 4, 5, 6, 7, 8}))
       ->capture_default_str();
   app.add_option("--level-bias", level_bias, "added to every pixel's level (negative: finer)")
       ->check(CLI::Range(-8.0, 8.0));
@@ -316,6 +322,7 @@ int main(int argc, char** argv) {
     render_options.filter = filter_from(filter_name);
     render_options.access = access_from(access_name);
     render_options.antialias = antialias;
+    render_options.edge_antialias = edge_antialias;
     render_options.level_bias = level_bias;
     render_options.false_colour_levels = false_colour;
     render_options.threads = threads;

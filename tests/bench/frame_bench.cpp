@@ -29,7 +29,10 @@
 //   BM_EqualPsnr       the warm frame (third argument 0) and the per-pixel reference at K x K
 //                      sub-pixels (third argument K), each with its PSNR against the 8 x 8
 //                      reference (psnr_8x8_db): the reference's K that first reaches the warm
-//                      frame's PSNR is the one whose time the warm frame is compared with
+//                      frame's PSNR is the one whose time the warm frame is compared with.
+//                      Fourth argument N > 0: the warm frame with edge anti-aliasing at N x N
+//                      samples per edge pixel (RenderOptions::edge_antialias; edge_pixels
+//                      counts the pixels it blended)
 
 #include <benchmark/benchmark.h>
 
@@ -372,22 +375,41 @@ const soltex::Image& ground_truth(WarmScene& w) {
   return *image;
 }
 
+// The warm frame of a renderer with edge anti-aliasing at grid x grid samples, on the scene's
+// cache, converged once (its extra surfaces may read bricks the plain frame did not).
+soltex::FrameRenderer& edge_renderer(WarmScene& w, int threads, int grid) {
+  static std::unique_ptr<soltex::FrameRenderer> renderers[soltex::kMaxEdgeGrid + 1];
+  auto& r = renderers[grid];
+  if (!r) {
+    r = std::make_unique<soltex::FrameRenderer>(
+        *w.cache, soltex::RenderOptions{.threads = threads, .edge_antialias = grid});
+    converge(*r, w.prepared, w.scene.camera, kWidth, kHeight, *w.source, "frame_bench");
+  }
+  return *r;
+}
+
 void BM_EqualPsnr(benchmark::State& state) {
   WarmScene& w = warm_scene(state);
   const soltex::Image& truth = ground_truth(w);
   const auto k = static_cast<int>(state.range(2));
+  const auto grid = static_cast<int>(state.range(3));
+  soltex::FrameRenderer& renderer =
+      grid > 0 ? edge_renderer(w, static_cast<int>(state.range(0)), grid) : *w.renderer;
   soltex::Image image;
+  std::size_t edge_pixels = 0;
   for (auto _ : state) {
     if (k == 0) {
-      soltex::Frame frame = w.renderer->render(w.prepared, w.scene.camera, kWidth, kHeight);
+      soltex::Frame frame = renderer.render(w.prepared, w.scene.camera, kWidth, kHeight);
       if (!frame.complete()) state.SkipWithError("warm frame missed a brick");
       image = std::move(frame.image);
+      edge_pixels = frame.stats.edge_pixels;
     } else {
       image = w.renderer->render_reference(w.prepared, w.scene.camera, kWidth, kHeight, k);
     }
     benchmark::DoNotOptimize(image.rgb.data());
   }
   state.counters["psnr_8x8_db"] = soltex::psnr(image, truth);
+  if (grid > 0) state.counters["edge_pixels"] = static_cast<double>(edge_pixels);
 }
 
 // Wall time per frame, with the whole process's CPU (all render threads) beside it.
@@ -424,11 +446,14 @@ BENCHMARK(BM_TexturePass)
     ->Args({2, 1, 2})
     ->Unit(benchmark::kMillisecond);  // one thread: its CPU time, steadier than wall time here
 BENCHMARK(BM_EqualPsnr)
-    ->Args({2, 1, 0})
-    ->Args({2, 1, 1})
-    ->Args({2, 1, 2})
-    ->Args({2, 1, 3})
-    ->Args({2, 1, 4})
+    ->Args({2, 1, 0, 0})
+    ->Args({2, 1, 0, 2})
+    ->Args({2, 1, 0, 3})
+    ->Args({2, 1, 0, 4})
+    ->Args({2, 1, 1, 0})
+    ->Args({2, 1, 2, 0})
+    ->Args({2, 1, 3, 0})
+    ->Args({2, 1, 4, 0})
     ->Apply(wall_and_process_cpu_ms);
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cap_tracer.h"
+#include "edge_sampler.h"
 #include "object_frame.h"
 #include "screen_triangle.h"
 #include "tile_rasterizer.h"
@@ -30,6 +31,7 @@ namespace soltex {
 
 using raster_internal::AffineForm;
 using raster_internal::CapTracer;
+using raster_internal::EdgeSampler;
 using raster_internal::kTileSize;
 using raster_internal::ObjectFrame;
 using raster_internal::ScreenTriangle;
@@ -147,6 +149,7 @@ struct Rasterizer::Impl {
       tiles.push_back(std::make_unique<TileRasterizer>());
     }
     worker_stats.resize(static_cast<std::size_t>(pool.thread_count()));
+    edge_samplers.resize(static_cast<std::size_t>(pool.thread_count()));
     tile_targets.resize(static_cast<std::size_t>(pool.thread_count()));
     for (GBuffer& tile : tile_targets) tile.resize(kTileSize, kTileSize, false);
     // Resolved from a tile with nothing drawn, so it holds exactly what resolving writes there.
@@ -170,6 +173,12 @@ struct Rasterizer::Impl {
   // What render_tiles() hands over for a tile no triangle touches (most of a frame around a
   // single object): nothing to draw or resolve there.
   GBuffer empty_tile;
+  // The last frame's tiling, chunks in use and caps, for sample_edges().
+  TileGrid grid;
+  std::size_t chunk_count = 0;
+  int width = 0, height = 0;
+  std::optional<CapTracer> caps;
+  std::vector<std::unique_ptr<EdgeSampler>> edge_samplers;  // per thread, each made when asked
 };
 
 static_assert(Rasterizer::kTileSize == kTileSize);
@@ -268,9 +277,14 @@ RasterStats Rasterizer::draw(const RasterView& view, std::span<const RasterObjec
   });
 
   // 3. Tiles.
-  const std::optional<CapTracer> caps =
-      plane_count > 0 ? std::optional<CapTracer>(std::in_place, view) : std::nullopt;
+  impl.caps.reset();
+  if (plane_count > 0) impl.caps.emplace(view);
+  const std::optional<CapTracer>& caps = impl.caps;
   const TileFrame tile_frame{impl.objects, caps ? &*caps : nullptr};
+  impl.grid = grid;
+  impl.chunk_count = chunk_count;
+  impl.width = view.width;
+  impl.height = view.height;
   uint32_t* coverage = frame_target == nullptr || frame_target->coverage_count.empty()
                            ? nullptr
                            : frame_target->coverage_count.data();
@@ -320,6 +334,38 @@ RasterStats Rasterizer::draw(const RasterView& view, std::span<const RasterObjec
   for (std::size_t c = 0; c < chunk_count; ++c) total += impl.chunks[c].stats;
   for (const RasterStats& stats : impl.worker_stats) total += stats;
   return total;
+}
+
+void Rasterizer::sample_edges(int x0, int y0, std::span<const glm::ivec2> pixels, int grid,
+                              int worker, EdgeSurfaces& out) {
+  Impl& impl = *impl_;
+  if (x0 < 0 || y0 < 0 || x0 % kTileSize != 0 || y0 % kTileSize != 0 || x0 >= impl.width ||
+      y0 >= impl.height) {
+    throw std::invalid_argument("sample_edges: (" + std::to_string(x0) + ", " + std::to_string(y0) +
+                                ") is not a tile corner of the last frame");
+  }
+  if (worker < 0 || worker >= impl.pool.thread_count() ||
+      !impl.tiles[static_cast<std::size_t>(worker)]->began_at(x0, y0)) {
+    throw std::invalid_argument("sample_edges: render thread " + std::to_string(worker) +
+                                " did not just draw the tile at (" + std::to_string(x0) + ", " +
+                                std::to_string(y0) + ")");
+  }
+  auto& sampler = impl.edge_samplers[static_cast<std::size_t>(worker)];
+  if (!sampler) sampler = std::make_unique<EdgeSampler>();
+  const int x1 = std::min(impl.width, x0 + kTileSize), y1 = std::min(impl.height, y0 + kTileSize);
+  sampler->begin(x0, y0, x1, y1, pixels, grid);
+  const auto tile = static_cast<std::size_t>((y0 / kTileSize) * impl.grid.columns + x0 / kTileSize);
+  for (std::size_t c = 0; c < impl.chunk_count; ++c) {
+    const SetupChunk& chunk = impl.chunks[c];
+    const uint32_t end = chunk.bin_start[tile + 1];
+    for (uint32_t k = chunk.bin_start[tile]; k < end; ++k) {
+      if (k + kPrefetchAhead < end) {
+        __builtin_prefetch(&chunk.triangles[chunk.bin_items[k + kPrefetchAhead]]);
+      }
+      sampler->draw(chunk.triangles[chunk.bin_items[k]], chunk.clip_forms);
+    }
+  }
+  sampler->resolve(TileFrame{impl.objects, impl.caps ? &*impl.caps : nullptr}, out);
 }
 
 }  // namespace soltex

@@ -43,6 +43,9 @@ class TileRasterizer {
   void resolve(const TileFrame& frame, GBuffer& target, int origin_x, int origin_y,
                RasterStats& stats) const;
 
+  // Whether the tile drawn last starts at pixel (x0, y0).
+  bool began_at(int x0, int y0) const { return x0_ == x0 && y0_ == y0; }
+
  private:
   void draw_unclipped(const ScreenTriangle& t, int first_x, int last_x, int first_y, int last_y,
                       std::array<int64_t, 3> row, const std::array<int64_t, 3>& step_x,

@@ -6,8 +6,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/matrix.hpp>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <unordered_map>
 
+#include "edge_antialiasing.h"
 #include "mesh_for_view.h"
 #include "soltex/common/overloaded.h"
 #include "soltex/common/texture_evaluator.h"
@@ -115,7 +118,13 @@ glm::dmat4 view_projection(const Camera& camera, int width, int height) {
 }
 
 FrameRenderer::FrameRenderer(BrickCache& cache, RenderOptions options)
-    : cache_(cache), options_(options), rasterizer_(RasterOptions{options.threads, false}) {}
+    : cache_(cache), options_(options), rasterizer_(RasterOptions{options.threads, false}) {
+  if (options.edge_antialias < 0 || options.edge_antialias > kMaxEdgeGrid) {
+    throw std::invalid_argument("RenderOptions::edge_antialias must be 0 (off) to " +
+                                std::to_string(kMaxEdgeGrid) + ", got " +
+                                std::to_string(options.edge_antialias));
+  }
+}
 
 void FrameRenderer::prepare_readers(const PreparedScene& scene) {
   const auto threads = static_cast<std::size_t>(rasterizer_.thread_count());
@@ -197,6 +206,13 @@ Frame FrameRenderer::render_pixels(const PreparedScene& scene, const Camera& cam
       scene, render::SurfaceUnprojection{glm::inverse(vp), camera.position, width, height},
       options);
   std::vector<std::unique_ptr<render::TileShader>> shaders = tile_shaders(shading);
+  render::EdgeAntialiasing* edges = nullptr;
+  if (options.edge_antialias > 0) {
+    if (!edges_) edges_ = std::make_shared<render::EdgeAntialiasing>();
+    edges = edges_.get();
+    edges->begin_frame(width, height, camera.near, camera.far, options.edge_antialias,
+                       rasterizer_.thread_count());
+  }
   const auto shade_raster_tile = [&](const GBuffer& g, int origin_x, int origin_y, int x0, int y0,
                                      int x1, int y1, int worker_index) {
     render::TileShader& shader = *shaders[static_cast<std::size_t>(worker_index)];
@@ -207,6 +223,10 @@ Frame FrameRenderer::render_pixels(const PreparedScene& scene, const Camera& cam
         shader.shade(g, origin_x, origin_y, tx, ty, std::min(x1, tx + kTile),
                      std::min(y1, ty + kTile), frame.image);
       }
+    }
+    if (edges != nullptr) {
+      edges->antialias_tile(rasterizer_, shader, g, origin_x, origin_y, x0, y0, x1, y1,
+                            worker_index, frame.image);
     }
     shader.counts().shading += Clock::now() - shade_start;
   };
@@ -222,6 +242,7 @@ Frame FrameRenderer::render_pixels(const PreparedScene& scene, const Camera& cam
           shade_raster_tile(tile, x0, y0, x0, y0, x1, y1, worker_index);
         });
   }
+  if (edges != nullptr) frame.stats.edge_pixels = edges->blended();
   gather(shaders, frame);
   for (const render::ObjectShading& object : shading.objects) {
     ++(object.evaluator != nullptr ? frame.stats.evaluated_objects : frame.stats.cached_objects);

@@ -65,6 +65,26 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
   if (lit_.batch.count > 0) flush(image);
 }
 
+void TileShader::shade_pixels(const GBuffer& g, int origin_x, int origin_y,
+                              std::span<const glm::ivec2> pixels, Image& image) {
+  gbuffer_ = &g;
+  for (const glm::ivec2& at : pixels) {
+    const Pixel pixel{at.x, at.y, g.index(at.x - origin_x, at.y - origin_y)};
+    const uint32_t id = g.object_id[pixel.index];
+    if (!g.covered(pixel.index) || id >= frame_.objects.size()) continue;
+    ++counts_.covered;
+    const ObjectShading& object = frame_.objects[id];
+    if (object.evaluator != nullptr) {
+      shade_evaluated(g, pixel, object, image);
+    } else {
+      shade_cached(g, pixel, object, *samplers_[id], image);
+    }
+  }
+  if (cached_.pending != 0) look_up_all(image);
+  if (evaluated_.count > 0) evaluate(image);
+  if (lit_.batch.count > 0) flush(image);
+}
+
 void TileShader::shade_evaluated(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
                                  Image& image) {
   ++counts_.evaluated;

@@ -3,7 +3,9 @@
 #include <array>
 #include <chrono>
 #include <cstddef>
+#include <glm/vec2.hpp>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "lit_pixels.h"
@@ -64,6 +66,11 @@ class TileShader {
   // pixel (x, y) at g.index(x - origin_x, y - origin_y), into `image`.
   void shade(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
              Image& image);
+
+  // The same for the listed pixels alone (frame positions, any order), each covered in `g`;
+  // no other pixel of `image` is written.
+  void shade_pixels(const GBuffer& g, int origin_x, int origin_y,
+                    std::span<const glm::ivec2> pixels, Image& image);
 
   MissTally& misses() { return misses_; }
   const TileCounts& counts() const { return counts_; }

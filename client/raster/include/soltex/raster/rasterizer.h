@@ -2,9 +2,11 @@
 
 #include <cstddef>
 #include <functional>
+#include <glm/vec2.hpp>
 #include <memory>
 #include <span>
 
+#include "soltex/raster/edge_surfaces.h"
 #include "soltex/raster/gbuffer.h"
 #include "soltex/raster/raster_object.h"
 #include "soltex/raster/raster_stats.h"
@@ -72,6 +74,16 @@ class Rasterizer {
       std::function<void(const GBuffer& tile, int x0, int y0, int x1, int y1, int worker)>;
   RasterStats render_tiles(const RasterView& view, std::span<const RasterObject> objects,
                            const TileGBufferCallback& tile_done);
+
+  // Edge anti-aliasing, from a render's tile callback (after_tile or tile_done), for the tile
+  // just handed over and on the thread it names (`worker`), for a tile some triangle reached:
+  // grid x grid samples (1..kMaxEdgeGrid per axis) of `pixels` (frame positions inside that
+  // tile, each once) drawn again from the triangles nearest at the centres of each pixel and
+  // its neighbours, and grouped by the surface they see (EdgeSurfaces). Throws
+  // std::invalid_argument for a tile that is not the worker's last, a pixel outside it, or a
+  // grid out of range.
+  void sample_edges(int x0, int y0, std::span<const glm::ivec2> pixels, int grid, int worker,
+                    EdgeSurfaces& out);
 
   // Runs task(index, worker) for every index in [0, count) on the render threads (the
   // caller's included; worker in [0, thread_count()) names the thread, for per-thread state),

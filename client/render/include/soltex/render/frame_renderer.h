@@ -18,6 +18,7 @@ namespace render {
 struct FrameShading;
 struct SurfaceUnprojection;
 class TileShader;
+class EdgeAntialiasing;
 }  // namespace render
 class TextureEvaluator;
 
@@ -46,6 +47,11 @@ struct RenderOptions {
   // textures anti-aliased by supersampling, each sub-pixel textured at its own level, at about
   // antialias^2 times the frame's raster and shading work.
   int antialias = 1;
+  // Edge anti-aliasing: 0 off, else N (2..8): the pixels beside a change of surface or a
+  // break in depth (silhouettes, object and clip edges; a few percent of the covered pixels)
+  // get N x N coverage samples, each surface they see is shaded once, and the pixel is their
+  // coverage-weighted average. Everything else is shaded once, as without it.
+  int edge_antialias = 0;
   // Keep the whole frame's G-buffer for last_gbuffer() (tests, tools). Off, each tile is
   // shaded from a tile-sized G-buffer as soon as it is rasterized, and no frame-sized one is
   // written, read back, or (on the first frame) faulted in.
@@ -63,6 +69,7 @@ struct FrameStats {
   std::size_t empty_pixels = 0;      // nothing resident at all yet
   std::size_t shaded_pixels = 0;     // lit (not unlit materials)
   std::size_t evaluated_pixels = 0;  // textures evaluated per pixel, not looked up
+  std::size_t edge_pixels = 0;       // blended from coverage samples (edge_antialias)
   // Objects whose texture this frame evaluated per pixel (and fetched no bricks for), and
   // objects whose texture it looked up in the brick cache (RenderOptions::access).
   std::size_t evaluated_objects = 0;
@@ -125,7 +132,8 @@ class FrameRenderer {
   Image reference_image_;
   std::vector<std::vector<std::unique_ptr<TextureSampler>>> samplers_;  // [thread][object]
   std::vector<std::unique_ptr<TextureEvaluator>> evaluators_;           // [object]
-  std::vector<uint64_t> sampler_textures_;  // the textures samplers_ was made for
+  std::vector<uint64_t> sampler_textures_;           // the textures samplers_ was made for
+  std::shared_ptr<render::EdgeAntialiasing> edges_;  // made on the first edge-anti-aliased frame
 };
 
 // Camera matrices shared by the renderer and tools.
