@@ -65,7 +65,7 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
   if (lit_.batch.count > 0) flush(image);
 }
 
-void TileShader::shade_evaluated(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
+void TileShader::shade_evaluated(const GBuffer& g, Pixel pixel, const ObjectShading& object,
                                  Image& image) {
   ++counts_.evaluated;
   if (frame_.options.false_colour_levels) {
@@ -97,7 +97,7 @@ void TileShader::evaluate(Image& image) {
   }
 }
 
-void TileShader::shade_cached(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
+void TileShader::shade_cached(const GBuffer& g, Pixel pixel, const ObjectShading& object,
                               TextureSampler& sampler, Image& image) {
   const RenderOptions& options = frame_.options;
   const float footprint = g.footprint[pixel.index];
@@ -125,7 +125,7 @@ void TileShader::shade_cached(const GBuffer& g, const Pixel& pixel, const Object
   shade_values(pixel, object.material, result.values.data(), image);
 }
 
-void TileShader::add_cached(const Pixel& pixel, const glm::dvec3& p, int level,
+void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
                             const ObjectShading& object, TextureSampler& sampler, Image& image) {
   if (cached_.pending != 0 && cached_.object != &object) look_up_all(image);
   cached_.object = &object;
@@ -170,7 +170,7 @@ void TileShader::look_up_all(Image& image) {
   while (cached_.pending != 0) look_up(std::countr_zero(cached_.pending), image);
 }
 
-void TileShader::shade_values(const Pixel& pixel, const MaterialInputs& m, const float* values,
+void TileShader::shade_values(Pixel pixel, const MaterialInputs& m, const float* values,
                               Image& image) {
   const SurfaceInputs surface = m.read(values);
   if (m.unlit) {
