@@ -239,7 +239,11 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
   const auto width = static_cast<std::ptrdiff_t>(gbuffer.width);
   uint64_t covered = 0, cap_rays = 0, caps = 0;
   SurfaceBatch surfaces;
+  static_assert(CapRayRows::kColumns >= kTileSize + 1);
+  CapRayRows rays;
+  if (frame.caps != nullptr) rays.begin(x0_, y0_);
   for (int y = y0_; y < y1_; ++y) {
+    if (frame.caps != nullptr && y > y0_) rays.next_row();
     // Where pixel (0, y) would be in the target: x is added below (x >= origin_x).
     const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(y - origin_y) * width - origin_x;
     const ScreenTriangle* const* winners = winner_.data() + (y - y0_) * kTileSize;  // from x0_
@@ -262,7 +266,7 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
       if (object != nullptr && winner->back_face && object->source->closed) {
         ++cap_rays;
         if (const std::optional<CapSample> cap = frame.caps->trace(
-                x, y, object->texture_from_world, object->source->clip_plane_mask)) {
+                x, y, object->texture_from_world, object->source->clip_plane_mask, rays)) {
           ++caps;
           target.depth[i] = cap->depth;
           target.flags[i] = GBuffer::kCovered | GBuffer::kCap;
