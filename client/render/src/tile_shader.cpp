@@ -37,6 +37,23 @@ const std::array<uint8_t, 3 * TileShader::kTile>& background_row() {
 
 }  // namespace
 
+// Inline: shade() calls it for most pixels of a frame.
+inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
+                                   const ObjectShading& object, TextureSampler& sampler,
+                                   Image& image) {
+  if (cached_.pending != 0 && cached_.object != &object) look_up_all(image);
+  cached_.object = &object;
+  cached_.sampler = &sampler;
+  const auto l = static_cast<std::size_t>(level);
+  SOLTEX_DCHECK(l < CachedPixels::kLevels);
+  CachedPixels::Group& group = cached_.groups[l];
+  group.pixels[group.count] = pixel;
+  group.points[group.count] = p;
+  ++group.count;
+  cached_.pending |= 1u << l;
+  if (group.count == CachedPixels::kCapacity) look_up(level, image);
+}
+
 void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
                        Image& image) {
   assert(x1 - x0 <= kTile);
@@ -55,6 +72,12 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
       const ObjectShading& object = frame_.objects[id];
       if (object.evaluator != nullptr) {
         shade_evaluated(g, pixel, object, image);
+      } else if (object.rgb_fast_path && object.cached_inset == 0.0) {
+        // shade_cached()'s fast path without its calls: the level from the table (the fast
+        // path has one), the point where the surface was drawn.
+        add_cached(pixel, g.texture_position[pixel.index],
+                   object.level_table.level(g.footprint[pixel.index]), object, *samplers_[id],
+                   image);
       } else {
         shade_cached(g, pixel, object, *samplers_[id], image);
       }
@@ -123,21 +146,6 @@ void TileShader::shade_cached(const GBuffer& g, Pixel pixel, const ObjectShading
     return;
   }
   shade_values(pixel, object.material, result.values.data(), image);
-}
-
-void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
-                            const ObjectShading& object, TextureSampler& sampler, Image& image) {
-  if (cached_.pending != 0 && cached_.object != &object) look_up_all(image);
-  cached_.object = &object;
-  cached_.sampler = &sampler;
-  const auto l = static_cast<std::size_t>(level);
-  SOLTEX_DCHECK(l < CachedPixels::kLevels);
-  CachedPixels::Group& group = cached_.groups[l];
-  group.pixels[group.count] = pixel;
-  group.points[group.count] = p;
-  ++group.count;
-  cached_.pending |= 1u << l;
-  if (group.count == CachedPixels::kCapacity) look_up(level, image);
 }
 
 void TileShader::look_up(int level, Image& image) {
