@@ -6,6 +6,7 @@
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 #include <limits>
+#include <optional>
 
 #include "saturating_cast.h"
 
@@ -38,6 +39,9 @@ CapTracer::CapTracer(const RasterView& view)
       world_from_clip_(glm::inverse(glm::dmat4(view.view_projection))),
       plane_count_(view.clip_planes.size()) {
   std::copy(view.clip_planes.begin(), view.clip_planes.end(), planes_.begin());
+  for (std::size_t j = 0; j < plane_count_; ++j) {
+    cap_normals_[j] = glm::vec3(-glm::normalize(glm::dvec3(planes_[j])));
+  }
 }
 
 CapTracer::Ray CapTracer::ray_through(double pixel_x, double pixel_y) const {
@@ -78,9 +82,9 @@ const CapTracer::Ray& CapTracer::ray_at(int x, int y, CapRayRows& rows) const {
   return ray;
 }
 
-std::optional<CapSample> CapTracer::trace(int x, int y, const glm::dmat4& texture_from_world,
-                                          uint32_t plane_mask, CapRayRows& rows) const {
-  const Ray ray = ray_at(x, y, rows);
+bool CapTracer::trace(int x, int y, const glm::dmat4& texture_from_world, uint32_t plane_mask,
+                      CapRayRows& rows, CapSample& sample) const {
+  const Ray& ray = ray_at(x, y, rows);
   double entry = 0.0;
   std::size_t entry_plane = plane_count_;
   for (std::size_t j = 0; j < plane_count_; ++j) {
@@ -88,23 +92,22 @@ std::optional<CapSample> CapTracer::trace(int x, int y, const glm::dmat4& textur
     const double start = signed_distance(planes_[j], ray.origin);
     if (start >= 0.0) continue;  // starts on the kept side: no entry through this plane
     const double along = glm::dot(glm::dvec3(planes_[j]), ray.direction);
-    if (!(along > 0.0)) return std::nullopt;  // never reaches the kept side
+    if (!(along > 0.0)) return false;  // never reaches the kept side
     const double t = -start / along;
     if (t > entry) {
       entry = t;
       entry_plane = j;
     }
   }
-  if (entry_plane == plane_count_ || !std::isfinite(entry)) return std::nullopt;
+  if (entry_plane == plane_count_ || !std::isfinite(entry)) return false;
 
   const glm::dvec4& plane = planes_[entry_plane];
   const glm::dvec3 point = ray.origin + entry * ray.direction;
   const glm::dvec4 clip = clip_from_world_ * glm::dvec4(point, 1.0);
   const glm::dmat3 texture_linear(texture_from_world);
 
-  CapSample sample;
   sample.texture_position = glm::dvec3(texture_from_world * glm::dvec4(point, 1.0));
-  sample.normal = glm::vec3(-glm::normalize(glm::dvec3(plane)));
+  sample.normal = cap_normals_[entry_plane];
   sample.depth = to_float_saturated(clip.z / clip.w * 0.5 + 0.5);
   // The same plane seen through the next pixel to the right and the next one down.
   double footprint = 0.0;
@@ -114,7 +117,7 @@ std::optional<CapSample> CapTracer::trace(int x, int y, const glm::dmat4& textur
     footprint = std::max(footprint, hit ? glm::length(texture_linear * (*hit - point)) : kInfinity);
   }
   sample.footprint = to_footprint(footprint);
-  return sample;
+  return true;
 }
 
 }  // namespace soltex::raster_internal

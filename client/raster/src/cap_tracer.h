@@ -6,7 +6,6 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
-#include <optional>
 #include <span>
 
 #include "soltex/raster/raster_view.h"
@@ -58,12 +57,13 @@ class CapTracer {
  public:
   explicit CapTracer(const RasterView& view);
 
-  // The cap seen through pixel (x, y) of an object whose texture space is texture_from_world,
-  // or nothing when the pixel's ray does not enter the kept region in front of the camera.
+  // Writes the cap seen through pixel (x, y) of an object whose texture space is
+  // texture_from_world to `sample` and returns true, or returns false (`sample` left partly
+  // written) when the pixel's ray does not enter the kept region in front of the camera.
   // `rows`: begun at the tile's first column and at row y; pixel x + 1 of the row must lie in
   // it.
-  std::optional<CapSample> trace(int x, int y, const glm::dmat4& texture_from_world,
-                                 uint32_t plane_mask, CapRayRows& rows) const;
+  bool trace(int x, int y, const glm::dmat4& texture_from_world, uint32_t plane_mask,
+             CapRayRows& rows, CapSample& sample) const;
 
  private:
   using Ray = CapRay;
@@ -76,6 +76,8 @@ class CapTracer {
   glm::dmat4 clip_from_world_;
   glm::dmat4 world_from_clip_;
   std::array<glm::dvec4, RasterView::kMaxClipPlanes> planes_{};
+  // Per plane: the unit normal out of the kept half-space, as a cap writes it.
+  std::array<glm::vec3, RasterView::kMaxClipPlanes> cap_normals_{};
   std::size_t plane_count_;
 };
 

@@ -265,15 +265,16 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
       const ObjectFrame* object = frame.caps != nullptr ? &frame.objects[winner->object] : nullptr;
       if (object != nullptr && winner->back_face && object->source->closed) {
         ++cap_rays;
-        if (const std::optional<CapSample> cap = frame.caps->trace(
-                x, y, object->texture_from_world, object->source->clip_plane_mask, rays)) {
+        CapSample cap;
+        if (frame.caps->trace(x, y, object->texture_from_world, object->source->clip_plane_mask,
+                              rays, cap)) {
           ++caps;
-          target.depth[i] = cap->depth;
+          target.depth[i] = cap.depth;
           target.flags[i] = GBuffer::kCovered | GBuffer::kCap;
           target.object_id[i] = object->source->object_id;
-          target.texture_position[i] = cap->texture_position;
-          target.normal[i] = cap->normal;
-          target.footprint[i] = cap->footprint;
+          target.texture_position[i] = cap.texture_position;
+          target.normal[i] = cap.normal;
+          target.footprint[i] = cap.footprint;
           continue;
         }
       }
