@@ -19,8 +19,8 @@
 
 #include "tile_rasterizer.h"
 
-#ifndef SOLTEX_TILE_KERNELS_HELPERS
-#define SOLTEX_TILE_KERNELS_HELPERS
+#ifndef SOLTEX_TILE_KERNELS_SHARED
+#define SOLTEX_TILE_KERNELS_SHARED
 namespace soltex::raster_internal::tile_kernels_detail {
 
 constexpr float kFarDepth = 1.0f;
