@@ -177,14 +177,27 @@ namespace render_internal {
 HWY_EXPORT(unproject_target);
 HWY_EXPORT(shade_batch_target);
 
+// Dispatched from this namespace, where the kernels' per-target namespaces are: a build with
+// one target only (-march=native) calls that target's kernel directly by the same name.
+namespace {
+
+void unproject(const render::SurfaceUnprojection& u, const GBuffer& g, render::LitPixels& lit) {
+  HWY_DYNAMIC_DISPATCH(unproject_target)(u, g, lit);
+}
+
+void shade_lanes(const PreparedLights& lights, ShadeBatch& batch) {
+  HWY_DYNAMIC_DISPATCH(shade_batch_target)(lights, batch);
+}
+
+}  // namespace
 }  // namespace render_internal
 
 void render::SurfaceUnprojection::fill(const GBuffer& g, LitPixels& lit) const {
-  HWY_DYNAMIC_DISPATCH(render_internal::unproject_target)(*this, g, lit);
+  render_internal::unproject(*this, g, lit);
 }
 
 void shade_batch(const PreparedLights& lights, ShadeBatch& batch) {
-  HWY_DYNAMIC_DISPATCH(render_internal::shade_batch_target)(lights, batch);
+  render_internal::shade_lanes(lights, batch);
 }
 
 }  // namespace soltex
