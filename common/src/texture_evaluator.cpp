@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "checker_kernel.h"
 #include "pattern_fields.h"
 #include "soltex/common/overloaded.h"
 
@@ -159,11 +160,7 @@ void TextureEvaluator::sample(std::span<const glm::dvec3> points,
               return fields::stripes(s, p, box);
             });
           },
-          [&](const CheckerParams& c) {
-            each([&](const glm::dvec3& p, const glm::dvec3& box) {
-              return fields::checker(c, p, box);
-            });
-          },
+          [&](const CheckerParams& c) { checker_fields(c, points, footprints, out); },
           [&](const ColourCubeParams& c) {
             for (std::size_t i = 0; i < n; ++i) {
               out[i].colour = fields::colour_cube(c, points[i], footprints[i].box);

@@ -6,7 +6,6 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
-#include <optional>
 #include <span>
 
 #include "soltex/raster/raster_view.h"
@@ -28,27 +27,57 @@ struct CapSample {
   float footprint = 0.0f;  // texture-space distance to the neighbouring pixels' cap points
 };
 
+struct CapRay {
+  glm::dvec3 origin;     // on the near plane
+  glm::dvec3 direction;  // towards the far plane
+};
+
+// The rays through the pixel centres of two rows of a tile, y and y + 1, over columns x0 to
+// x0 + kColumns - 1, each traced when first asked for. A cap pixel reads its own ray and those
+// of its right and lower neighbours, which are those neighbours' own rays (the same centre,
+// so the same bits): kept here, a cap region costs about one ray per pixel instead of three.
+class CapRayRows {
+ public:
+  static constexpr int kColumns = 65;  // a tile's 64 and the right neighbour of its last
+
+  // Starts at row y of the tile whose first column is x0, nothing traced.
+  void begin(int x0, int y);
+  // Moves on to row y + 1 (whose traced rays are kept).
+  void next_row();
+
+ private:
+  friend class CapTracer;
+  int x0_ = 0, y_ = 0;
+  int first_ = 0;  // rays_[first_] holds row y_, the other row y_ + 1
+  std::array<std::array<CapRay, kColumns>, 2> rays_;
+  std::array<std::array<bool, kColumns>, 2> traced_{};
+};
+
 class CapTracer {
  public:
   explicit CapTracer(const RasterView& view);
 
-  // The cap seen through pixel (x, y) of an object whose texture space is texture_from_world,
-  // or nothing when the pixel's ray does not enter the kept region in front of the camera.
-  std::optional<CapSample> trace(int x, int y, const glm::dmat4& texture_from_world,
-                                 uint32_t plane_mask = ~0u) const;
+  // Writes the cap seen through pixel (x, y) of an object whose texture space is
+  // texture_from_world to `sample` and returns true, or returns false (`sample` left partly
+  // written) when the pixel's ray does not enter the kept region in front of the camera.
+  // `rows`: begun at the tile's first column and at row y; pixel x + 1 of the row must lie in
+  // it.
+  bool trace(int x, int y, const glm::dmat4& texture_from_world, uint32_t plane_mask,
+             CapRayRows& rows, CapSample& sample) const;
 
  private:
-  struct Ray {
-    glm::dvec3 origin;     // on the near plane
-    glm::dvec3 direction;  // towards the far plane
-  };
+  using Ray = CapRay;
   Ray ray_through(double pixel_x, double pixel_y) const;
+  // The ray through pixel (x, y)'s centre, y the rows' row or the one below.
+  const Ray& ray_at(int x, int y, CapRayRows& rows) const;
 
   int width_;
   int height_;
   glm::dmat4 clip_from_world_;
   glm::dmat4 world_from_clip_;
   std::array<glm::dvec4, RasterView::kMaxClipPlanes> planes_{};
+  // Per plane: the unit normal out of the kept half-space, as a cap writes it.
+  std::array<glm::vec3, RasterView::kMaxClipPlanes> cap_normals_{};
   std::size_t plane_count_;
 };
 

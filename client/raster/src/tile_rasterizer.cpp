@@ -7,6 +7,8 @@
 #include <glm/geometric.hpp>
 #include <limits>
 
+#include "tile_kernels.h"
+
 namespace soltex::raster_internal {
 
 namespace {
@@ -60,10 +62,6 @@ void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) 
   std::fill_n(target.footprint + i, count, 0.0f);
 }
 
-bool finite(float v) {
-  return std::fabs(v) <= std::numeric_limits<float>::max();  // std::isfinite, as a compare
-}
-
 // The winners' attributes at up to kCapacity pixels, perspective-correct: with barycentric
 // weights b (from the exact integer edge functions) and q = 1/w, P = sum(b q P) / sum(b q).
 // Its derivative per pixel step is analytic: dP/dx = (d(sum b q P)/dx - P d(sum b q)/dx) /
@@ -75,7 +73,7 @@ bool finite(float v) {
 // loop across the pixels (vector lanes); every lane does the same IEEE operations in the same
 // order as a pixel-at-a-time loop would, selects standing in for its branches.
 struct SurfaceBatch {
-  static constexpr int kCapacity = 64;
+  static constexpr int kCapacity = SurfaceLanes::kCapacity;
   template <typename T>
   using Lanes = std::array<T, kCapacity>;
 
@@ -85,6 +83,7 @@ struct SurfaceBatch {
   Lanes<int> x, y;
   Lanes<std::size_t> index;
   Lanes<float> depth;
+  SurfaceLanes lanes;
 
   void add(const ScreenTriangle* t, int px, int py, std::size_t i, float z) {
     // The lines past the first (which drawing read) hold what write() gathers.
@@ -105,9 +104,7 @@ struct SurfaceBatch {
     // centre) and edge k's steps, already in float, so that the loop below is float arithmetic
     // alone (no 64-bit products or conversions) and runs in vector lanes; then vertex k's 1/w,
     // texture offset and normal.
-    alignas(64) std::array<Lanes<float>, 3> edge, edge_dy, edge_dx;
-    alignas(64) Lanes<float> area;
-    alignas(64) std::array<Lanes<float>, 3> q, ox, oy, oz, nx, ny, nz;
+    SurfaceLanes& s = lanes;
     for (std::size_t l = 0; l < n; ++l) {
       const ScreenTriangle& t = *triangle[l];
       const int64_t px = pixel_centre(x[l]), py = pixel_centre(y[l]);
@@ -115,83 +112,20 @@ struct SurfaceBatch {
         // Edge k runs from vertex k + 1 to vertex k + 2 (edges_of()).
         const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
         const int64_t ax = t.x[a], ay = t.y[a], bx = t.x[b], by = t.y[b];
-        edge[k][l] = static_cast<float>(edge_function(ax, ay, bx, by, px, py));
-        edge_dy[k][l] = static_cast<float>(by - ay);
-        edge_dx[k][l] = static_cast<float>(bx - ax);
-        q[k][l] = t.inv_w[k];
-        ox[k][l] = t.texture_offset[k].x;
-        oy[k][l] = t.texture_offset[k].y;
-        oz[k][l] = t.texture_offset[k].z;
-        nx[k][l] = t.normal[k].x;
-        ny[k][l] = t.normal[k].y;
-        nz[k][l] = t.normal[k].z;
+        s.edge[k][l] = static_cast<float>(edge_function(ax, ay, bx, by, px, py));
+        s.edge_dy[k][l] = static_cast<float>(by - ay);
+        s.edge_dx[k][l] = static_cast<float>(bx - ax);
+        s.q[k][l] = t.inv_w[k];
+        s.ox[k][l] = t.texture_offset[k].x;
+        s.oy[k][l] = t.texture_offset[k].y;
+        s.oz[k][l] = t.texture_offset[k].z;
+        s.nx[k][l] = t.normal[k].x;
+        s.ny[k][l] = t.normal[k].y;
+        s.nz[k][l] = t.normal[k].z;
       }
-      area[l] = static_cast<float>(t.double_area);
+      s.area[l] = static_cast<float>(t.double_area);
     }
-    alignas(64) Lanes<float> offset_x, offset_y, offset_z, footprint, normal_x, normal_y, normal_z;
-    for (std::size_t l = 0; l < n; ++l) {
-      const float inv_area = 1.0f / area[l];
-      const float step = static_cast<float>(kSubpixelScale) * inv_area;
-      float sum_q = 0.0f, dq_dx = 0.0f, dq_dy = 0.0f;
-      float sx = 0.0f, sy = 0.0f, sz = 0.0f;  // sum b q P
-      float dx_x = 0.0f, dx_y = 0.0f, dx_z = 0.0f, dy_x = 0.0f, dy_y = 0.0f, dy_z = 0.0f;
-      float mx = 0.0f, my = 0.0f, mz = 0.0f;  // sum b q N
-      for (std::size_t k = 0; k < 3; ++k) {
-        const float weight = edge[k][l] * inv_area;
-        const float q_k = q[k][l];
-        const float weight_q = weight * q_k;
-        const float weight_q_dx = -edge_dy[k][l] * step * q_k;
-        const float weight_q_dy = edge_dx[k][l] * step * q_k;
-        sum_q += weight_q;
-        dq_dx += weight_q_dx;
-        dq_dy += weight_q_dy;
-        sx += weight_q * ox[k][l];
-        sy += weight_q * oy[k][l];
-        sz += weight_q * oz[k][l];
-        dx_x += weight_q_dx * ox[k][l];
-        dx_y += weight_q_dx * oy[k][l];
-        dx_z += weight_q_dx * oz[k][l];
-        dy_x += weight_q_dy * ox[k][l];
-        dy_y += weight_q_dy * oy[k][l];
-        dy_z += weight_q_dy * oz[k][l];
-        mx += weight_q * nx[k][l];
-        my += weight_q * ny[k][l];
-        mz += weight_q * nz[k][l];
-      }
-      const bool has_q = (sum_q > 0.0f) & finite(sum_q);
-      const float inv_q = 1.0f / sum_q;
-      const float cx = sx * inv_q, cy = sy * inv_q, cz = sz * inv_q;
-      const float ddx_x = (dx_x - cx * dq_dx) * inv_q;
-      const float ddx_y = (dx_y - cy * dq_dx) * inv_q;
-      const float ddx_z = (dx_z - cz * dq_dx) * inv_q;
-      const float ddy_x = (dy_x - cx * dq_dy) * inv_q;
-      const float ddy_y = (dy_y - cy * dq_dy) * inv_q;
-      const float ddy_z = (dy_z - cz * dq_dy) * inv_q;
-      const float along_x = (ddx_x * ddx_x + ddx_y * ddx_y) + ddx_z * ddx_z;
-      const float along_y = (ddy_x * ddy_x + ddy_y * ddy_y) + ddy_z * ddy_z;
-      const float size = std::sqrt(along_x < along_y ? along_y : along_x);  // std::max
-      // Non-finite offsets only come from absurd inputs: stay at a vertex, never NaN.
-      const bool keep = has_q & finite(cx) & finite(cy) & finite(cz);
-      constexpr float kInfinity = std::numeric_limits<float>::infinity();
-      offset_x[l] = keep ? cx : 0.0f;
-      offset_y[l] = keep ? cy : 0.0f;
-      offset_z[l] = keep ? cz : 0.0f;
-      const float kept_size = keep ? size : kInfinity;
-      footprint[l] = kept_size != kept_size ? kInfinity : kept_size;  // NaN -> +inf
-      // The unit normal: sum b q N normalised, or the first vertex's normal where that has no
-      // length, or +z.
-      const float length = std::sqrt((mx * mx + my * my) + mz * mz);
-      const float fx = nx[0][l], fy = ny[0][l], fz = nz[0][l];
-      const float fallback_length = std::sqrt((fx * fx + fy * fy) + fz * fz);
-      const bool has_sum = (length > 0.0f) & finite(length);
-      const bool has_fallback = fallback_length > 0.0f;
-      const float ux = has_fallback ? fx / fallback_length : 0.0f;
-      const float uy = has_fallback ? fy / fallback_length : 0.0f;
-      const float uz = has_fallback ? fz / fallback_length : 1.0f;
-      normal_x[l] = has_sum ? mx / length : ux;
-      normal_y[l] = has_sum ? my / length : uy;
-      normal_z[l] = has_sum ? mz / length : uz;
-    }
+    interpolate_surfaces(lanes, n);
     for (std::size_t l = 0; l < n; ++l) {
       const ScreenTriangle& t = *triangle[l];
       const std::size_t i = index[l];
@@ -200,9 +134,10 @@ struct SurfaceBatch {
       back_faces += t.back_face ? 1 : 0;
       target.object_id[i] = frame.objects[t.object].source->object_id;
       target.texture_position[i] =
-          t.texture_origin + glm::dvec3(glm::vec3(offset_x[l], offset_y[l], offset_z[l]));
-      target.normal[i] = glm::vec3(normal_x[l], normal_y[l], normal_z[l]);
-      target.footprint[i] = footprint[l];
+          t.texture_origin +
+          glm::dvec3(glm::vec3(lanes.offset_x[l], lanes.offset_y[l], lanes.offset_z[l]));
+      target.normal[i] = glm::vec3(lanes.normal_x[l], lanes.normal_y[l], lanes.normal_z[l]);
+      target.footprint[i] = lanes.footprint[l];
     }
     count = 0;
   }
@@ -246,7 +181,9 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   // Narrow triangles (most of a fine mesh's) stay with the loop below: a vector loop's set-up
   // per row would cost more than the few pixels it covers.
   if (forms == nullptr && coverage == nullptr && last_x - first_x + 1 >= kVectorColumns) {
-    draw_unclipped(t, first_x, last_x, first_y, last_y, row, step_x, step_y, stats);
+    raster_internal::draw_unclipped(
+        t, SpanDraw{first_x, last_x, first_y, last_y, x0_, y0_, row, step_x, step_y}, depth_.data(),
+        winner_.data(), stats);
     return;
   }
   // Counted locally, added once: the counters must not cost a store per fragment.
@@ -296,56 +233,17 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   stats.fragments_clip_discarded += clip_discarded;
 }
 
-void TileRasterizer::draw_unclipped(const ScreenTriangle& t, int first_x, int last_x, int first_y,
-                                    int last_y, std::array<int64_t, 3> row,
-                                    const std::array<int64_t, 3>& step_x,
-                                    const std::array<int64_t, 3>& step_y, RasterStats& stats) {
-  // The loop of draw() without clip forms and coverage counts, written with selects instead
-  // of early exits so that it runs across the row in vector lanes: the same tests (edge
-  // functions, depth, far plane) and the same float depth, so the same fragments win.
-  const float x0 = t.x0_pixels();
-  const float y0 = t.y0_pixels();
-  const float at_vertex0 = t.depth.at_vertex0;
-  const float per_x = t.depth.per_x;
-  const float per_y = t.depth.per_y;
-  const ScreenTriangle* const self = &t;
-  const int count = last_x - first_x + 1;
-  uint64_t rasterized = 0, depth_passed = 0;
-  for (int y = first_y; y <= last_y; ++y) {
-    const float dy = static_cast<float>(y) + 0.5f - y0;
-    const float depth_y = per_y * dy;
-    const auto row_start = static_cast<std::ptrdiff_t>((y - y0_) * kTileSize + (first_x - x0_));
-    float* __restrict depth_row = depth_.data() + row_start;
-    const ScreenTriangle** __restrict winner_row = winner_.data() + row_start;
-    const int64_t r0 = row[0], r1 = row[1], r2 = row[2];
-    const int64_t s0 = step_x[0], s1 = step_x[1], s2 = step_x[2];
-    for (int k = 0; k < count; ++k) {
-      const int64_t e0 = r0 + s0 * k, e1 = r1 + s1 * k, e2 = r2 + s2 * k;
-      const bool inside = (e0 | e1 | e2) >= 0;
-      const float dx = static_cast<float>(first_x + k) + 0.5f - x0;
-      const float depth = (at_vertex0 + per_x * dx) + depth_y;
-      const float old_depth = depth_row[k];
-      const bool pass = inside & (depth < old_depth) & !(depth > kFarDepth);
-      rasterized += inside ? 1 : 0;
-      depth_passed += pass ? 1 : 0;
-      depth_row[k] = pass ? depth : old_depth;
-      winner_row[k] = pass ? self : winner_row[k];
-    }
-    row[0] += step_y[0];
-    row[1] += step_y[1];
-    row[2] += step_y[2];
-  }
-  stats.fragments_rasterized += rasterized;
-  stats.fragments_depth_passed += depth_passed;
-}
-
 void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origin_x, int origin_y,
                              RasterStats& stats) const {
   const GBufferPlanes target(gbuffer);
   const auto width = static_cast<std::ptrdiff_t>(gbuffer.width);
   uint64_t covered = 0, cap_rays = 0, caps = 0;
   SurfaceBatch surfaces;
+  static_assert(CapRayRows::kColumns >= kTileSize + 1);
+  CapRayRows rays;
+  if (frame.caps != nullptr) rays.begin(x0_, y0_);
   for (int y = y0_; y < y1_; ++y) {
+    if (frame.caps != nullptr && y > y0_) rays.next_row();
     // Where pixel (0, y) would be in the target: x is added below (x >= origin_x).
     const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(y - origin_y) * width - origin_x;
     const ScreenTriangle* const* winners = winner_.data() + (y - y0_) * kTileSize;  // from x0_
@@ -367,15 +265,16 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
       const ObjectFrame* object = frame.caps != nullptr ? &frame.objects[winner->object] : nullptr;
       if (object != nullptr && winner->back_face && object->source->closed) {
         ++cap_rays;
-        if (const std::optional<CapSample> cap = frame.caps->trace(
-                x, y, object->texture_from_world, object->source->clip_plane_mask)) {
+        CapSample cap;
+        if (frame.caps->trace(x, y, object->texture_from_world, object->source->clip_plane_mask,
+                              rays, cap)) {
           ++caps;
-          target.depth[i] = cap->depth;
+          target.depth[i] = cap.depth;
           target.flags[i] = GBuffer::kCovered | GBuffer::kCap;
           target.object_id[i] = object->source->object_id;
-          target.texture_position[i] = cap->texture_position;
-          target.normal[i] = cap->normal;
-          target.footprint[i] = cap->footprint;
+          target.texture_position[i] = cap.texture_position;
+          target.normal[i] = cap.normal;
+          target.footprint[i] = cap.footprint;
           continue;
         }
       }

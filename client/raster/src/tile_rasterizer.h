@@ -47,10 +47,6 @@ class TileRasterizer {
   bool began_at(int x0, int y0) const { return x0_ == x0 && y0_ == y0; }
 
  private:
-  void draw_unclipped(const ScreenTriangle& t, int first_x, int last_x, int first_y, int last_y,
-                      std::array<int64_t, 3> row, const std::array<int64_t, 3>& step_x,
-                      const std::array<int64_t, 3>& step_y, RasterStats& stats);
-
   int x0_ = 0, y0_ = 0, x1_ = 0, y1_ = 0;
   std::array<float, kTileSize * kTileSize> depth_{};
   std::array<const ScreenTriangle*, kTileSize * kTileSize> winner_{};

@@ -64,61 +64,10 @@ struct SurfaceUnprojection {
   int width;
   int height;
 
-  void fill(const GBuffer& g, LitPixels& lit) const {
-    ShadeBatch& b = lit.batch;
-    const auto count = static_cast<std::size_t>(b.count);
-    // Gathered first, so that the arithmetic below runs over plain arrays.
-    alignas(64) ShadeBatch::Lanes<float> depth, nx, ny, nz;
-    alignas(64) ShadeBatch::Lanes<uint8_t> back;
-    for (std::size_t l = 0; l < count; ++l) {
-      const std::size_t i = lit.index[l];
-      depth[l] = g.depth[i];
-      nx[l] = g.normal[i].x;
-      ny[l] = g.normal[i].y;
-      nz[l] = g.normal[i].z;
-      back[l] = g.back_face(i) ? 1 : 0;
-    }
-    const glm::dmat4& m = inverse_vp;
-    const double w = width, h = height;
-    for (std::size_t l = 0; l < count; ++l) {
-      const double ndc_x = (lit.x[l] + 0.5) / w * 2.0 - 1.0;
-      const double ndc_y = 1.0 - (lit.y[l] + 0.5) / h * 2.0;
-      const double ndc_z = static_cast<double>(depth[l]) * 2.0 - 1.0;
-      // glm's matrix-vector product: (m0 x + m1 y) + (m2 z + m3 w), with w = 1.
-      const double hx = (m[0].x * ndc_x + m[1].x * ndc_y) + (m[2].x * ndc_z + m[3].x * 1.0);
-      const double hy = (m[0].y * ndc_x + m[1].y * ndc_y) + (m[2].y * ndc_z + m[3].y * 1.0);
-      const double hz = (m[0].z * ndc_x + m[1].z * ndc_y) + (m[2].z * ndc_z + m[3].z * 1.0);
-      const double hw = (m[0].w * ndc_x + m[1].w * ndc_y) + (m[2].w * ndc_z + m[3].w * 1.0);
-      const double rx = hx / hw, ry = hy / hw, rz = hz / hw;
-      b.position_x[l] = eye.x + rx;
-      b.position_y[l] = eye.y + ry;
-      b.position_z[l] = eye.z + rz;
-      const auto vx = static_cast<float>(-rx);
-      const auto vy = static_cast<float>(-ry);
-      const auto vz = static_cast<float>(-rz);
-      const float length = std::sqrt((vx * vx + vy * vy) + vz * vz);
-      // Quotients first, selected after: a division under a condition would keep the loop
-      // scalar (it might trap), a selection does not.
-      const float qx = vx / length, qy = vy / length, qz = vz / length;
-      const bool has_length = length > 0.0f;
-      const float tx = has_length ? qx : 0.0f;
-      const float ty = has_length ? qy : 0.0f;
-      const float tz = has_length ? qz : 1.0f;
-      const float n_length = std::sqrt((nx[l] * nx[l] + ny[l] * ny[l]) + nz[l] * nz[l]);
-      const float mx = nx[l] / n_length, my = ny[l] / n_length, mz = nz[l] / n_length;
-      const bool has_normal = n_length > 0.0f;
-      const float ux = has_normal ? mx : tx;
-      const float uy = has_normal ? my : ty;
-      const float uz = has_normal ? mz : tz;
-      const bool flip = back[l] != 0 || ((ux * tx + uy * ty) + uz * tz) < 0.0f;
-      b.normal_x[l] = flip ? -ux : ux;
-      b.normal_y[l] = flip ? -uy : uy;
-      b.normal_z[l] = flip ? -uz : uz;
-      b.to_viewer_x[l] = tx;
-      b.to_viewer_y[l] = ty;
-      b.to_viewer_z[l] = tz;
-    }
-  }
+  // Writes the batch's position, to_viewer and normal lanes from the G-buffer's depth and
+  // normal at the pixels `lit` holds (lighting_kernels.cpp: runtime-dispatched, every target
+  // the same IEEE operations in the same order, so the same bits).
+  void fill(const GBuffer& g, LitPixels& lit) const;
 };
 
 }  // namespace soltex::render

@@ -37,6 +37,23 @@ const std::array<uint8_t, 3 * TileShader::kTile>& background_row() {
 
 }  // namespace
 
+// Inline: shade() calls it for most pixels of a frame.
+inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
+                                   const ObjectShading& object, TextureSampler& sampler,
+                                   Image& image) {
+  if (cached_.pending != 0 && cached_.object != &object) look_up_all(image);
+  cached_.object = &object;
+  cached_.sampler = &sampler;
+  const auto l = static_cast<std::size_t>(level);
+  SOLTEX_DCHECK(l < CachedPixels::kLevels);
+  CachedPixels::Group& group = cached_.groups[l];
+  group.pixels[group.count] = pixel;
+  group.points[group.count] = p;
+  ++group.count;
+  cached_.pending |= 1u << l;
+  if (group.count == CachedPixels::kCapacity) look_up(level, image);
+}
+
 void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
                        Image& image) {
   assert(x1 - x0 <= kTile);
@@ -55,6 +72,12 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
       const ObjectShading& object = frame_.objects[id];
       if (object.evaluator != nullptr) {
         shade_evaluated(g, pixel, object, image);
+      } else if (object.rgb_fast_path && object.cached_inset == 0.0) {
+        // shade_cached()'s fast path without its calls: the level from the table (the fast
+        // path has one), the point where the surface was drawn.
+        add_cached(pixel, g.texture_position[pixel.index],
+                   object.level_table.level(g.footprint[pixel.index]), object, *samplers_[id],
+                   image);
       } else {
         shade_cached(g, pixel, object, *samplers_[id], image);
       }
@@ -85,7 +108,7 @@ void TileShader::shade_pixels(const GBuffer& g, int origin_x, int origin_y,
   if (lit_.batch.count > 0) flush(image);
 }
 
-void TileShader::shade_evaluated(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
+void TileShader::shade_evaluated(const GBuffer& g, Pixel pixel, const ObjectShading& object,
                                  Image& image) {
   ++counts_.evaluated;
   if (frame_.options.false_colour_levels) {
@@ -117,7 +140,7 @@ void TileShader::evaluate(Image& image) {
   }
 }
 
-void TileShader::shade_cached(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
+void TileShader::shade_cached(const GBuffer& g, Pixel pixel, const ObjectShading& object,
                               TextureSampler& sampler, Image& image) {
   const RenderOptions& options = frame_.options;
   const float footprint = g.footprint[pixel.index];
@@ -143,21 +166,6 @@ void TileShader::shade_cached(const GBuffer& g, const Pixel& pixel, const Object
     return;
   }
   shade_values(pixel, object.material, result.values.data(), image);
-}
-
-void TileShader::add_cached(const Pixel& pixel, const glm::dvec3& p, int level,
-                            const ObjectShading& object, TextureSampler& sampler, Image& image) {
-  if (cached_.pending != 0 && cached_.object != &object) look_up_all(image);
-  cached_.object = &object;
-  cached_.sampler = &sampler;
-  const auto l = static_cast<std::size_t>(level);
-  SOLTEX_DCHECK(l < CachedPixels::kLevels);
-  CachedPixels::Group& group = cached_.groups[l];
-  group.pixels[group.count] = pixel;
-  group.points[group.count] = p;
-  ++group.count;
-  cached_.pending |= 1u << l;
-  if (group.count == CachedPixels::kCapacity) look_up(level, image);
 }
 
 void TileShader::look_up(int level, Image& image) {
@@ -190,7 +198,7 @@ void TileShader::look_up_all(Image& image) {
   while (cached_.pending != 0) look_up(std::countr_zero(cached_.pending), image);
 }
 
-void TileShader::shade_values(const Pixel& pixel, const MaterialInputs& m, const float* values,
+void TileShader::shade_values(Pixel pixel, const MaterialInputs& m, const float* values,
                               Image& image) {
   const SurfaceInputs surface = m.read(values);
   if (m.unlit) {

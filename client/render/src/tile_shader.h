@@ -79,6 +79,8 @@ class TileShader {
   static constexpr int kTile = 32;
 
  private:
+  // Passed by value: 16 bytes travel in two registers, where a reference made the callee
+  // reload it from the caller's stack.
   struct Pixel {
     int x, y;
     std::size_t index;  // in the G-buffer
@@ -111,16 +113,15 @@ class TileShader {
     std::array<Group, kLevels> groups;
     std::array<SampleResult, kCapacity> results;
   };
-  void shade_evaluated(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
-                       Image& image);
-  void add_cached(const Pixel& pixel, const glm::dvec3& p, int level, const ObjectShading& object,
+  void shade_evaluated(const GBuffer& g, Pixel pixel, const ObjectShading& object, Image& image);
+  void add_cached(Pixel pixel, const glm::dvec3& p, int level, const ObjectShading& object,
                   TextureSampler& sampler, Image& image);
   void look_up(int level, Image& image);
   void look_up_all(Image& image);
   void evaluate(Image& image);
-  void shade_cached(const GBuffer& g, const Pixel& pixel, const ObjectShading& object,
+  void shade_cached(const GBuffer& g, Pixel pixel, const ObjectShading& object,
                     TextureSampler& sampler, Image& image);
-  void shade_values(const Pixel& pixel, const MaterialInputs& m, const float* values, Image& image);
+  void shade_values(Pixel pixel, const MaterialInputs& m, const float* values, Image& image);
   void flush(Image& image);
 
   const FrameShading& frame_;

@@ -1,10 +1,14 @@
 // Each lecture texture at hand-computed points, through the public evaluator.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
+#include <vector>
 
+#include "pattern_fields.h"
 #include "soltex/common/texture_evaluator.h"
 
 namespace soltex {
@@ -173,3 +177,41 @@ TEST(AllPatterns, NonFiniteStripesAndCheckersTakeParityZero) {
 
 }  // namespace
 }  // namespace soltex
+
+// TextureEvaluator::sample() reads checkers through a runtime-dispatched batch kernel whose
+// branches are selects: on this CPU's best target it must give fields::checker()'s bits for
+// every point and box, through each of filtered_parity()'s cases (point, filtered, mean,
+// non-finite) and far from the origin.
+TEST(Checker, BatchKernelMatchesTheScalarFieldBitForBit) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<glm::dvec3> points;
+  std::vector<soltex::SampleFootprint> footprints;
+  const double boxes[] = {0.0, 1e-10, 1e-3, 0.07, 0.4, 1.3, 5.0, 2e8, inf, nan, -1.0};
+  const double offsets[] = {0.0, -0.3, 0.61, 1e6 + 0.17, -1e9 - 0.41, 3.999999};
+  for (const double o : offsets) {
+    for (const double b : boxes) {
+      for (int k = 0; k < 7; ++k) {
+        points.emplace_back(o + 0.13 * k, -o + 0.29 * k, 0.5 * o - 0.07 * k);
+        footprints.push_back({b, glm::dvec3(b, 0.5 * b, 2.0 * b)});
+      }
+    }
+  }
+  points.emplace_back(inf, 0.0, 0.0);
+  points.emplace_back(0.0, nan, 0.0);
+  points.emplace_back(0.0, 0.0, -inf);
+  for (int k = 0; k < 3; ++k) footprints.push_back(soltex::SampleFootprint::isotropic(0.1));
+  for (const bool three_d : {false, true}) {
+    soltex::TextureSpec spec;
+    spec.pattern = soltex::CheckerParams{{0.4, 0.25, 0.7}, 0.5, three_d};
+    const soltex::CheckerParams& c = std::get<soltex::CheckerParams>(spec.pattern);
+    const soltex::TextureEvaluator evaluator(spec);
+    std::vector<soltex::Texel> texels(points.size());
+    evaluator.sample(points, footprints, texels);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const float expected = soltex::fields::checker(c, points[i], footprints[i].box);
+      EXPECT_EQ(std::bit_cast<uint32_t>(texels[i].field), std::bit_cast<uint32_t>(expected))
+          << "point " << i << ", three_d " << three_d;
+    }
+  }
+}

@@ -1,0 +1,172 @@
+// Runtime dispatch of the tile's per-pixel loops (tile_kernels.h). Highway compiles this file
+// once per target (hwy/foreach_target.h re-includes it) and HWY_DYNAMIC_DISPATCH calls the
+// widest one the CPU supports, once per triangle drawn into a tile and once per batch of
+// resolved pixels. The loops are plain per-lane code, written with selects rather than
+// branches so that the compiler runs them in vector lanes; a target only widens the lanes
+// (AVX2: 8 floats, AVX-512: 16, against 4 in the baseline build, whose lack of 64-bit vector
+// compares keeps drawing scalar). The same IEEE operations in the same order per lane, and no
+// contraction (-ffp-contract=off holds for every target): the same bits on every target.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "tile_kernels.cpp"
+#include "tile_kernels.h"
+
+#include <hwy/foreach_target.h>  // must come before highway.h
+#include <hwy/highway.h>
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "tile_rasterizer.h"
+
+#ifndef SOLTEX_TILE_KERNELS_SHARED
+#define SOLTEX_TILE_KERNELS_SHARED
+namespace soltex::raster_internal::tile_kernels_detail {
+
+constexpr float kFarDepth = 1.0f;
+
+inline bool finite(float v) {
+  return std::fabs(v) <= std::numeric_limits<float>::max();  // std::isfinite, as a compare
+}
+
+}  // namespace soltex::raster_internal::tile_kernels_detail
+#endif
+
+HWY_BEFORE_NAMESPACE();
+namespace soltex::raster_internal::HWY_NAMESPACE {
+
+using tile_kernels_detail::finite;
+using tile_kernels_detail::kFarDepth;
+
+void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float* depth_plane,
+                           const ScreenTriangle** winner_plane, RasterStats& stats) {
+  // The loop of draw() without clip forms and coverage counts, written with selects instead
+  // of early exits so that it runs across the row in vector lanes: the same tests (edge
+  // functions, depth, far plane) and the same float depth, so the same fragments win.
+  const int first_x = span.first_x, last_x = span.last_x;
+  std::array<int64_t, 3> row = span.row;
+  const std::array<int64_t, 3>& step_x = span.step_x;
+  const std::array<int64_t, 3>& step_y = span.step_y;
+  const float x0 = t.x0_pixels();
+  const float y0 = t.y0_pixels();
+  const float at_vertex0 = t.depth.at_vertex0;
+  const float per_x = t.depth.per_x;
+  const float per_y = t.depth.per_y;
+  const ScreenTriangle* const self = &t;
+  const int count = last_x - first_x + 1;
+  uint64_t rasterized = 0, depth_passed = 0;
+  for (int y = span.first_y; y <= span.last_y; ++y) {
+    const float dy = static_cast<float>(y) + 0.5f - y0;
+    const float depth_y = per_y * dy;
+    const auto row_start =
+        static_cast<std::ptrdiff_t>((y - span.tile_y0) * kTileSize + (first_x - span.tile_x0));
+    float* __restrict depth_row = depth_plane + row_start;
+    const ScreenTriangle** __restrict winner_row = winner_plane + row_start;
+    const int64_t r0 = row[0], r1 = row[1], r2 = row[2];
+    const int64_t s0 = step_x[0], s1 = step_x[1], s2 = step_x[2];
+    for (int k = 0; k < count; ++k) {
+      const int64_t e0 = r0 + s0 * k, e1 = r1 + s1 * k, e2 = r2 + s2 * k;
+      const bool inside = (e0 | e1 | e2) >= 0;
+      const float dx = static_cast<float>(first_x + k) + 0.5f - x0;
+      const float depth = (at_vertex0 + per_x * dx) + depth_y;
+      const float old_depth = depth_row[k];
+      const bool pass = inside & (depth < old_depth) & !(depth > kFarDepth);
+      rasterized += inside ? 1 : 0;
+      depth_passed += pass ? 1 : 0;
+      depth_row[k] = pass ? depth : old_depth;
+      winner_row[k] = pass ? self : winner_row[k];
+    }
+    row[0] += step_y[0];
+    row[1] += step_y[1];
+    row[2] += step_y[2];
+  }
+  stats.fragments_rasterized += rasterized;
+  stats.fragments_depth_passed += depth_passed;
+}
+
+void interpolate_surfaces_target(SurfaceLanes& s, std::size_t count) {
+  for (std::size_t l = 0; l < count; ++l) {
+    const float inv_area = 1.0f / s.area[l];
+    const float step = static_cast<float>(kSubpixelScale) * inv_area;
+    float sum_q = 0.0f, dq_dx = 0.0f, dq_dy = 0.0f;
+    float sx = 0.0f, sy = 0.0f, sz = 0.0f;  // sum b q P
+    float dx_x = 0.0f, dx_y = 0.0f, dx_z = 0.0f, dy_x = 0.0f, dy_y = 0.0f, dy_z = 0.0f;
+    float mx = 0.0f, my = 0.0f, mz = 0.0f;  // sum b q N
+    for (std::size_t k = 0; k < 3; ++k) {
+      const float weight = s.edge[k][l] * inv_area;
+      const float q_k = s.q[k][l];
+      const float weight_q = weight * q_k;
+      const float weight_q_dx = -s.edge_dy[k][l] * step * q_k;
+      const float weight_q_dy = s.edge_dx[k][l] * step * q_k;
+      sum_q += weight_q;
+      dq_dx += weight_q_dx;
+      dq_dy += weight_q_dy;
+      sx += weight_q * s.ox[k][l];
+      sy += weight_q * s.oy[k][l];
+      sz += weight_q * s.oz[k][l];
+      dx_x += weight_q_dx * s.ox[k][l];
+      dx_y += weight_q_dx * s.oy[k][l];
+      dx_z += weight_q_dx * s.oz[k][l];
+      dy_x += weight_q_dy * s.ox[k][l];
+      dy_y += weight_q_dy * s.oy[k][l];
+      dy_z += weight_q_dy * s.oz[k][l];
+      mx += weight_q * s.nx[k][l];
+      my += weight_q * s.ny[k][l];
+      mz += weight_q * s.nz[k][l];
+    }
+    const bool has_q = (sum_q > 0.0f) & finite(sum_q);
+    const float inv_q = 1.0f / sum_q;
+    const float cx = sx * inv_q, cy = sy * inv_q, cz = sz * inv_q;
+    const float ddx_x = (dx_x - cx * dq_dx) * inv_q;
+    const float ddx_y = (dx_y - cy * dq_dx) * inv_q;
+    const float ddx_z = (dx_z - cz * dq_dx) * inv_q;
+    const float ddy_x = (dy_x - cx * dq_dy) * inv_q;
+    const float ddy_y = (dy_y - cy * dq_dy) * inv_q;
+    const float ddy_z = (dy_z - cz * dq_dy) * inv_q;
+    const float along_x = (ddx_x * ddx_x + ddx_y * ddx_y) + ddx_z * ddx_z;
+    const float along_y = (ddy_x * ddy_x + ddy_y * ddy_y) + ddy_z * ddy_z;
+    const float size = std::sqrt(along_x < along_y ? along_y : along_x);  // std::max
+    // Non-finite offsets only come from absurd inputs: stay at a vertex, never NaN.
+    const bool keep = has_q & finite(cx) & finite(cy) & finite(cz);
+    constexpr float kInfinity = std::numeric_limits<float>::infinity();
+    s.offset_x[l] = keep ? cx : 0.0f;
+    s.offset_y[l] = keep ? cy : 0.0f;
+    s.offset_z[l] = keep ? cz : 0.0f;
+    const float kept_size = keep ? size : kInfinity;
+    s.footprint[l] = kept_size != kept_size ? kInfinity : kept_size;  // NaN -> +inf
+    // The unit normal: sum b q N normalised, or the first vertex's normal where that has no
+    // length, or +z.
+    const float length = std::sqrt((mx * mx + my * my) + mz * mz);
+    const float fx = s.nx[0][l], fy = s.ny[0][l], fz = s.nz[0][l];
+    const float fallback_length = std::sqrt((fx * fx + fy * fy) + fz * fz);
+    const bool has_sum = (length > 0.0f) & finite(length);
+    const bool has_fallback = fallback_length > 0.0f;
+    const float ux = has_fallback ? fx / fallback_length : 0.0f;
+    const float uy = has_fallback ? fy / fallback_length : 0.0f;
+    const float uz = has_fallback ? fz / fallback_length : 1.0f;
+    s.normal_x[l] = has_sum ? mx / length : ux;
+    s.normal_y[l] = has_sum ? my / length : uy;
+    s.normal_z[l] = has_sum ? mz / length : uz;
+  }
+}
+
+}  // namespace soltex::raster_internal::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace soltex::raster_internal {
+
+HWY_EXPORT(draw_unclipped_target);
+HWY_EXPORT(interpolate_surfaces_target);
+
+void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
+                    const ScreenTriangle** winner, RasterStats& stats) {
+  HWY_DYNAMIC_DISPATCH(draw_unclipped_target)(t, span, depth, winner, stats);
+}
+
+void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count) {
+  HWY_DYNAMIC_DISPATCH(interpolate_surfaces_target)(lanes, count);
+}
+
+}  // namespace soltex::raster_internal
+#endif

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+
+#include "screen_triangle.h"
+#include "soltex/raster/raster_stats.h"
+
+// The per-pixel loops of drawing and resolving a tile, dispatched at run time to the widest
+// vector target the CPU has (tile_kernels.cpp). Each is plain per-lane arithmetic that the
+// compiler runs in vector lanes; every target does the same operations in the same order per
+// lane, so each gives the same bits (and the same winners) as the baseline build.
+namespace soltex::raster_internal {
+
+// One triangle over rows [first_y, last_y] and columns [first_x, last_x] of a tile whose
+// pixel (tile_x0, tile_y0) is at depth[0] and winner[0] (rows kTileSize apart), without clip
+// forms or coverage counts: a pixel whose centre is inside (edge functions `row` at
+// (first_x, first_y), stepped by step_x and step_y), nearer than the stored depth and not
+// beyond the far plane takes the triangle's depth and becomes its winner.
+struct SpanDraw {
+  int first_x, last_x, first_y, last_y;
+  int tile_x0, tile_y0;
+  std::array<int64_t, 3> row, step_x, step_y;
+};
+void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
+                    const ScreenTriangle** winner, RasterStats& stats);
+
+// The winners' attributes at up to kCapacity pixels, perspective-correct (see
+// SurfaceBatch::write in tile_rasterizer.cpp): the lanes' inputs, gathered from each pixel's
+// triangle, and their results.
+struct SurfaceLanes {
+  static constexpr int kCapacity = 64;
+  template <typename T>
+  using Lanes = std::array<T, kCapacity>;
+
+  // In: vertex k's barycentric numerator at the pixel centre, edge k's steps, the double
+  // area; vertex k's 1/w, texture offset and normal.
+  alignas(64) std::array<Lanes<float>, 3> edge, edge_dy, edge_dx;
+  alignas(64) Lanes<float> area;
+  alignas(64) std::array<Lanes<float>, 3> q, ox, oy, oz, nx, ny, nz;
+  // Out: the texture offset from the triangle's origin, the footprint, the unit normal.
+  alignas(64) Lanes<float> offset_x, offset_y, offset_z, footprint, normal_x, normal_y, normal_z;
+};
+void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count);
+
+}  // namespace soltex::raster_internal
