@@ -325,14 +325,17 @@ void EdgeSampler::resolve(const TileFrame& frame, EdgeSurfaces& out) const {
       const ScreenTriangle& t = *surface.triangle;
       const ObjectFrame& object = frame.objects[t.object];
       if (frame.caps != nullptr && t.back_face && object.source->closed) {
-        if (const std::optional<CapSample> cap = frame.caps->trace(
-                pixel.x, pixel.y, object.texture_from_world, object.source->clip_plane_mask)) {
-          layer.depth[i] = cap->depth;
+        CapRayRows rays;  // this pixel's ray and its right and lower neighbours'
+        rays.begin(pixel.x, pixel.y);
+        CapSample cap;
+        if (frame.caps->trace(pixel.x, pixel.y, object.texture_from_world,
+                              object.source->clip_plane_mask, rays, cap)) {
+          layer.depth[i] = cap.depth;
           layer.flags[i] = GBuffer::kCovered | GBuffer::kCap;
           layer.object_id[i] = object.source->object_id;
-          layer.texture_position[i] = cap->texture_position;
-          layer.normal[i] = cap->normal;
-          layer.footprint[i] = cap->footprint;
+          layer.texture_position[i] = cap.texture_position;
+          layer.normal[i] = cap.normal;
+          layer.footprint[i] = cap.footprint;
           continue;
         }
       }
