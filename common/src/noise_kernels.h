@@ -45,13 +45,13 @@ struct RowRequest {
 // out[i] = fractal_sum(plan, (x[i], y, z)) bit for bit.
 void fractal_row(const RowRequest& request);
 
-// fractal_sum(plan, p) for a gradient-basis plan, one octave per lane, compiled for the build's
-// baseline target and called without run-time dispatch (one point is too small a batch to
-// dispatch per call). The value basis stays scalar: its corner lookups are two dependent table
-// reads per lane, and measured slower as gathers than as scalar loads.
-float gradient_fractal_sum(const OctavePlan& plan, const glm::dvec3& p);
+// fractal_sum(plan, p) at one point, through run-time dispatch: one indirect call per point,
+// next to the 50-100 ns of a few octaves (measured in docs/PERFORMANCE.md, "Generic and native
+// builds"), so that a generic build runs the gradient basis one octave per vector lane and the
+// value basis with its target's rounding instructions, as a -march=native build does.
+float fractal_sum_point(const OctavePlan& plan, const glm::dvec3& p);
 
-// The same through run-time dispatch, so that tests can run it on every target.
+// The gradient basis alone through run-time dispatch, so that tests can run it on every target.
 float gradient_fractal_sum_dispatched(const OctavePlan& plan, const glm::dvec3& p);
 
 // The Highway targets compiled into the kernels (a HWY_TARGETS-style bit mask), for tests that
