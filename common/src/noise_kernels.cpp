@@ -279,7 +279,7 @@ int64_t compiled_targets() {
 }
 
 float fractal_sum_point(const OctavePlan& plan, const glm::dvec3& p) {
-  return HWY_DYNAMIC_DISPATCH(FractalSumKernel)(plan, p);
+  return SOLTEX_POINT_DISPATCH(FractalSumKernel)(plan, p);
 }
 
 float gradient_fractal_sum_dispatched(const OctavePlan& plan, const glm::dvec3& p) {

@@ -16,6 +16,14 @@
 // built that way, so a point needs one index, and adjacent cells share the face between them.
 // Every target executes the scalar path's operations in the scalar path's order, so all give
 // the bits fractal_sum gives.
+// How a single-point entry point calls its kernel, in a file compiled under
+// hwy/foreach_target.h: where the build's own target is already the best one the file compiles
+// (a -march=native build), directly, with nothing to choose; otherwise (the generic build)
+// through run-time dispatch, one indirect call per point.
+#define SOLTEX_POINT_DISPATCH(FUNC)                                                \
+  ((HWY_STATIC_TARGET == (HWY_TARGETS & -HWY_TARGETS)) ? HWY_STATIC_DISPATCH(FUNC) \
+                                                       : HWY_DYNAMIC_DISPATCH(FUNC))
+
 namespace soltex::noise_kernels {
 
 // Every per-point and per-face array is padded to a multiple of this many entries (the widest

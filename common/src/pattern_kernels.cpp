@@ -38,8 +38,11 @@ inline float cube_field(const glm::vec3& c) {
   return (c.r + c.g + c.b) * (1.0f / 3.0f);
 }
 
-void SamplePointsKernel(const PatternSource& source, std::span<const glm::dvec3> points,
-                        std::span<const SampleFootprint> footprints, std::span<Texel> out) {
+// Flattened: the field functions are inline code from headers compiled for the default target;
+// only inlined here are they compiled for this one.
+HWY_FLATTEN void SamplePointsKernel(const PatternSource& source, std::span<const glm::dvec3> points,
+                                    std::span<const SampleFootprint> footprints,
+                                    std::span<Texel> out) {
   const std::size_t n = points.size();
   const TextureSpec& spec = *source.spec;
   const auto each = [&](auto&& field) {
@@ -178,8 +181,9 @@ struct RowFields {
   }
 };
 
-void EvaluateGridKernel(const PatternSource& source, const Grid& grid, const OctavePlan& plan,
-                        const glm::dvec3& box, std::span<float> out) {
+HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& grid,
+                                    const OctavePlan& plan, const glm::dvec3& box,
+                                    std::span<float> out) {
   const TextureSpec& spec = *source.spec;
   const std::size_t n = grid.size();
   const bool is_cube = std::holds_alternative<ColourCubeParams>(spec.pattern);
@@ -243,6 +247,13 @@ HWY_EXPORT(TargetOfKernel);
 void sample_points(const PatternSource& source, std::span<const glm::dvec3> points,
                    std::span<const SampleFootprint> footprints, std::span<Texel> out) {
   HWY_DYNAMIC_DISPATCH(SamplePointsKernel)(source, points, footprints, out);
+}
+
+Texel sample_point(const PatternSource& source, const glm::dvec3& p,
+                   const SampleFootprint& footprint) {
+  Texel texel;
+  SOLTEX_POINT_DISPATCH(SamplePointsKernel)(source, {&p, 1}, {&footprint, 1}, {&texel, 1});
+  return texel;
 }
 
 void evaluate_grid(const PatternSource& source, const Grid& grid, const OctavePlan& plan,

@@ -30,6 +30,11 @@ struct PatternSource {
 void sample_points(const PatternSource& source, std::span<const glm::dvec3> points,
                    std::span<const SampleFootprint> footprints, std::span<Texel> out);
 
+// The same at one point: dispatched per call in a generic build, called directly where the
+// build's own target is the best one compiled (SOLTEX_POINT_DISPATCH in noise_kernels.h).
+Texel sample_point(const PatternSource& source, const glm::dvec3& p,
+                   const SampleFootprint& footprint);
+
 // TextureEvaluator::evaluate_grid's planes for a built-in pattern (sizes checked by the caller):
 // `plan` is the octave plan at the filter width, `box` the hard edges' box.
 void evaluate_grid(const PatternSource& source, const Grid& grid, const OctavePlan& plan,

@@ -113,6 +113,7 @@ Texel TextureEvaluator::sample(const glm::dvec3& p, double filter_width) const {
 }
 
 Texel TextureEvaluator::sample(const glm::dvec3& p, const SampleFootprint& footprint) const {
+  if (!spec_.graph) return pattern_kernels::sample_point(pattern_source(), p, footprint);
   Texel texel;
   sample({&p, 1}, {&footprint, 1}, {&texel, 1});
   return texel;
