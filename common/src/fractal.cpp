@@ -59,33 +59,10 @@ float basis_noise(NoiseBasis basis, const glm::dvec3& t) noexcept {
   return basis == NoiseBasis::value ? value_noise(t) : gradient_noise(t);
 }
 
-namespace {
-
-template <bool kAbsolute>
-float scalar_value_fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept {
-  const NoiseTables& tables = noise_tables();
-  float sum = 0.0f;
-  for (int k = 0; k < plan.count; ++k) {
-    const Octave& octave = plan.octaves[k];
-    if (octave.noise_weight == 0.0f) {
-      sum += octave.mean_term;
-      continue;
-    }
-    float noise = value_noise(tables, p * octave.frequency);
-    if constexpr (kAbsolute) noise = std::fabs(noise);
-    sum += octave.noise_weight * noise + octave.mean_term;
-  }
-  return sum;
-}
-
-}  // namespace
-
-// The gradient basis evaluates one octave per vector lane (noise_kernels.cpp) and adds the
-// terms in octave order, as the loop here does.
+// One octave per vector lane in the gradient basis (noise_kernels.cpp), the terms added in
+// octave order as the loop of value_fractal_sum does; both compiled for the CPU's target.
 float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept {
-  if (plan.basis == NoiseBasis::gradient) return noise_kernels::gradient_fractal_sum(plan, p);
-  return plan.absolute ? scalar_value_fractal_sum<true>(plan, p)
-                       : scalar_value_fractal_sum<false>(plan, p);
+  return noise_kernels::fractal_sum_point(plan, p);
 }
 
 FractalRows::FractalRows(const OctavePlan& plan, std::span<const double> x)

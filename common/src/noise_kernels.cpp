@@ -20,6 +20,7 @@
 #include <cmath>
 #include <vector>
 
+#include "fractal_point-inl.h"
 #include "soltex/common/check.h"
 #include "soltex/common/gradient_noise.h"
 #include "soltex/common/lattice.h"
@@ -33,32 +34,6 @@ using DF = hn::ScalableTag<float>;
 using DI = hn::RebindToSigned<DF>;
 using VF = hn::Vec<DF>;
 using VI = hn::Vec<DI>;
-
-// Mul then Add, never fused: the build forbids contraction so that every target and the
-// scalar path round alike.
-template <class V>
-HWY_INLINE V Lerp(V a, V b, V t) {
-  return hn::Add(a, hn::Mul(t, hn::Sub(b, a)));
-}
-
-// fade(t) = t * t * t * (t * (t * 6 - 15) + 10), in gradient_noise.h's order.
-template <class D, class V = hn::Vec<D>>
-HWY_INLINE V Fade(D df, V t) {
-  const V poly = hn::Add(hn::Mul(t, hn::Sub(hn::Mul(t, hn::Set(df, 6.0f)), hn::Set(df, 15.0f))),
-                         hn::Set(df, 10.0f));
-  return hn::Mul(hn::Mul(hn::Mul(t, t), t), poly);
-}
-
-// detail::gradient_component for a vector of hashes already shifted left by one (2 * h).
-template <class D>
-HWY_INLINE hn::Vec<D> GradientComponent(D df, uint32_t packed,
-                                        hn::Vec<hn::RebindToSigned<D>> twice_h) {
-  const hn::RebindToSigned<D> di;
-  const hn::RebindToUnsigned<D> du;
-  const auto bits =
-      hn::And(hn::Shr(hn::Set(du, packed), hn::BitCast(du, twice_h)), hn::Set(du, 3u));
-  return hn::ConvertTo(df, hn::Sub(hn::BitCast(di, bits), hn::Set(di, 1)));
-}
 
 // table[x + h] for the faces x of one vector (table: NoiseTables::perm or ::value_at). Faces of
 // neighbouring cells are consecutive lattice x values, so the lookups are mostly one contiguous
@@ -102,39 +77,6 @@ void ValueFaces(D df, const NoiseTables& tables, const int32_t* HWY_RESTRICT fac
     const auto b = Lerp(corner(h.h01), corner(h.h11), vy);
     hn::StoreU(Lerp(a, b, vz), df, edge + f);
   }
-}
-
-// The y-z quantities of gradient_row, per lane.
-template <class D>
-struct GradientRowVec {
-  hn::Vec<D> fy0, fy1, fz0, fz1;  // fractions and fractions - 1
-  hn::Vec<D> v, w;                // fade(fy), fade(fz)
-};
-
-// gradient_cell_edges' face from its four corner hashes perm[x + h<dy><dz>] (unmasked):
-// value(fx) = offset + slope * (fx - dx).
-template <class D, class VI = hn::Vec<hn::RebindToSigned<D>>>
-HWY_INLINE void GradientFace(D df, const GradientRowVec<D>& row, VI p00, VI p10, VI p01, VI p11,
-                             hn::Vec<D>& slope, hn::Vec<D>& offset) {
-  const hn::RebindToSigned<D> di;
-  using V = hn::Vec<D>;
-  // (hash & 15) * 2: the shift GradientComponent needs.
-  const auto twice = [&](VI hash) {
-    const VI masked = hn::And(hash, hn::Set(di, 15));
-    return hn::Add(masked, masked);
-  };
-  const VI h00 = twice(p00), h10 = twice(p10), h01 = twice(p01), h11 = twice(p11);
-  const auto gx = [&](VI h2) { return GradientComponent(df, detail::kPackedX, h2); };
-  const auto dot = [&](VI h2, V fy, V fz) {
-    return hn::Add(hn::Mul(GradientComponent(df, detail::kPackedY, h2), fy),
-                   hn::Mul(GradientComponent(df, detail::kPackedZ, h2), fz));
-  };
-  const V s0 = Lerp(gx(h00), gx(h10), row.v);
-  const V s1 = Lerp(gx(h01), gx(h11), row.v);
-  const V o0 = Lerp(dot(h00, row.fy0, row.fz0), dot(h10, row.fy1, row.fz0), row.v);
-  const V o1 = Lerp(dot(h01, row.fy0, row.fz1), dot(h11, row.fy1, row.fz1), row.v);
-  slope = Lerp(s0, s1, row.w);
-  offset = Lerp(o0, o1, row.w);
 }
 
 // gradient_cell_edges' face, one face per lane.
@@ -283,84 +225,12 @@ void FractalRowKernel(const RowRequest& r, float* HWY_RESTRICT acc, float* HWY_R
   std::copy(acc, acc + r.size, r.out);
 }
 
-// ---- One point, one octave per lane ------------------------------------------------------
-//
-// fractal_sum's octaves are independent noise evaluations at one point: lanes of doubles carry
-// the octaves' lattice coordinates, and lanes of floats (as many) their noise.
-
-template <class D64>
-struct SplitVec {
-  hn::Vec<hn::Rebind<int32_t, D64>> cell;
-  hn::Vec<hn::Rebind<float, D64>> frac;
-};
-
-// split_lattice per lane: the same cell and fraction. floor(t) mod 256 comes from
-// whole - 256 * floor(whole / 256), exact in double, so no 64-bit integer conversion is needed.
-template <class D64>
-HWY_INLINE SplitVec<D64> SplitLattice(D64 dd, hn::Vec<D64> t) {
-  t = hn::IfThenElseZero(hn::Lt(hn::Abs(t), hn::Set(dd, 0x1p62)), t);
-  const auto whole = hn::Floor(t);
-  const auto high = hn::Floor(hn::Mul(whole, hn::Set(dd, 1.0 / 256.0)));
-  const auto wrapped = hn::Sub(whole, hn::Mul(hn::Set(dd, 256.0), high));
-  return {hn::DemoteTo(hn::Rebind<int32_t, D64>(), wrapped),
-          hn::DemoteTo(hn::Rebind<float, D64>(), hn::Sub(t, whole))};
-}
-
-// Gradient noise at lattice points (tx, ty, tz), one per lane: gradient_noise's operations.
-template <class D64>
-HWY_INLINE hn::Vec<hn::Rebind<float, D64>> GradientNoise(D64 dd, hn::Vec<D64> tx, hn::Vec<D64> ty,
-                                                         hn::Vec<D64> tz) {
-  using DF32 = hn::Rebind<float, D64>;
-  using DI32 = hn::Rebind<int32_t, D64>;
-  using VI = hn::Vec<DI32>;
-  const DF32 df;
-  const DI32 di;
-  const int32_t* HWY_RESTRICT perm = noise_tables().perm.data();
-  const SplitVec<D64> x = SplitLattice(dd, tx), y = SplitLattice(dd, ty), z = SplitLattice(dd, tz);
-  const auto p = [&](VI cell, VI h) { return hn::GatherIndex(di, perm, hn::Add(cell, h)); };
-  const VI one = hn::Set(di, 1);
-  // row_hashes
-  const VI pz0 = hn::GatherIndex(di, perm, z.cell), pz1 = p(z.cell, one);
-  const VI y1 = hn::Add(y.cell, one);
-  const VI h00 = p(y.cell, pz0), h10 = p(y1, pz0), h01 = p(y.cell, pz1), h11 = p(y1, pz1);
-  const auto one_f = hn::Set(df, 1.0f);
-  const GradientRowVec<DF32> row{y.frac,           hn::Sub(y.frac, one_f),
-                                 z.frac,           hn::Sub(z.frac, one_f),
-                                 Fade(df, y.frac), Fade(df, z.frac)};
-  const VI x1 = hn::Add(x.cell, one);
-  hn::Vec<DF32> slope0, offset0, slope1, offset1;
-  GradientFace(df, row, p(x.cell, h00), p(x.cell, h10), p(x.cell, h01), p(x.cell, h11), slope0,
-               offset0);
-  GradientFace(df, row, p(x1, h00), p(x1, h10), p(x1, h01), p(x1, h11), slope1, offset1);
-  // gradient_cell_finish
-  const auto a0 = hn::Add(offset0, hn::Mul(slope0, x.frac));
-  const auto a1 = hn::Add(offset1, hn::Mul(slope1, hn::Sub(x.frac, one_f)));
-  return Lerp(a0, a1, Fade(df, x.frac));
-}
-
-// fractal_sum in the gradient basis: the octave terms in lanes, then summed in octave order as
-// the definition does.
 float GradientFractalSumKernel(const OctavePlan& plan, const glm::dvec3& point) {
-  using D64 = hn::ScalableTag<double>;
-  const D64 dd;
-  const hn::Rebind<float, D64> df;
-  static_assert(OctavePlan::kLaneRoom >= SpecLimits::kMaxOctaveCount + kPad);
-  HWY_ALIGN float term[OctavePlan::kLaneRoom];
-  const std::size_t count = static_cast<std::size_t>(plan.count);
-  for (std::size_t k = 0; k < count; k += hn::Lanes(dd)) {
-    const auto f = hn::Load(dd, plan.lane_frequency.data() + k);
-    auto noise = GradientNoise(dd, hn::Mul(hn::Set(dd, point.x), f),
-                               hn::Mul(hn::Set(dd, point.y), f), hn::Mul(hn::Set(dd, point.z), f));
-    if (plan.absolute) noise = hn::Abs(noise);
-    const auto w = hn::Load(df, plan.lane_noise_weight.data() + k);
-    const auto m = hn::Load(df, plan.lane_mean_term.data() + k);
-    // octave_term; a faded-out octave adds its mean alone, as fractal_sum's definition says.
-    const auto t = hn::IfThenElse(hn::Eq(w, hn::Zero(df)), m, hn::Add(hn::Mul(w, noise), m));
-    hn::Store(t, df, term + k);
-  }
-  float sum = 0.0f;
-  for (std::size_t k = 0; k < count; ++k) sum += term[k];
-  return sum;
+  return GradientFractalSum(plan, point);
+}
+
+float FractalSumKernel(const OctavePlan& plan, const glm::dvec3& point) {
+  return FractalSumAt(plan, point);
 }
 
 int64_t TargetOfKernel() {
@@ -376,6 +246,7 @@ namespace soltex::noise_kernels {
 HWY_EXPORT(FractalRowKernel);
 HWY_EXPORT(TargetOfKernel);
 HWY_EXPORT(GradientFractalSumKernel);
+HWY_EXPORT(FractalSumKernel);
 
 namespace {
 // Row scratch, reused across calls on the same thread.
@@ -407,9 +278,8 @@ int64_t compiled_targets() {
   return HWY_TARGETS;
 }
 
-float gradient_fractal_sum(const OctavePlan& plan, const glm::dvec3& p) {
-  SOLTEX_DCHECK(plan.basis == NoiseBasis::gradient);
-  return HWY_STATIC_DISPATCH(GradientFractalSumKernel)(plan, p);
+float fractal_sum_point(const OctavePlan& plan, const glm::dvec3& p) {
+  return SOLTEX_POINT_DISPATCH(FractalSumKernel)(plan, p);
 }
 
 float gradient_fractal_sum_dispatched(const OctavePlan& plan, const glm::dvec3& p) {

@@ -16,6 +16,14 @@
 // built that way, so a point needs one index, and adjacent cells share the face between them.
 // Every target executes the scalar path's operations in the scalar path's order, so all give
 // the bits fractal_sum gives.
+// How a single-point entry point calls its kernel, in a file compiled under
+// hwy/foreach_target.h: where the build's own target is already the best one the file compiles
+// (a -march=native build), directly, with nothing to choose; otherwise (the generic build)
+// through run-time dispatch, one indirect call per point.
+#define SOLTEX_POINT_DISPATCH(FUNC)                                                \
+  ((HWY_STATIC_TARGET == (HWY_TARGETS & -HWY_TARGETS)) ? HWY_STATIC_DISPATCH(FUNC) \
+                                                       : HWY_DYNAMIC_DISPATCH(FUNC))
+
 namespace soltex::noise_kernels {
 
 // Every per-point and per-face array is padded to a multiple of this many entries (the widest
@@ -45,13 +53,13 @@ struct RowRequest {
 // out[i] = fractal_sum(plan, (x[i], y, z)) bit for bit.
 void fractal_row(const RowRequest& request);
 
-// fractal_sum(plan, p) for a gradient-basis plan, one octave per lane, compiled for the build's
-// baseline target and called without run-time dispatch (one point is too small a batch to
-// dispatch per call). The value basis stays scalar: its corner lookups are two dependent table
-// reads per lane, and measured slower as gathers than as scalar loads.
-float gradient_fractal_sum(const OctavePlan& plan, const glm::dvec3& p);
+// fractal_sum(plan, p) at one point, through run-time dispatch: one indirect call per point,
+// next to the 50-100 ns of a few octaves (measured in docs/PERFORMANCE.md, "Generic and native
+// builds"), so that a generic build runs the gradient basis one octave per vector lane and the
+// value basis with its target's rounding instructions, as a -march=native build does.
+float fractal_sum_point(const OctavePlan& plan, const glm::dvec3& p);
 
-// The same through run-time dispatch, so that tests can run it on every target.
+// The gradient basis alone through run-time dispatch, so that tests can run it on every target.
 float gradient_fractal_sum_dispatched(const OctavePlan& plan, const glm::dvec3& p);
 
 // The Highway targets compiled into the kernels (a HWY_TARGETS-style bit mask), for tests that

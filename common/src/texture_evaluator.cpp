@@ -5,9 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "checker_kernel.h"
 #include "pattern_fields.h"
-#include "soltex/common/overloaded.h"
+#include "pattern_kernels.h"
 
 namespace soltex {
 namespace {
@@ -32,16 +31,6 @@ glm::dvec2 wood_tilt_z(const Pattern& pattern) {
   }
   return {1.0, 0.0};
 }
-
-inline float cube_field(const glm::vec3& c) {
-  return (c.r + c.g + c.b) * (1.0f / 3.0f);
-}
-
-struct RowScratch {
-  std::vector<double> x;
-  std::vector<float> field;
-  std::vector<glm::vec3> colour;
-};
 
 // Graphs: the field a Texel carries is the graph's opacity output, else its specular output.
 void sample_graph(const GraphField& graph, std::span<const glm::dvec3> points,
@@ -97,14 +86,21 @@ void evaluate_graph_grid(const GraphField& graph, const TextureSpec& spec, const
 }  // namespace
 
 TextureEvaluator::TextureEvaluator(const TextureSpec& spec)
-    : spec_(validated(spec)),
-      point_plan_(plan_for(0.0)),
-      wood_tilt_z_(wood_tilt_z(spec_.pattern)) {}
+    : spec_(validated(spec)), wood_tilt_z_(wood_tilt_z(spec_.pattern)) {
+  FractalParams storage;
+  if (const FractalParams* fractal = fractal_of(spec_.pattern, storage)) {
+    fractal_ = *fractal;
+    has_fractal_ = true;
+  }
+  point_plan_ = plan_for(0.0);
+}
 
 OctavePlan TextureEvaluator::plan_for(double filter_width) const {
-  FractalParams storage;
-  const FractalParams* fractal = fractal_of(spec_.pattern, storage);
-  return fractal ? plan_octaves(*fractal, filter_width) : OctavePlan{};
+  return has_fractal_ ? plan_octaves(fractal_, filter_width) : OctavePlan{};
+}
+
+pattern_kernels::PatternSource TextureEvaluator::pattern_source() const {
+  return {&spec_, has_fractal_ ? &fractal_ : nullptr, &point_plan_, wood_tilt_z_.x, wood_tilt_z_.y};
 }
 
 int TextureEvaluator::evaluated_octaves(double filter_width) const {
@@ -117,6 +113,7 @@ Texel TextureEvaluator::sample(const glm::dvec3& p, double filter_width) const {
 }
 
 Texel TextureEvaluator::sample(const glm::dvec3& p, const SampleFootprint& footprint) const {
+  if (!spec_.graph) return pattern_kernels::sample_point(pattern_source(), p, footprint);
   Texel texel;
   sample({&p, 1}, {&footprint, 1}, {&texel, 1});
   return texel;
@@ -135,69 +132,7 @@ void TextureEvaluator::sample(std::span<const glm::dvec3> points,
     sample_graph(*spec_.graph, points, footprints, out);
     return;
   }
-  const auto each = [&](auto&& field) {
-    for (std::size_t i = 0; i < n; ++i) out[i].field = field(points[i], footprints[i].box);
-  };
-  // Noise: a plan per point of its own width, made where it is used. (Keeping one plan across
-  // a run of equal widths was slower: pixels' widths all differ, and a plan copied in just
-  // before it is read stalls the loads that read it.)
-  const auto each_fractal = [&](auto&& field) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const double w = footprints[i].width;
-      if (w > 0.0) {
-        const OctavePlan plan = plan_for(w);
-        out[i].field = field(plan, points[i], footprints[i].box);
-      } else {
-        out[i].field = field(point_plan_, points[i], footprints[i].box);
-      }
-    }
-  };
-  const fields::WoodFrame frame{wood_tilt_z_.x, wood_tilt_z_.y};
-  std::visit(
-      Overloaded{
-          [&](const StripesParams& s) {
-            each([&](const glm::dvec3& p, const glm::dvec3& box) {
-              return fields::stripes(s, p, box);
-            });
-          },
-          [&](const CheckerParams& c) { checker_fields(c, points, footprints, out); },
-          [&](const ColourCubeParams& c) {
-            for (std::size_t i = 0; i < n; ++i) {
-              out[i].colour = fields::colour_cube(c, points[i], footprints[i].box);
-              out[i].field = cube_field(out[i].colour);
-            }
-          },
-          [&](const RingsParams& r) {
-            each([&](const glm::dvec3& p, const glm::dvec3& box) {
-              return fields::rings(r, p, box);
-            });
-          },
-          [&](const WoodParams& w) {
-            each([&](const glm::dvec3& p, const glm::dvec3& box) {
-              return fields::wood(w, frame, fields::wood_rotation(w, p.y), p, box);
-            });
-          },
-          [&](const NoiseParams&) {
-            each_fractal([&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3&) {
-              return fields::normalise_fractal(plan, fractal_sum(plan, p));
-            });
-          },
-          [&](const TurbulenceParams&) {
-            each_fractal([&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3&) {
-              return fields::normalise_fractal(plan, fractal_sum(plan, p));
-            });
-          },
-          [&](const MarbleParams& m) {
-            each_fractal([&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3& box) {
-              return fields::marble(m, fields::ripple(m, p), fractal_sum(plan, p),
-                                    fields::ripple_width(m, p, box));
-            });
-          },
-      },
-      spec_.pattern);
-  if (!std::holds_alternative<ColourCubeParams>(spec_.pattern)) {
-    for (std::size_t i = 0; i < n; ++i) out[i].colour = spec_.ramp.at(out[i].field);
-  }
+  pattern_kernels::sample_points(pattern_source(), points, footprints, out);
 }
 
 void TextureEvaluator::evaluate_grid(const Grid& grid, double filter_width,
@@ -218,101 +153,9 @@ void TextureEvaluator::evaluate_grid(const Grid& grid, double filter_width,
   }
   const OctavePlan local_plan = filter_width > 0.0 ? plan_for(filter_width) : OctavePlan{};
   const OctavePlan& plan = filter_width > 0.0 ? local_plan : point_plan_;
-  const fields::WoodFrame frame{wood_tilt_z_.x, wood_tilt_z_.y};
   // Hard edges are averaged over the sample spacing on every axis, as sample() does.
   const glm::dvec3 box = SampleFootprint::isotropic(filter_width).box;
-  const bool is_cube = std::holds_alternative<ColourCubeParams>(spec_.pattern);
-
-  thread_local RowScratch scratch;
-  const auto nx = static_cast<std::size_t>(grid.count.x);
-  scratch.x.resize(nx);
-  scratch.field.resize(nx);
-  scratch.colour.resize(nx);
-  // The x coordinates are the same in every row.
-  for (std::size_t i = 0; i < nx; ++i) scratch.x[i] = grid.point(static_cast<int>(i), 0, 0).x;
-  const std::span<const double> xs(scratch.x.data(), nx);
-  float* field = scratch.field.data();
-  glm::vec3* colour = scratch.colour.data();
-
-  std::optional<FractalRows> fractal_rows;
-  if (plan.count > 0) fractal_rows.emplace(plan, xs);
-
-  const auto row_field = [&](double y, double z) {
-    const auto each_point = [&](auto&& fn) {
-      for (std::size_t i = 0; i < nx; ++i) field[i] = fn(glm::dvec3(xs[i], y, z));
-    };
-    std::visit(Overloaded{
-                   [&](const StripesParams& s) {
-                     each_point([&](const glm::dvec3& p) { return fields::stripes(s, p, box); });
-                   },
-                   [&](const CheckerParams& c) {
-                     each_point([&](const glm::dvec3& p) { return fields::checker(c, p, box); });
-                   },
-                   [&](const ColourCubeParams& c) {
-                     for (std::size_t i = 0; i < nx; ++i) {
-                       colour[i] = fields::colour_cube(c, glm::dvec3(xs[i], y, z), box);
-                       field[i] = cube_field(colour[i]);
-                     }
-                   },
-                   [&](const RingsParams& r) {
-                     each_point([&](const glm::dvec3& p) { return fields::rings(r, p, box); });
-                   },
-                   [&](const WoodParams& w) {
-                     const fields::WoodRotation rotation = fields::wood_rotation(w, y);
-                     each_point([&](const glm::dvec3& p) {
-                       return fields::wood(w, frame, rotation, p, box);
-                     });
-                   },
-                   [&](const NoiseParams&) {
-                     fractal_rows->sum(y, z, {field, nx});
-                     for (std::size_t i = 0; i < nx; ++i) {
-                       field[i] = fields::normalise_fractal(plan, field[i]);
-                     }
-                   },
-                   [&](const TurbulenceParams&) {
-                     fractal_rows->sum(y, z, {field, nx});
-                     for (std::size_t i = 0; i < nx; ++i) {
-                       field[i] = fields::normalise_fractal(plan, field[i]);
-                     }
-                   },
-                   [&](const MarbleParams& m) {
-                     fractal_rows->sum(y, z, {field, nx});
-                     for (std::size_t i = 0; i < nx; ++i) {
-                       field[i] =
-                           fields::marble(m, fields::ripple(m, glm::dvec3(xs[i], y, z)), field[i],
-                                          fields::ripple_width(m, glm::dvec3(xs[i], y, z), box));
-                     }
-                   },
-               },
-               spec_.pattern);
-  };
-
-  const ChannelSet& wanted = spec_.channels;
-  std::size_t row_start = 0;
-  for (int k = 0; k < grid.count.z; ++k) {
-    for (int j = 0; j < grid.count.y; ++j, row_start += nx) {
-      const glm::dvec3 row_origin = grid.point(0, j, k);
-      row_field(row_origin.y, row_origin.z);
-      float* plane = out.data() + row_start;
-      if (wanted.colour) {
-        for (std::size_t i = 0; i < nx; ++i) {
-          const glm::vec3 c = is_cube ? colour[i] : spec_.ramp.at(field[i]);
-          plane[i] = c.r;
-          plane[n + i] = c.g;
-          plane[2 * n + i] = c.b;
-        }
-        plane += 3 * n;
-      }
-      for (const auto* range : {wanted.opacity ? &spec_.opacity : nullptr,
-                                wanted.specular ? &spec_.specular : nullptr}) {
-        if (range == nullptr) continue;
-        for (std::size_t i = 0; i < nx; ++i) {
-          plane[i] = range->low + (range->high - range->low) * field[i];
-        }
-        plane += n;
-      }
-    }
-  }
+  pattern_kernels::evaluate_grid(pattern_source(), grid, plan, box, out);
 }
 
 }  // namespace soltex

@@ -134,17 +134,25 @@ void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int le
   if (static_cast<int64_t>(bricks) * bricks * bricks <= INT32_MAX) {
     // The flat brick index in one int32 compares a run in one instruction.
     locate_cells(chunk, n, {brick_shift_, brick_mask_, bricks, 3, y_stride_, z_stride_});
-    int32_t run_brick = -1;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (chunk.brick[i] == run_brick) {
-        ++(run_samples == nullptr ? run_misses : run_hits);
+    // Run by run: find where the brick changes, ask for the brick once, then fill the run's
+    // corners in a loop with nothing else in it.
+    for (std::size_t first = 0; first < n;) {
+      const int32_t run_brick = chunk.brick[first];
+      std::size_t end = first + 1;
+      while (end < n && chunk.brick[end] == run_brick) ++end;
+      const Current* found = resident(level, brick_of(first));
+      const auto repeats = static_cast<uint64_t>(end - first - 1);
+      if (found == nullptr) {
+        std::fill(corners.begin() + static_cast<std::ptrdiff_t>(first),
+                  corners.begin() + static_cast<std::ptrdiff_t>(end), nullptr);
+        run_misses += repeats;
+        missed = true;
       } else {
-        const Current* found = resident(level, brick_of(i));
-        run_brick = chunk.brick[i];
-        run_samples = found == nullptr ? nullptr : found->samples;
+        const uint8_t* samples = found->samples;
+        for (std::size_t i = first; i < end; ++i) corners[i] = samples + chunk.offset[i];
+        run_hits += repeats;
       }
-      corners[i] = run_samples == nullptr ? nullptr : run_samples + chunk.offset[i];
-      missed |= run_samples == nullptr;
+      first = end;
     }
   } else {
     glm::ivec3 run_brick(-1);

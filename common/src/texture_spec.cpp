@@ -171,22 +171,6 @@ const char* texture_kind_name(const TextureSpec& spec) {
   return spec.graph ? "graph" : pattern_name(spec.pattern);
 }
 
-glm::vec3 ColourRamp::at(float t) const noexcept {
-  if (keys.empty()) return glm::vec3(std::clamp(std::isnan(t) ? 0.0f : t, 0.0f, 1.0f));
-  if (!(t > keys.front().position)) return keys.front().colour;  // also NaN
-  // Keys are hit exactly: a two-colour pattern gives its two colours, not a rounding of them.
-  for (std::size_t i = 1; i < keys.size(); ++i) {
-    const RampKey& hi = keys[i];
-    if (t == hi.position) return hi.colour;
-    if (t < hi.position) {
-      const RampKey& lo = keys[i - 1];
-      const float u = (t - lo.position) / (hi.position - lo.position);
-      return lo.colour + u * (hi.colour - lo.colour);
-    }
-  }
-  return keys.back().colour;
-}
-
 ColourRamp default_ramp(const Pattern& pattern) {
   const glm::vec3 yellow{1.0f, 0.85f, 0.1f}, red{0.8f, 0.1f, 0.05f};
   return std::visit(

@@ -116,6 +116,10 @@ TEST(NoiseKernels, EveryTargetMatchesTheScalarPathBitForBit) {
                 ASSERT_TRUE(same_bits(out[i], expected))
                     << "row " << hwy::TargetName(target) << " basis " << int(basis) << " x " << x[i]
                     << " y " << y << " z " << z << ": " << out[i] << " != " << expected;
+                const float any = fractal_sum(plan, p);  // dispatched per point
+                ASSERT_TRUE(same_bits(any, expected))
+                    << "fractal_sum " << hwy::TargetName(target) << " basis " << int(basis) << " x "
+                    << x[i] << " y " << y << " z " << z << ": " << any << " != " << expected;
                 if (basis != NoiseBasis::gradient) continue;
                 const float point = noise_kernels::gradient_fractal_sum_dispatched(plan, p);
                 ASSERT_TRUE(same_bits(point, expected))
@@ -131,7 +135,7 @@ TEST(NoiseKernels, EveryTargetMatchesTheScalarPathBitForBit) {
 }
 
 TEST(NoiseKernels, SinglePointFractalIsTheScalarDefinition) {
-  // fractal_sum runs the build's own target without dispatch; up to the 16-octave limit, so
+  // fractal_sum on the CPU's own target; up to the 16-octave limit, so
   // that octaves fill more than one vector.
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> u(-1e3, 1e3);

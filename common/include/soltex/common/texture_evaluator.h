@@ -65,6 +65,10 @@ struct SampleFootprint {
 // show are faded to their mean (see fractal.h), and hard edges are averaged over a box of that
 // width on every axis (SampleFootprint::isotropic); 0 samples the function as it is.
 // sample() and evaluate_grid() give bit-identical results at the same point.
+namespace pattern_kernels {
+struct PatternSource;  // common/src/pattern_kernels.h
+}
+
 class TextureEvaluator {
  public:
   explicit TextureEvaluator(const TextureSpec& spec);
@@ -90,8 +94,11 @@ class TextureEvaluator {
 
  private:
   OctavePlan plan_for(double filter_width) const;
+  pattern_kernels::PatternSource pattern_source() const;
 
   TextureSpec spec_;
+  FractalParams fractal_{};  // the pattern's fractal, when has_fractal_
+  bool has_fractal_ = false;
   OctavePlan point_plan_;   // the plan for filter_width = 0, used most often
   glm::dvec2 wood_tilt_z_;  // cos and sin of WoodParams::tilt_z
 };

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <memory>
@@ -95,10 +98,25 @@ struct RampKey {
 
 // Piecewise-linear map from the scalar field t in [0, 1] to colour; constant beyond the end
 // keys. An empty ramp in a spec means "the pattern's default ramp".
+// Inline, so that the pattern kernels compile it for the CPU's target along with the fields.
 struct ColourRamp {
   std::vector<RampKey> keys;
 
-  glm::vec3 at(float t) const noexcept;
+  glm::vec3 at(float t) const noexcept {
+    if (keys.empty()) return glm::vec3(std::clamp(std::isnan(t) ? 0.0f : t, 0.0f, 1.0f));
+    if (!(t > keys.front().position)) return keys.front().colour;  // also NaN
+    // Keys are hit exactly: a two-colour pattern gives its two colours, not a rounding of them.
+    for (std::size_t i = 1; i < keys.size(); ++i) {
+      const RampKey& hi = keys[i];
+      if (t == hi.position) return hi.colour;
+      if (t < hi.position) {
+        const RampKey& lo = keys[i - 1];
+        const float u = (t - lo.position) / (hi.position - lo.position);
+        return lo.colour + u * (hi.colour - lo.colour);
+      }
+    }
+    return keys.back().colour;
+  }
 };
 
 ColourRamp default_ramp(const Pattern& pattern);

@@ -1,0 +1,271 @@
+// Runtime dispatch of the built-in patterns' batch evaluation (pattern_kernels.h). Highway
+// compiles this file once per target (hwy/foreach_target.h re-includes it); HWY_EXPORT builds
+// the table of per-target functions and HWY_DYNAMIC_DISPATCH calls the best one for the CPU.
+//
+// Every header the kernels use comes before foreach_target.h, so its inline functions are
+// compiled for the default target where they are emitted out of line, and for each target only
+// where a kernel inlines them.
+
+// As in noise_kernels.cpp: every attainable target, and AVX3_DL accepted as a baseline.
+#ifndef HWY_COMPILE_ALL_ATTAINABLE
+#define HWY_COMPILE_ALL_ATTAINABLE
+#endif
+#ifndef HWY_WANT_AVX3_DL
+#define HWY_WANT_AVX3_DL
+#endif
+
+#include "pattern_kernels.h"
+
+#include <cstddef>
+#include <optional>
+#include <variant>
+#include <vector>
+
+#include "checker_kernel.h"
+#include "pattern_fields.h"
+#include "soltex/common/overloaded.h"
+
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "pattern_kernels.cpp"
+#include <hwy/foreach_target.h>  // IWYU pragma: keep
+#include <hwy/highway.h>
+
+#include "fractal_point-inl.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace soltex::pattern_kernels::HWY_NAMESPACE {
+
+inline float cube_field(const glm::vec3& c) {
+  return (c.r + c.g + c.b) * (1.0f / 3.0f);
+}
+
+// Flattened: the field functions are inline code from headers compiled for the default target;
+// only inlined here are they compiled for this one.
+HWY_FLATTEN void SamplePointsKernel(const PatternSource& source, std::span<const glm::dvec3> points,
+                                    std::span<const SampleFootprint> footprints,
+                                    std::span<Texel> out) {
+  const std::size_t n = points.size();
+  const TextureSpec& spec = *source.spec;
+  const auto each = [&](auto&& field) {
+    for (std::size_t i = 0; i < n; ++i) out[i].field = field(points[i], footprints[i].box);
+  };
+  // Noise: a plan per point of its own width, made where it is used. (Keeping one plan across
+  // a run of equal widths was slower: pixels' widths all differ, and a plan copied in just
+  // before it is read stalls the loads that read it.)
+  const auto each_fractal = [&](auto&& field) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const double w = footprints[i].width;
+      if (w > 0.0) {
+        const OctavePlan plan = plan_octaves(*source.fractal, w);
+        out[i].field = field(plan, points[i], footprints[i].box);
+      } else {
+        out[i].field = field(*source.point_plan, points[i], footprints[i].box);
+      }
+    }
+  };
+  const fields::WoodFrame frame{source.wood_cos_tilt_z, source.wood_sin_tilt_z};
+  std::visit(
+      Overloaded{
+          [&](const StripesParams& s) {
+            each([&](const glm::dvec3& p, const glm::dvec3& box) {
+              return fields::stripes(s, p, box);
+            });
+          },
+          // Its own kernel: the filter's branches as selects across the points.
+          [&](const CheckerParams& c) { checker_fields(c, points, footprints, out); },
+          [&](const ColourCubeParams& c) {
+            for (std::size_t i = 0; i < n; ++i) {
+              out[i].colour = fields::colour_cube(c, points[i], footprints[i].box);
+              out[i].field = cube_field(out[i].colour);
+            }
+          },
+          [&](const RingsParams& r) {
+            each([&](const glm::dvec3& p, const glm::dvec3& box) {
+              return fields::rings(r, p, box);
+            });
+          },
+          [&](const WoodParams& w) {
+            each([&](const glm::dvec3& p, const glm::dvec3& box) {
+              return fields::wood(w, frame, fields::wood_rotation(w, p.y), p, box);
+            });
+          },
+          [&](const NoiseParams&) {
+            each_fractal([&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3&) {
+              return fields::normalise_fractal(plan,
+                                               noise_kernels::HWY_NAMESPACE::FractalSumAt(plan, p));
+            });
+          },
+          [&](const TurbulenceParams&) {
+            each_fractal([&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3&) {
+              return fields::normalise_fractal(plan,
+                                               noise_kernels::HWY_NAMESPACE::FractalSumAt(plan, p));
+            });
+          },
+          [&](const MarbleParams& m) {
+            each_fractal([&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3& box) {
+              return fields::marble(m, fields::ripple(m, p),
+                                    noise_kernels::HWY_NAMESPACE::FractalSumAt(plan, p),
+                                    fields::ripple_width(m, p, box));
+            });
+          },
+      },
+      spec.pattern);
+  if (!std::holds_alternative<ColourCubeParams>(spec.pattern)) {
+    for (std::size_t i = 0; i < n; ++i) out[i].colour = spec.ramp.at(out[i].field);
+  }
+}
+
+// Per row: the x coordinates (the same in every row), the field, and the colour cube's colours.
+struct RowScratch {
+  std::vector<double> x;
+  std::vector<float> field;
+  std::vector<glm::vec3> colour;
+};
+
+// One row's field (and the colour cube's colours) at (xs[i], y, z).
+struct RowFields {
+  const Pattern& pattern;
+  const OctavePlan& plan;
+  const fields::WoodFrame frame;
+  const glm::dvec3& box;
+  const std::optional<FractalRows>& fractal_rows;
+  std::span<const double> xs;
+  float* field;
+  glm::vec3* colour;
+
+  void operator()(double y, double z) const {
+    const std::size_t nx = xs.size();
+    const auto each_point = [&](auto&& fn) {
+      for (std::size_t i = 0; i < nx; ++i) field[i] = fn(glm::dvec3(xs[i], y, z));
+    };
+    const auto fractal_field = [&] {
+      fractal_rows->sum(y, z, {field, nx});
+      for (std::size_t i = 0; i < nx; ++i) field[i] = fields::normalise_fractal(plan, field[i]);
+    };
+    std::visit(Overloaded{
+                   [&](const StripesParams& s) {
+                     each_point([&](const glm::dvec3& p) { return fields::stripes(s, p, box); });
+                   },
+                   [&](const CheckerParams& c) {
+                     each_point([&](const glm::dvec3& p) { return fields::checker(c, p, box); });
+                   },
+                   [&](const ColourCubeParams& c) {
+                     for (std::size_t i = 0; i < nx; ++i) {
+                       colour[i] = fields::colour_cube(c, glm::dvec3(xs[i], y, z), box);
+                       field[i] = cube_field(colour[i]);
+                     }
+                   },
+                   [&](const RingsParams& r) {
+                     each_point([&](const glm::dvec3& p) { return fields::rings(r, p, box); });
+                   },
+                   [&](const WoodParams& w) {
+                     const fields::WoodRotation rotation = fields::wood_rotation(w, y);
+                     each_point([&](const glm::dvec3& p) {
+                       return fields::wood(w, frame, rotation, p, box);
+                     });
+                   },
+                   [&](const NoiseParams&) { fractal_field(); },
+                   [&](const TurbulenceParams&) { fractal_field(); },
+                   [&](const MarbleParams& m) {
+                     fractal_rows->sum(y, z, {field, nx});
+                     for (std::size_t i = 0; i < nx; ++i) {
+                       const glm::dvec3 p(xs[i], y, z);
+                       field[i] = fields::marble(m, fields::ripple(m, p), field[i],
+                                                 fields::ripple_width(m, p, box));
+                     }
+                   },
+               },
+               pattern);
+  }
+};
+
+HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& grid,
+                                    const OctavePlan& plan, const glm::dvec3& box,
+                                    std::span<float> out) {
+  const TextureSpec& spec = *source.spec;
+  const std::size_t n = grid.size();
+  const bool is_cube = std::holds_alternative<ColourCubeParams>(spec.pattern);
+  thread_local RowScratch scratch;
+  const auto nx = static_cast<std::size_t>(grid.count.x);
+  scratch.x.resize(nx);
+  scratch.field.resize(nx);
+  scratch.colour.resize(nx);
+  for (std::size_t i = 0; i < nx; ++i) scratch.x[i] = grid.point(static_cast<int>(i), 0, 0).x;
+  const std::span<const double> xs(scratch.x.data(), nx);
+  float* field = scratch.field.data();
+  glm::vec3* colour = scratch.colour.data();
+  std::optional<FractalRows> fractal_rows;
+  if (plan.count > 0) fractal_rows.emplace(plan, xs);
+  const RowFields row_field{
+      spec.pattern, plan,  {source.wood_cos_tilt_z, source.wood_sin_tilt_z}, box, fractal_rows, xs,
+      field,        colour};
+
+  const ChannelSet& wanted = spec.channels;
+  std::size_t row_start = 0;
+  for (int k = 0; k < grid.count.z; ++k) {
+    for (int j = 0; j < grid.count.y; ++j, row_start += nx) {
+      const glm::dvec3 row_origin = grid.point(0, j, k);
+      row_field(row_origin.y, row_origin.z);
+      float* plane = out.data() + row_start;
+      if (wanted.colour) {
+        for (std::size_t i = 0; i < nx; ++i) {
+          const glm::vec3 c = is_cube ? colour[i] : spec.ramp.at(field[i]);
+          plane[i] = c.r;
+          plane[n + i] = c.g;
+          plane[2 * n + i] = c.b;
+        }
+        plane += 3 * n;
+      }
+      for (const auto* range :
+           {wanted.opacity ? &spec.opacity : nullptr, wanted.specular ? &spec.specular : nullptr}) {
+        if (range == nullptr) continue;
+        for (std::size_t i = 0; i < nx; ++i) {
+          plane[i] = range->low + (range->high - range->low) * field[i];
+        }
+        plane += n;
+      }
+    }
+  }
+}
+
+int64_t TargetOfKernel() {
+  return HWY_TARGET;
+}
+
+}  // namespace soltex::pattern_kernels::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace soltex::pattern_kernels {
+
+HWY_EXPORT(SamplePointsKernel);
+HWY_EXPORT(EvaluateGridKernel);
+HWY_EXPORT(TargetOfKernel);
+
+void sample_points(const PatternSource& source, std::span<const glm::dvec3> points,
+                   std::span<const SampleFootprint> footprints, std::span<Texel> out) {
+  HWY_DYNAMIC_DISPATCH(SamplePointsKernel)(source, points, footprints, out);
+}
+
+Texel sample_point(const PatternSource& source, const glm::dvec3& p,
+                   const SampleFootprint& footprint) {
+  Texel texel;
+  SOLTEX_POINT_DISPATCH(SamplePointsKernel)(source, {&p, 1}, {&footprint, 1}, {&texel, 1});
+  return texel;
+}
+
+void evaluate_grid(const PatternSource& source, const Grid& grid, const OctavePlan& plan,
+                   const glm::dvec3& box, std::span<float> out) {
+  HWY_DYNAMIC_DISPATCH(EvaluateGridKernel)(source, grid, plan, box, out);
+}
+
+int64_t compiled_targets() {
+  return HWY_TARGETS;
+}
+
+int64_t dispatched_target() {
+  return HWY_DYNAMIC_DISPATCH(TargetOfKernel)();
+}
+
+}  // namespace soltex::pattern_kernels
+#endif  // HWY_ONCE
