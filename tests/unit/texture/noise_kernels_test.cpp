@@ -7,7 +7,6 @@
 #include "noise_kernels.h"
 
 #include <gtest/gtest.h>
-#include <hwy/targets.h>
 
 #include <cmath>
 #include <cstring>
@@ -16,22 +15,14 @@
 #include <string>
 #include <vector>
 
+#include "dispatch_targets.h"
 #include "soltex/common/fractal.h"
 
 namespace soltex {
 namespace {
 
-// Restores normal target selection however a test ends.
-struct TargetMock {
-  explicit TargetMock(int64_t target) { hwy::SetSupportedTargetsForTest(target); }
-  ~TargetMock() { hwy::SetSupportedTargetsForTest(0); }
-};
-
 std::vector<int64_t> targets_to_run() {
-  std::vector<int64_t> targets;
-  const int64_t available = noise_kernels::compiled_targets() & hwy::SupportedTargets();
-  for (int64_t rest = available; rest != 0; rest &= rest - 1) targets.push_back(rest & -rest);
-  return targets;
+  return test::targets_to_run(noise_kernels::compiled_targets());
 }
 
 // fractal_sum's definition, octave by octave through the scalar noise functions.
@@ -99,7 +90,7 @@ TEST(NoiseKernels, EveryTargetMatchesTheScalarPathBitForBit) {
   const std::vector<std::vector<double>> rows = rows_to_check();
   const double yz[][2] = {{0.3, -2.7}, {-1e9, 1e9 + 0.5}, {kNan, 4.0}, {kInf, -kInf}};
   for (const int64_t target : targets) {
-    const TargetMock mock(target);
+    const test::ForcedTarget forced(target);
     ASSERT_EQ(noise_kernels::dispatched_target(), target) << hwy::TargetName(target);
     for (NoiseBasis basis : {NoiseBasis::value, NoiseBasis::gradient}) {
       for (bool signed_octaves : {false, true}) {

@@ -11,7 +11,6 @@
 #include "pattern_kernels.h"
 
 #include <gtest/gtest.h>
-#include <hwy/targets.h>
 
 #include <cmath>
 #include <cstring>
@@ -20,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "dispatch_targets.h"
 #include "pattern_fields.h"
 #include "soltex/common/gradient_noise.h"
 #include "soltex/common/texture_evaluator.h"
@@ -28,17 +28,8 @@
 namespace soltex {
 namespace {
 
-// Restores normal target selection however a test ends.
-struct TargetMock {
-  explicit TargetMock(int64_t target) { hwy::SetSupportedTargetsForTest(target); }
-  ~TargetMock() { hwy::SetSupportedTargetsForTest(0); }
-};
-
 std::vector<int64_t> targets_to_run() {
-  std::vector<int64_t> targets;
-  const int64_t available = pattern_kernels::compiled_targets() & hwy::SupportedTargets();
-  for (int64_t rest = available; rest != 0; rest &= rest - 1) targets.push_back(rest & -rest);
-  return targets;
+  return test::targets_to_run(pattern_kernels::compiled_targets());
 }
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
@@ -147,7 +138,7 @@ TEST(PatternKernels, EveryTargetSamplesPointsAsTheScalarDefinition) {
   const SampleFootprint footprints[] = {
       {0.0, glm::dvec3(0.0)}, {0.01, glm::dvec3(0.01)}, {0.3, glm::dvec3(0.2, 0.0, 0.05)}};
   for (const int64_t target : targets) {
-    const TargetMock mock(target);
+    const test::ForcedTarget forced(target);
     ASSERT_EQ(pattern_kernels::dispatched_target(), target) << hwy::TargetName(target);
     for (const Pattern& pattern : all_patterns()) {
       TextureSpec spec;
@@ -182,7 +173,7 @@ TEST(PatternKernels, EveryTargetEvaluatesGridsAsTheScalarDefinition) {
       {{kInf, 0.5, kNan}, {0.1, 0.1, 0.1}, {5, 2, 1}},
   };
   for (const int64_t target : targets) {
-    const TargetMock mock(target);
+    const test::ForcedTarget forced(target);
     ASSERT_EQ(pattern_kernels::dispatched_target(), target) << hwy::TargetName(target);
     for (const Pattern& pattern : all_patterns()) {
       TextureSpec spec;
