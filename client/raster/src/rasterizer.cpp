@@ -179,6 +179,13 @@ struct Rasterizer::Impl {
   int width = 0, height = 0;
   std::optional<CapTracer> caps;
   std::vector<std::unique_ptr<EdgeSampler>> edge_samplers;  // per thread, each made when asked
+
+  // A frame's first two steps: every object's vertices transformed and projected, then its
+  // triangles set up and binned into `grid`'s tiles, chunk by chunk. Returns the chunk count.
+  void transform_vertices(const RasterView& view, std::span<const RasterObject> sources,
+                          const TriangleSetup& setup);
+  std::size_t set_up_and_bin(std::span<const RasterObject> sources, const TriangleSetup& setup,
+                             const TileGrid& grid);
 };
 
 static_assert(Rasterizer::kTileSize == kTileSize);
@@ -216,46 +223,41 @@ RasterStats Rasterizer::render_tiles(const RasterView& view, std::span<const Ras
   return draw(view, objects, nullptr, TileCallback{}, tile_done);
 }
 
-RasterStats Rasterizer::draw(const RasterView& view, std::span<const RasterObject> objects,
-                             GBuffer* frame_target, const TileCallback& after_tile,
-                             const TileGBufferCallback& tile_done) {
-  Impl& impl = *impl_;
-  const int plane_count = static_cast<int>(view.clip_planes.size());
-
-  // 1. Vertices.
-  impl.objects.clear();
-  impl.first_triangle.assign(1, 0);
+void Rasterizer::Impl::transform_vertices(const RasterView& view,
+                                          std::span<const RasterObject> sources,
+                                          const TriangleSetup& setup) {
+  objects.clear();
+  first_triangle.assign(1, 0);
   std::size_t vertex_count = 0;
   struct VertexBlock {
     std::size_t object, begin, end;
   };
   std::vector<VertexBlock> blocks;
-  for (std::size_t i = 0; i < objects.size(); ++i) {
-    impl.objects.push_back(raster_internal::make_object_frame(objects[i], view, vertex_count));
-    const std::size_t positions = objects[i].mesh.positions.size();
+  for (std::size_t i = 0; i < sources.size(); ++i) {
+    objects.push_back(raster_internal::make_object_frame(sources[i], view, vertex_count));
+    const std::size_t positions = sources[i].mesh.positions.size();
     for (std::size_t begin = 0; begin < positions; begin += kVerticesPerBlock) {
       blocks.push_back({i, begin, std::min(positions, begin + kVerticesPerBlock)});
     }
     vertex_count += positions;
-    impl.first_triangle.push_back(impl.first_triangle.back() + objects[i].mesh.triangle_count());
+    first_triangle.push_back(first_triangle.back() + sources[i].mesh.triangle_count());
   }
-  impl.vertices.resize(vertex_count, plane_count);
-  const TriangleSetup setup(view.width, view.height, plane_count);
-  impl.pool.parallel_for(blocks.size(), [&](std::size_t b, int) {
-    const ObjectFrame& object = impl.objects[blocks[b].object];
-    raster_internal::transform_vertices(object, blocks[b].begin, blocks[b].end, impl.vertices);
-    setup.project_vertices(impl.vertices, object.first_vertex + blocks[b].begin,
+  vertices.resize(vertex_count, static_cast<int>(view.clip_planes.size()));
+  pool.parallel_for(blocks.size(), [&](std::size_t b, int) {
+    const ObjectFrame& object = objects[blocks[b].object];
+    raster_internal::transform_vertices(object, blocks[b].begin, blocks[b].end, vertices);
+    setup.project_vertices(vertices, object.first_vertex + blocks[b].begin,
                            object.first_vertex + blocks[b].end);
   });
+}
 
-  // 2. Setup and binning.
-  const TileGrid grid{(view.width + kTileSize - 1) / kTileSize,
-                      (view.height + kTileSize - 1) / kTileSize};
-  const std::size_t triangle_count = impl.first_triangle.back();
+std::size_t Rasterizer::Impl::set_up_and_bin(std::span<const RasterObject> sources,
+                                             const TriangleSetup& setup, const TileGrid& grid) {
+  const std::size_t triangle_count = first_triangle.back();
   const std::size_t chunk_count = (triangle_count + kTrianglesPerChunk - 1) / kTrianglesPerChunk;
-  if (impl.chunks.size() < chunk_count) impl.chunks.resize(chunk_count);
-  impl.pool.parallel_for(chunk_count, [&](std::size_t c, int) {
-    SetupChunk& chunk = impl.chunks[c];
+  if (chunks.size() < chunk_count) chunks.resize(chunk_count);
+  pool.parallel_for(chunk_count, [&](std::size_t c, int) {
+    SetupChunk& chunk = chunks[c];
     chunk.triangles.clear();
     chunk.clip_forms.clear();
     chunk.stats = {};
@@ -263,20 +265,34 @@ RasterStats Rasterizer::draw(const RasterView& view, std::span<const RasterObjec
     const std::size_t end = std::min(triangle_count, begin + kTrianglesPerChunk);
     // The object holding triangle `begin`, then walk on.
     std::size_t object = static_cast<std::size_t>(
-        std::upper_bound(impl.first_triangle.begin(), impl.first_triangle.end(), begin) -
-        impl.first_triangle.begin() - 1);
+        std::upper_bound(first_triangle.begin(), first_triangle.end(), begin) -
+        first_triangle.begin() - 1);
     for (std::size_t global = begin; global < end; ++global) {
-      while (global >= impl.first_triangle[object + 1]) ++object;
-      const std::size_t local = global - impl.first_triangle[object];
-      const std::span<const uint32_t> indices = objects[object].mesh.indices;
-      setup.setup(impl.objects[object], static_cast<uint32_t>(object), impl.vertices,
-                  indices[3 * local], indices[3 * local + 1], indices[3 * local + 2],
-                  chunk.triangles, chunk.clip_forms, chunk.stats);
+      while (global >= first_triangle[object + 1]) ++object;
+      const std::size_t local = global - first_triangle[object];
+      const std::span<const uint32_t> indices = sources[object].mesh.indices;
+      setup.setup(objects[object], static_cast<uint32_t>(object), vertices, indices[3 * local],
+                  indices[3 * local + 1], indices[3 * local + 2], chunk.triangles, chunk.clip_forms,
+                  chunk.stats);
     }
     bin_triangles(chunk, grid);
   });
+  return chunk_count;
+}
 
-  // 3. Tiles.
+RasterStats Rasterizer::draw(const RasterView& view, std::span<const RasterObject> objects,
+                             GBuffer* frame_target, const TileCallback& after_tile,
+                             const TileGBufferCallback& tile_done) {
+  Impl& impl = *impl_;
+  const int plane_count = static_cast<int>(view.clip_planes.size());
+
+  const TriangleSetup setup(view.width, view.height, plane_count);
+  impl.transform_vertices(view, objects, setup);
+  const TileGrid grid{(view.width + kTileSize - 1) / kTileSize,
+                      (view.height + kTileSize - 1) / kTileSize};
+  const std::size_t chunk_count = impl.set_up_and_bin(objects, setup, grid);
+
+  // Then the tiles, each drawn and resolved by the thread that takes it.
   impl.caps.reset();
   if (plane_count > 0) impl.caps.emplace(view);
   const std::optional<CapTracer>& caps = impl.caps;
