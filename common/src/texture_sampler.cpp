@@ -131,8 +131,15 @@ void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int le
     return glm::ivec3(chunk.cell[0][i] >> brick_shift_, chunk.cell[1][i] >> brick_shift_,
                       chunk.cell[2][i] >> brick_shift_);
   };
+  // What the trilinear kernel leaves to its caller: the fifth value, the level, completeness.
+  const auto start_result = [level](SampleResult& result) {
+    result.values[4] = 0.0f;
+    result.level = level;
+    result.complete = true;
+  };
   if (static_cast<int64_t>(bricks) * bricks * bricks <= INT32_MAX) {
-    // The flat brick index in one int32 compares a run in one instruction.
+    // The flat brick index in one int32 compares a run in one instruction; each result is
+    // started in the loop that fills its corner, while its line is being written anyway.
     locate_cells(chunk, n, {brick_shift_, brick_mask_, bricks, 3, y_stride_, z_stride_});
     // Run by run: find where the brick changes, ask for the brick once, then fill the run's
     // corners in a loop with nothing else in it.
@@ -145,11 +152,15 @@ void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int le
       if (found == nullptr) {
         std::fill(corners.begin() + static_cast<std::ptrdiff_t>(first),
                   corners.begin() + static_cast<std::ptrdiff_t>(end), nullptr);
+        for (std::size_t i = first; i < end; ++i) start_result(results[i]);
         run_misses += repeats;
         missed = true;
       } else {
         const uint8_t* samples = found->samples;
-        for (std::size_t i = first; i < end; ++i) corners[i] = samples + chunk.offset[i];
+        for (std::size_t i = first; i < end; ++i) {
+          corners[i] = samples + chunk.offset[i];
+          start_result(results[i]);
+        }
         run_hits += repeats;
       }
       first = end;
@@ -171,15 +182,11 @@ void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int le
                        ? nullptr
                        : run_samples + local.z * z_stride_ + local.y * y_stride_ + local.x * 3;
       missed |= run_samples == nullptr;
+      start_result(results[i]);
     }
   }
   accessor_.count_microcache_hit(run_hits);
   accessor_.count_miss(run_misses);
-  for (SampleResult& result : results) {
-    result.values[4] = 0.0f;  // the kernel writes the first four
-    result.level = level;
-    result.complete = true;
-  }
   static_assert(sizeof(SampleResult) % sizeof(float) == 0);
   soltex::trilinear_rgb(std::span<const uint8_t* const>(corners.data(), points.size()), chunk,
                         y_stride_, z_stride_, results[0].values.data(),
