@@ -1,5 +1,7 @@
 #include "soltex/common/spec_error.h"
 
+#include <cmath>
+#include <cstdio>
 #include <utility>
 
 namespace soltex {
@@ -9,5 +11,13 @@ SpecError::SpecError(std::string field, std::string value, std::string bound)
       field_(std::move(field)),
       value_(std::move(value)),
       bound_(std::move(bound)) {}
+
+std::string spec_number_text(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
 
 }  // namespace soltex

@@ -10,16 +10,8 @@
 namespace soltex {
 namespace {
 
-std::string format_value(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  return buffer;
-}
-
 std::string format_range(double lo, double hi) {
-  return "[" + format_value(lo) + ", " + format_value(hi) + "]";
+  return "[" + spec_number_text(lo) + ", " + spec_number_text(hi) + "]";
 }
 
 // Field paths are built as "marble.turbulence.scale" so a message points at the exact spot.
@@ -29,7 +21,7 @@ class FieldChecker {
 
   void in_range(const char* field, double v, double lo, double hi) const {
     if (!std::isfinite(v) || v < lo || v > hi) {
-      throw SpecError(path(field), format_value(v),
+      throw SpecError(path(field), spec_number_text(v),
                       "must be finite and in " + format_range(lo, hi));
     }
   }
@@ -235,8 +227,8 @@ Volume validated(Volume volume) {
                    SpecLimits::kMaxVolumeCoordinate);
     if (!(hi > lo)) {
       throw SpecError(
-          std::string("volume.max.") + axes[a], format_value(hi),
-          "must be greater than volume.min." + std::string(axes[a]) + " = " + format_value(lo));
+          std::string("volume.max.") + axes[a], spec_number_text(hi),
+          "must be greater than volume.min." + std::string(axes[a]) + " = " + spec_number_text(lo));
     }
   }
   if (volume.finest_level_log2 < 0 || volume.finest_level_log2 > SpecLimits::kMaxFinestLevelLog2) {

@@ -1,7 +1,6 @@
 #include "graph_checks.h"
 
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <optional>
 
@@ -11,18 +10,11 @@
 namespace soltex::graph {
 namespace {
 
-std::string number_text(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  return buffer;
-}
-
 std::string describe(const InputValue& value) {
-  if (const auto* d = std::get_if<double>(&value)) return number_text(*d);
+  if (const auto* d = std::get_if<double>(&value)) return spec_number_text(*d);
   if (const auto* v = std::get_if<glm::dvec3>(&value)) {
-    return "[" + number_text(v->x) + ", " + number_text(v->y) + ", " + number_text(v->z) + "]";
+    return "[" + spec_number_text(v->x) + ", " + spec_number_text(v->y) + ", " +
+           spec_number_text(v->z) + "]";
   }
   if (const auto* r = std::get_if<NodeRef>(&value)) return "node \"" + r->node + "\"";
   if (const auto* s = std::get_if<std::string>(&value)) return "\"" + *s + "\"";
@@ -59,7 +51,7 @@ void check_constant(const Node& node, const InputDef& def, const InputValue& val
       const double hi = def.slot == Slot::boolean ? 1.0 : def.hi;
       if (v < lo || v > hi) {
         throw SpecError(field, describe(value),
-                        "must be in [" + number_text(lo) + ", " + number_text(hi) + "]");
+                        "must be in [" + spec_number_text(lo) + ", " + spec_number_text(hi) + "]");
       }
       if (def.slot != Slot::number && v != std::floor(v)) {
         throw SpecError(field, describe(value),

@@ -22,4 +22,8 @@ class SpecError : public std::invalid_argument {
   std::string bound_;
 };
 
+// A number as a SpecError's value or bound shows it: shortest round-trip digits, and nan, inf
+// or -inf spelt out, so that the message names exactly the value that was refused.
+std::string spec_number_text(double v);
+
 }  // namespace soltex
