@@ -310,6 +310,7 @@ void EdgeSampler::resolve(const TileFrame& frame, EdgeSurfaces& out) const {
   out.x1 = x1_;
   out.y1 = y1_;
   out.sample_count = samples_ - 1;
+  CapRayRows cap_rays;  // one for the tile; each capped pixel starts it afresh
   for (std::size_t slot = 0; slot < pixels_.size(); ++slot) {
     EdgePixel pixel;
     pixel.x = pixels_[slot].x;
@@ -325,11 +326,10 @@ void EdgeSampler::resolve(const TileFrame& frame, EdgeSurfaces& out) const {
       const ScreenTriangle& t = *surface.triangle;
       const ObjectFrame& object = frame.objects[t.object];
       if (frame.caps != nullptr && t.back_face && object.source->closed) {
-        CapRayRows rays;  // this pixel's ray and its right and lower neighbours'
-        rays.begin(pixel.x, pixel.y);
+        cap_rays.begin(pixel.x, pixel.y);  // this pixel's ray and its neighbours', fresh
         CapSample cap;
         if (frame.caps->trace(pixel.x, pixel.y, object.texture_from_world,
-                              object.source->clip_plane_mask, rays, cap)) {
+                              object.source->clip_plane_mask, cap_rays, cap)) {
           layer.depth[i] = cap.depth;
           layer.flags[i] = GBuffer::kCovered | GBuffer::kCap;
           layer.object_id[i] = object.source->object_id;
