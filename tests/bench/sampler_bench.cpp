@@ -252,6 +252,21 @@ void report_samples(benchmark::State& state) {
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+// What both cached forms report once their loop is done: a miss fails the run (the plane must
+// be resident), then samples per second and the microcache's share of the lookups.
+soltex::BrickCacheStats report_cached(benchmark::State& state, Scene& s,
+                                      soltex::TextureSampler& sampler,
+                                      const soltex::BrickCacheStats& before, bool complete) {
+  sampler.flush_statistics();
+  const soltex::BrickCacheStats after = s.cache.stats();
+  if (!complete) state.SkipWithError("a lookup missed: the cache does not hold the plane");
+  report_samples(state);
+  state.counters["microcache_hit_rate"] =
+      static_cast<double>(after.microcache_hits - before.microcache_hits) /
+      static_cast<double>(std::max<uint64_t>(1, after.lookups - before.lookups));
+  return after;
+}
+
 void BM_CachedPoint(benchmark::State& state, bool random_order, double lod,
                     soltex::SampleFilter filter) {
   Scene& s = scene();
@@ -268,13 +283,7 @@ void BM_CachedPoint(benchmark::State& state, bool random_order, double lod,
     }
     benchmark::DoNotOptimize(sink);
   }
-  sampler.flush_statistics();
-  const soltex::BrickCacheStats after = s.cache.stats();
-  if (!complete) state.SkipWithError("a lookup missed: the cache does not hold the plane");
-  report_samples(state);
-  state.counters["microcache_hit_rate"] =
-      static_cast<double>(after.microcache_hits - before.microcache_hits) /
-      static_cast<double>(std::max<uint64_t>(1, after.lookups - before.lookups));
+  const soltex::BrickCacheStats after = report_cached(state, s, sampler, before, complete);
   state.counters["bricks_l0"] = static_cast<double>(s.bricks[0]);
   state.counters["cache_MiB"] = static_cast<double>(after.resident_bytes) / (1 << 20);
 }
@@ -316,13 +325,7 @@ void BM_Cached(benchmark::State& state, bool random_order, double lod,
     }
     benchmark::DoNotOptimize(sink);
   }
-  sampler.flush_statistics();
-  const soltex::BrickCacheStats after = s.cache.stats();
-  if (!complete) state.SkipWithError("a lookup missed: the cache does not hold the plane");
-  report_samples(state);
-  state.counters["microcache_hit_rate"] =
-      static_cast<double>(after.microcache_hits - before.microcache_hits) /
-      static_cast<double>(std::max<uint64_t>(1, after.lookups - before.lookups));
+  report_cached(state, s, sampler, before, complete);
 }
 
 void BM_Dense(benchmark::State& state, bool random_order) {
