@@ -9,50 +9,28 @@
 # NGINX_FAIL_TIMEOUT (default 5s), NGINX_WEB_ROOT (a folder to serve at /: the built web
 # viewer, client/web/dist, with its scenes; default none: / answers 404).
 set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+# shellcheck source=nginx-template.sh
+. "$here/nginx-template.sh"
 
-if [ $# -lt 3 ]; then
-  echo "usage: $0 LISTEN_PORT PREFIX_DIR UPSTREAM [UPSTREAM...]" >&2
-  exit 2
-fi
-listen=$1 prefix=$2
-shift 2
-template="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/soltex-http.conf.in"
+# @PAGE@: what answers at /, the web viewer's folder or a 404 naming the routes.
+fill_block() {
+  [ "$1" = "@PAGE@" ] || return 1
+  if [ -n "${NGINX_WEB_ROOT:-}" ]; then
+    # Module scripts need their MIME type; nothing else here names one.
+    printf '        location / {\n            root %s;\n            index index.html;\n' "$NGINX_WEB_ROOT"
+    printf '            types { text/html html; text/javascript js; application/json json; text/css css; }\n'
+    printf '        }\n'
+  else
+    printf '        location / {\n            return 404 "no resource here; the routes are under /v1/textures\\n";\n        }\n'
+  fi
+}
 
-if [ "$prefix" != "-" ]; then
-  mkdir -p "$prefix/logs" "$prefix/cache" "$prefix"/tmp/{client_body,proxy,fastcgi,uwsgi,scgi}
-fi
-
-upstreams=""
-for u in "$@"; do
-  upstreams+="        server $u max_fails=${NGINX_MAX_FAILS:-1} fail_timeout=${NGINX_FAIL_TIMEOUT:-5s};"$'\n'
-done
-upstreams=${upstreams%$'\n'}
+nginx_template_args "$@"
+nginx_prefix_dirs cache
 
 echo "# soltex HTTP brick cache for nginx 1.22. Rendered from deploy/nginx/soltex-http.conf.in:"
-echo "#   render-http-conf.sh $listen $prefix $*"
+echo "#   render-http-conf.sh $listen $prefix ${upstream_args[*]}"
 echo "# Start:  nginx -p PREFIX -c PREFIX/nginx.conf   (-g 'daemon off;' for foreground)"
 echo "# Stop:   nginx -p PREFIX -c PREFIX/nginx.conf -s quit"
-header=1
-while IFS= read -r line || [ -n "$line" ]; do
-  if [ $header -eq 1 ]; then
-    case $line in '#'*) continue ;; *) header=0 ;; esac
-  fi
-  case $line in
-    @UPSTREAMS@) printf '%s\n' "$upstreams"; continue ;;
-    @PAGE@)
-      if [ -n "${NGINX_WEB_ROOT:-}" ]; then
-        # Module scripts need their MIME type; nothing else here names one.
-        printf '        location / {\n            root %s;\n            index index.html;\n' "$NGINX_WEB_ROOT"
-        printf '            types { text/html html; text/javascript js; application/json json; text/css css; }\n'
-        printf '        }\n' 
-      else
-        printf '        location / {\n            return 404 "no resource here; the routes are under /v1/textures\\n";\n        }\n'
-      fi
-      continue ;;
-  esac
-  line=${line//@LISTEN@/$listen}
-  line=${line//@WORKERS@/${NGINX_WORKERS:-auto}}
-  line=${line//@ACCESS_LOG@/${NGINX_ACCESS_LOG:-logs/access.log}}
-  line=${line//@CACHE_SIZE@/${NGINX_CACHE_SIZE:-1g}}
-  printf '%s\n' "$line"
-done < "$template"
+nginx_fill_template "$here/soltex-http.conf.in"
