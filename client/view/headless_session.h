@@ -10,6 +10,7 @@
 #include "soltex/common/texture_sampler.h"
 #include "soltex/net/brick_source.h"
 #include "soltex/render/frame_renderer.h"
+#include "startup_timeline.h"
 
 namespace soltex::view {
 
@@ -27,6 +28,8 @@ struct HeadlessOptions {
   bool first_frame_for_misses = true;
   // Called with each frame's misses before they go to the source (e.g. to record them).
   std::function<void(double seconds, const std::vector<net::BrickWant>& misses)> on_misses;
+  // Marks each frame's start and end and each wait for bricks (null: none).
+  StartupTimeline* timeline = nullptr;
 };
 
 struct HeadlessResult {

@@ -14,6 +14,7 @@
 #include "headless_session.h"
 #include "request_log.h"
 #include "soltex/cli/tool_cli.h"
+#include "startup_timeline.h"
 #ifdef SOLTEX_HAVE_SDL2
 #include "viewer_window.h"
 #endif
@@ -134,6 +135,7 @@ int run_window(const Scene& scene, const TextureResolution& resolution, BrickCac
 }  // namespace
 
 int main(int argc, char** argv) {
+  view::StartupTimeline timeline;  // the program's start: the first thing it does
   CLI::App app{"soltex-view: software-rendered solid textures from a sparse brick cache"};
   std::string server;
   bool local = false;
@@ -158,6 +160,7 @@ int main(int argc, char** argv) {
   int brick_size = 16;
   int width = 0, height = 0;
   std::filesystem::path record_path;
+  bool print_timeline = false;
   std::string log_level = "info";
   int window_frames = 0;
   std::filesystem::path screenshot;
@@ -239,6 +242,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--record", record_path,
                  "write every brick request to FILE (soltex-load --mix replay plays it back)");
+  app.add_flag("--timeline", print_timeline,
+               "headless: print when each step of the start happened (probes, frames, requests, "
+               "each batch of bricks received), in ms since the program started");
   net::ChannelSecurityOptions security_options;
   net::add_channel_security_options(app, security_options);
   if (const auto exit_code = cli::parse(app, "soltex-view", argc, argv)) return *exit_code;
@@ -258,11 +264,19 @@ int main(int argc, char** argv) {
   try {
     net::FetcherOptions fetcher_options;
     fetcher_options.security = net::finish_channel_security(security_options);
+    // Null marks nothing: the timeline costs only where it is printed.
+    view::StartupTimeline* const marks = print_timeline ? &timeline : nullptr;
+    const auto mark = [&](std::string what) {
+      if (marks != nullptr) marks->mark(std::move(what));
+    };
+    if (marks != nullptr) fetcher_options.on_event = fetch_marks(*marks);
+    mark("command line read");
     const Scene scene = scene_path.empty() ? default_scene() : load_scene(scene_path);
     capability::CapabilityOverride override;
     if (!capability_text.empty()) override = capability::parse_override(capability_text);
 
     capability::Capability measured = capability::measure_machine();
+    mark("machine probe done");
     // The cache exists before the link probe so that the probe's bricks have a home; its
     // budget is set from the choice below.
     auto cache = std::make_unique<BrickCache>(256u << 20);
@@ -272,12 +286,14 @@ int main(int argc, char** argv) {
     } else {
       auto fetcher = std::make_unique<net::BrickFetcher>(server, *cache, fetcher_options);
       measured.round_trip_ms = static_cast<double>(fetcher->measure_round_trip().count()) / 1e3;
+      mark(fmt::format("connected: GetServerInfo answered in {:.2f} ms", measured.round_trip_ms));
       source = std::move(fetcher);
     }
     const std::optional<Codec> forced_codec = codec_from(codec_name);
     if (!scene.objects.empty()) {
       capability::measure_link(*source, scene.objects.front().material.texture, measured,
                                !forced_codec.has_value());
+      mark("link probe done");
     }
     const capability::Capability effective = capability::apply(measured, override);
     // Headless output, and a window given a size, keep the size asked for exactly; a window
@@ -336,13 +352,16 @@ int main(int argc, char** argv) {
                         screenshot);
     }
 #endif
+    mark("probe's source closed, the scene's opened");
     const PreparedScene prepared = prepare_scene(scene, resolution, *source);
+    mark("scene prepared, textures registered");
     FrameRenderer renderer(*cache, render_options);
 
     view::HeadlessOptions options;
     options.max_time = std::chrono::milliseconds(static_cast<long>(max_seconds * 1000));
     options.start_level_log2 = choice.start_level_log2;
     options.cache = cache.get();
+    options.timeline = marks;
     std::ofstream record_file;
     std::optional<load::RequestLogWriter> recorder;
     if (!record_path.empty()) {
@@ -358,6 +377,7 @@ int main(int argc, char** argv) {
     }
     const view::HeadlessResult result = view::render_until_converged(
         renderer, prepared, scene.camera, choice.width, choice.height, *source, options);
+    mark(result.converged_ms >= 0.0 ? "converged" : "stopped, not converged");
     const net::SourceStats fetched = source->stats();
     const BrickCacheStats cached = cache->stats();
     std::printf("scene:      %s, %zu objects, %dx%d, finest level 2^%d, %s filter\n",
@@ -415,6 +435,7 @@ int main(int argc, char** argv) {
     if (!out.parent_path().empty()) std::filesystem::create_directories(out.parent_path());
     write_png(out, result.image);
     std::printf("wrote:      %s\n", out.c_str());
+    if (marks != nullptr) marks->print(stdout);
     if (reference) {
       // Timed on a second call, as the cached frame is: the first faults in the reference's
       // buffers, which is not what per-pixel evaluation costs.

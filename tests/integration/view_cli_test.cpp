@@ -128,6 +128,26 @@ TEST_F(ViewCli, EveryCodecConvergesToTheSamePicture) {
   }
 }
 
+// --timeline prints the start's steps in the order they happened: the stream, the first frame,
+// the requests and batches of its misses, the converged frame.
+TEST_F(ViewCli, TimelineShowsTheStartStepByStep) {
+  SoltexdProcess server;
+  const ViewRun run = view("timeline", against(server, {"--timeline"}));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string& out = run.output;
+  std::size_t at = 0;
+  for (const char* step : {"timeline: origin at", "brick stream open", "frame 1 starts",
+                           "frame 1 ends", "request written", "batch received",
+                           "nothing pending any more", "frame 2 starts", "converged"}) {
+    const std::size_t found = out.find(step, at);
+    ASSERT_NE(found, std::string::npos) << "no '" << step << "' after byte " << at << ":\n" << out;
+    at = found;
+  }
+  const ViewRun quiet = view("no-timeline", against(server));
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.output;
+  EXPECT_EQ(quiet.output.find("timeline:"), std::string::npos) << quiet.output;
+}
+
 // The output is the size asked for, however slow this machine measures.
 TEST_F(ViewCli, HeadlessKeepsTheRequestedImageSize) {
   const ViewRun scene_size = view(

@@ -105,6 +105,7 @@ void BrickFetcher::supervise() {
         if (!first) ++stats_.reconnects;
       }
       changed_.notify_all();
+      if (options_.on_event) options_.on_event(FetchEvent::stream_opened, 0);
       v1::BrickBatch batch;
       bool received_any = false;
       while (stream->call->Read(&batch)) {
@@ -116,6 +117,7 @@ void BrickFetcher::supervise() {
           payloads.emplace_back(from_proto(brick.key()), std::move(*brick.mutable_payload()));
         }
         receive(payloads);
+        if (options_.on_event) options_.on_event(FetchEvent::batch_received, payloads.size());
         if (batch.errors_size() > 0 || batch.request_errors_size() > 0) {
           std::lock_guard lock(mutex_);
           for (const auto& error : batch.errors()) {
@@ -281,6 +283,9 @@ void BrickFetcher::write_loop() {
     {
       std::lock_guard writing(stream->write_mutex);
       ok = stream->call->Write(request);
+    }
+    if (ok && options_.on_event) {
+      options_.on_event(FetchEvent::request_written, static_cast<std::size_t>(request.want_size()));
     }
     lock.lock();
     if (!ok && stream_ == stream) {

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -22,6 +23,11 @@
 
 namespace soltex::net {
 
+// What the fetcher's threads report as it happens, for a start-up timeline: the stream opened,
+// a request written (its number of wanted keys), a batch received (its number of bricks, once
+// they are in the cache).
+enum class FetchEvent { stream_opened, request_written, batch_received };
+
 struct FetcherOptions {
   std::size_t max_in_flight = 256;  // bricks requested and not yet received
   std::chrono::milliseconds initial_backoff{100};
@@ -31,6 +37,8 @@ struct FetcherOptions {
   // The codec bricks are asked in (accept_codecs); set_codec() changes it on a live stream.
   Codec codec = Codec::zstd;
   ChannelSecurity security;
+  // Called on the fetcher's own threads, outside its lock; keep it short. Null: not reported.
+  std::function<void(FetchEvent, std::size_t count)> on_event;
 };
 
 // The client's one gRPC stream to soltexd. Render threads hand it each frame's misses; a
