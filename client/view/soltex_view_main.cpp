@@ -275,8 +275,10 @@ int main(int argc, char** argv) {
     capability::CapabilityOverride override;
     if (!capability_text.empty()) override = capability::parse_override(capability_text);
 
-    capability::Capability measured = capability::measure_machine();
-    mark("machine probe done");
+    // Headless output keeps the size asked for, so nothing needs this machine's drawing speed.
+    capability::Capability measured =
+        headless ? capability::measure_memory() : capability::measure_machine();
+    mark(headless ? "memory measured" : "machine probe done");
     // The cache exists before the link probe so that the probe's bricks have a home; its
     // budget is set from the choice below.
     auto cache = std::make_unique<BrickCache>(256u << 20);
@@ -311,10 +313,13 @@ int main(int argc, char** argv) {
       choice.start_level_log2 = std::min(choice.start_level_log2, finest_level);
     }
     spdlog::info(
-        "capability: {:.1f} Mpixel/s, {} MiB available, round trip {:.2f} ms, brick latency "
+        "capability: {}, {} MiB available, round trip {:.2f} ms, brick latency "
         "{:.1f} ms, link {:.1f} MB/s{}",
-        effective.pixels_per_second / 1e6, effective.available_memory_mb, measured.round_trip_ms,
-        effective.brick_latency_ms, effective.bandwidth_mb_per_s,
+        effective.pixels_per_second > 0.0
+            ? fmt::format("{:.1f} Mpixel/s", effective.pixels_per_second / 1e6)
+            : std::string("drawing speed not measured (the frame keeps its size)"),
+        effective.available_memory_mb, measured.round_trip_ms, effective.brick_latency_ms,
+        effective.bandwidth_mb_per_s,
         capability_text.empty() ? "" : " (simulated: " + capability_text + ")");
     for (std::size_t begin = 0; begin < choice.reason.size();) {
       const std::size_t end = choice.reason.find('\n', begin);

@@ -79,9 +79,14 @@ Capability apply(Capability measured, const CapabilityOverride& o) {
   return measured;
 }
 
-Capability measure_machine() {
+Capability measure_memory() {
   Capability c;
   c.available_memory_mb = available_memory_mb();
+  return c;
+}
+
+Capability measure_machine() {
+  Capability c = measure_memory();
   // The probe: a lit sphere carved from the colour cube, 320 x 180, drawn from an
   // in-process cache that already holds what the frame needs.
   Scene scene;

@@ -49,6 +49,10 @@ Capability apply(Capability measured, const CapabilityOverride& override);
 // A short raster + lookup probe on this machine (a small built-in scene drawn from an
 // in-process cache), and the memory the kernel reports available.
 Capability measure_machine();
+// The memory alone (pixels_per_second stays 0: not measured), for a client whose frame size
+// is fixed, such as headless output: the drawing probe would only decide a frame size
+// (ChoiceLimits::scale_frame), and it costs about 50 ms of both cores at start-up.
+Capability measure_memory();
 
 // One burst of the link probe: bricks asked for at once, and how long until all were in.
 struct LinkTiming {
