@@ -17,6 +17,35 @@ double process_cpu_ms() {
   return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) / 1e6;
 }
 
+// While a frame is drawn: hands each raster tile's misses to `source` as the cap (if any)
+// lets them be fetched, and holds the bricks that arrive meanwhile out of the cache until the
+// frame ends (an insertion makes every lookup the frame found missing look again); for as
+// long as it lives.
+class EarlyRequests {
+ public:
+  EarlyRequests(FrameRenderer& renderer, net::BrickSource& source, const LevelCap* cap,
+                const BrickCache* cache, bool on)
+      : renderer_(renderer), source_(on ? &source : nullptr) {
+    if (!on) return;
+    source.hold_arrivals(true);
+    renderer.set_on_tile_misses([&source, cap, cache](std::vector<net::BrickWant> wants) {
+      if (cap != nullptr && cache != nullptr) wants = not_resident(cap->apply(wants), *cache);
+      if (!wants.empty()) source.want_early(std::move(wants));
+    });
+  }
+  ~EarlyRequests() {
+    if (source_ == nullptr) return;
+    renderer_.set_on_tile_misses(nullptr);
+    source_->hold_arrivals(false);
+  }
+  EarlyRequests(const EarlyRequests&) = delete;
+  EarlyRequests& operator=(const EarlyRequests&) = delete;
+
+ private:
+  FrameRenderer& renderer_;
+  net::BrickSource* source_;
+};
+
 // One frame, counted and timed into `result`; in false-colour levels when it is drawn only
 // for its misses.
 Frame draw(FrameRenderer& renderer, const PreparedScene& scene, const Camera& camera, int width,
@@ -65,8 +94,11 @@ HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, con
   bool for_misses = options.first_frame_for_misses && !renderer.options().false_colour_levels;
   for (;;) {
     const uint64_t received_before_frame = source.stats().received;
-    Frame frame =
-        draw(renderer, scene, camera, width, height, for_misses, result, options.timeline);
+    Frame frame = [&] {
+      const EarlyRequests early(renderer, source, cap, options.cache,
+                                options.request_while_drawing);
+      return draw(renderer, scene, camera, width, height, for_misses, result, options.timeline);
+    }();
     if (result.frames == 1) result.first_frame_ms = elapsed_ms();
     const FrameNeeds needs =
         needs_of(frame, cap, options.cache, source.stats().received != received_before_frame);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <optional>
 #include <stdexcept>
 
 #include "soltex/common/brick_codec.h"
@@ -168,7 +169,7 @@ void BrickFetcher::supervise() {
 
 void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& payloads) {
   for (const auto& [key, payload] : payloads) {
-    bool ok = false;
+    std::optional<CachedBrick> brick;
     std::size_t codec = std::size(stats_.decode_seconds);  // none: not decoded
     double decode_seconds = 0.0;
     std::size_t decoded_bytes = 0;
@@ -178,22 +179,31 @@ void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& 
           decode_brick(std::span(reinterpret_cast<const uint8_t*>(payload.data()), payload.size()));
       decode_seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      cache_.insert(key, decoded.brick_size, decoded.channels, decoded.samples);
-      ok = true;
+      // Converted here, outside every lock: inserting it is then only bookkeeping.
+      brick.emplace(decoded.brick_size, decoded.channels, decoded.samples);
       // A brick that decoded has a whole header; its byte 7 is the codec (docs/PROTOCOL.md).
       codec = static_cast<uint8_t>(payload[7]);
       decoded_bytes = decoded.samples.size();
     } catch (const CodecError& e) {
       spdlog::warn("corrupt brick from {}: {}", address_, e.what());
     }
-    std::lock_guard lock(mutex_);
-    in_flight_.erase(key);
+    std::unique_lock lock(mutex_);
     stats_.bytes += payload.size();
     if (codec < std::size(stats_.decode_seconds)) {
       stats_.decode_seconds[codec] += decode_seconds;
       stats_.decoded_bytes[codec] += decoded_bytes;
     }
-    if (ok) {
+    if (brick && holding_) {
+      held_.emplace_back(key, std::move(*brick));  // still in flight until released
+      continue;
+    }
+    if (brick) {
+      lock.unlock();
+      cache_.insert(key, std::move(*brick));
+      lock.lock();
+    }
+    in_flight_.erase(key);
+    if (brick) {
       ++stats_.received;
       refetches_.erase(key);
     } else if (++refetches_[key] <= options_.max_refetches) {
@@ -205,6 +215,27 @@ void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& 
       ++stats_.errors;
     }
   }
+}
+
+void BrickFetcher::hold_arrivals(bool hold) {
+  std::vector<std::pair<BrickKey, CachedBrick>> held;
+  {
+    std::lock_guard lock(mutex_);
+    holding_ = hold;
+    if (hold) return;
+    held.swap(held_);
+  }
+  if (held.empty()) return;
+  for (auto& [key, brick] : held) cache_.insert(key, std::move(brick));
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [key, brick] : held) {
+      in_flight_.erase(key);
+      refetches_.erase(key);
+      ++stats_.received;
+    }
+  }
+  changed_.notify_all();
 }
 
 void BrickFetcher::want(std::vector<BrickWant> wants) {
@@ -234,6 +265,25 @@ void BrickFetcher::want(std::vector<BrickWant> wants) {
     }
   }
   changed_.notify_all();
+}
+
+void BrickFetcher::want_early(std::vector<BrickWant> wants) {
+  std::sort(wants.begin(), wants.end(), fetched_before);
+  bool added = false;
+  {
+    std::lock_guard lock(mutex_);
+    for (const BrickWant& w : wants) {
+      if (in_flight_.contains(w.key) || failed_.contains(w.key) || cache_.contains(w.key)) continue;
+      // A key another render thread found first is waiting already (a short list: the frame
+      // sends as it goes).
+      const bool waiting = std::any_of(waiting_.begin(), waiting_.end(),
+                                       [&](const BrickWant& o) { return o.key == w.key; });
+      if (waiting) continue;
+      waiting_.push_back(w);
+      added = true;
+    }
+  }
+  if (added) changed_.notify_all();
 }
 
 void BrickFetcher::write_loop() {

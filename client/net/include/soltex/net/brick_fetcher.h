@@ -17,6 +17,7 @@
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/brick_evaluator.h"
 #include "soltex/common/brick_key.h"
+#include "soltex/common/cached_brick.h"
 #include "soltex/common/texture_spec.h"
 #include "soltex/net/brick_source.h"
 #include "soltex/net/channel_security.h"
@@ -64,6 +65,11 @@ class BrickFetcher final : public BrickSource {
   // keys in flight that this frame no longer wants are cancelled; the rest are sent in order,
   // up to the in-flight bound.
   void want(std::vector<BrickWant> wants) override;
+  // Appends the keys not resident, in flight, failed or waiting, and wakes the writer.
+  void want_early(std::vector<BrickWant> wants) override;
+  // Held bricks are converted for the cache on the receiving thread as they arrive; release
+  // inserts them on the calling thread.
+  void hold_arrivals(bool hold) override;
 
   // Asks for the bricks of later wants in `codec` (bricks in flight keep theirs).
   void set_codec(Codec codec) override;
@@ -104,6 +110,8 @@ class BrickFetcher final : public BrickSource {
   bool resend_ = false;  // a new stream: everything in flight must be asked for again
   Codec codec_;
   bool codec_changed_ = false;  // codec_ goes out with the next request
+  bool holding_ = false;        // hold_arrivals(true): arrivals wait in held_
+  std::vector<std::pair<BrickKey, CachedBrick>> held_;
   SourceStats stats_;
   bool stopping_ = false;
   std::thread supervisor_;
