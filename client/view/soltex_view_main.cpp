@@ -22,6 +22,7 @@
 #include "soltex/net/brick_fetcher.h"
 #include "soltex/net/channel_security_options.h"
 #include "soltex/net/local_brick_source.h"
+#include "soltex/net/loopback_address.h"
 #include "soltex/render/frame_renderer.h"
 #include "soltex/scene/default_scene.h"
 #include "soltex/scene/scene_error.h"
@@ -66,13 +67,20 @@ MipMode mip_from(const std::string& name) {
   return MipMode::band_limited;
 }
 
-// The codec bricks travel in: --codec's, else the one the link warrants (the probe's, or a
-// simulated --capability bandwidth's), logged with why.
+// The codec bricks travel in: --codec's, else the one the link warrants (the probe's, a
+// simulated --capability bandwidth's, or raw over an unprobed loopback link), logged with why.
 Codec choose_codec(std::optional<Codec> forced, const capability::Capability& measured,
-                   const capability::CapabilityOverride& override) {
+                   const capability::CapabilityOverride& override, bool probed) {
   if (forced) {
     spdlog::info("codec: {} (--codec)", codec_name(*forced));
     return *forced;
+  }
+  if (!probed) {
+    spdlog::info(
+        "codec: {}: loopback, where encoding and decoding cost more than the bytes they save "
+        "(--codec overrides; a port forwarded to another machine wants --codec zstd)",
+        codec_name(measured.codec));
+    return measured.codec;
   }
   const double zstd_ratio = capability::kRawBrickBytes / measured.bytes_per_brick;
   Codec codec = measured.codec;
@@ -279,23 +287,26 @@ int main(int argc, char** argv) {
     capability::Capability measured =
         headless ? capability::measure_memory() : capability::measure_machine();
     mark(headless ? "memory measured" : "machine probe done");
-    // The cache exists before the link probe so that the probe's bricks have a home; its
-    // budget is set from the choice below.
-    auto cache = std::make_unique<BrickCache>(256u << 20);
-    std::unique_ptr<net::BrickSource> source;
-    if (local) {
-      source = std::make_unique<net::LocalBrickSource>(*cache);
-    } else {
-      auto fetcher = std::make_unique<net::BrickFetcher>(server, *cache, fetcher_options);
-      measured.round_trip_ms = static_cast<double>(fetcher->measure_round_trip().count()) / 1e3;
-      mark(fmt::format("connected: GetServerInfo answered in {:.2f} ms", measured.round_trip_ms));
-      source = std::move(fetcher);
-    }
     const std::optional<Codec> forced_codec = codec_from(codec_name);
-    if (!scene.objects.empty()) {
-      capability::measure_link(*source, scene.objects.front().material.texture, measured,
+    // Over loopback the link is this machine's memory: the probe would find no latency worth a
+    // coarser start and raw bricks cheapest (docs/PROTOCOL.md, section 6), after costing the
+    // start about 30 ms and soltexd the CPU of its probe bricks. An in-process source moves no
+    // bytes, so a probe of it measures nothing. A simulated bandwidth needs the probe's zstd
+    // figures to choose a codec.
+    const bool loopback = !local && net::is_loopback_address(server);
+    const bool probe_link =
+        !local && !scene.objects.empty() && (!loopback || override.bandwidth_mb_per_s.has_value());
+    if (probe_link) {
+      // The probe's own cache and source: its bricks are no part of the picture.
+      BrickCache probe_cache(256u << 20);
+      net::BrickFetcher probe(server, probe_cache, fetcher_options);
+      measured.round_trip_ms = static_cast<double>(probe.measure_round_trip().count()) / 1e3;
+      mark(fmt::format("connected: GetServerInfo answered in {:.2f} ms", measured.round_trip_ms));
+      capability::measure_link(probe, scene.objects.front().material.texture, measured,
                                !forced_codec.has_value());
       mark("link probe done");
+    } else if (loopback) {
+      measured.codec = Codec::raw;
     }
     const capability::Capability effective = capability::apply(measured, override);
     // Headless output, and a window given a size, keep the size asked for exactly; a window
@@ -312,30 +323,38 @@ int main(int argc, char** argv) {
       choice.finest_level_log2 = finest_level;
       choice.start_level_log2 = std::min(choice.start_level_log2, finest_level);
     }
-    spdlog::info(
-        "capability: {}, {} MiB available, round trip {:.2f} ms, brick latency "
-        "{:.1f} ms, link {:.1f} MB/s{}",
-        effective.pixels_per_second > 0.0
-            ? fmt::format("{:.1f} Mpixel/s", effective.pixels_per_second / 1e6)
-            : std::string("drawing speed not measured (the frame keeps its size)"),
-        effective.available_memory_mb, measured.round_trip_ms, effective.brick_latency_ms,
-        effective.bandwidth_mb_per_s,
-        capability_text.empty() ? "" : " (simulated: " + capability_text + ")");
+    if (!local) {
+      fetcher_options.codec = choose_codec(forced_codec, measured, override, probe_link);
+    }
+    auto cache = std::make_unique<BrickCache>(choice.cache_budget_bytes);
+    std::unique_ptr<net::BrickSource> source;
+    if (local) {
+      source = std::make_unique<net::LocalBrickSource>(*cache);
+    } else {
+      auto fetcher = std::make_unique<net::BrickFetcher>(server, *cache, fetcher_options);
+      if (!probe_link) {
+        measured.round_trip_ms = static_cast<double>(fetcher->measure_round_trip().count()) / 1e3;
+        mark(
+            fmt::format("connected: GetServerInfo answered in {:.2f} ms (loopback: no link "
+                        "probe)",
+                        measured.round_trip_ms));
+      }
+      source = std::move(fetcher);
+    }
+    spdlog::info("capability: {}, {} MiB available, round trip {:.2f} ms, {}{}",
+                 effective.pixels_per_second > 0.0
+                     ? fmt::format("{:.1f} Mpixel/s", effective.pixels_per_second / 1e6)
+                     : std::string("drawing speed not measured (the frame keeps its size)"),
+                 effective.available_memory_mb, measured.round_trip_ms,
+                 probe_link || local
+                     ? fmt::format("brick latency {:.1f} ms, link {:.1f} MB/s",
+                                   effective.brick_latency_ms, effective.bandwidth_mb_per_s)
+                     : std::string("loopback link (not probed)"),
+                 capability_text.empty() ? "" : " (simulated: " + capability_text + ")");
     for (std::size_t begin = 0; begin < choice.reason.size();) {
       const std::size_t end = choice.reason.find('\n', begin);
       spdlog::info("choice: {}", choice.reason.substr(begin, end - begin));
       begin = end == std::string::npos ? choice.reason.size() : end + 1;
-    }
-
-    if (!local) fetcher_options.codec = choose_codec(forced_codec, measured, override);
-
-    // The real cache, with the chosen budget; the probe's cache goes with its source.
-    source.reset();
-    cache = std::make_unique<BrickCache>(choice.cache_budget_bytes);
-    if (local) {
-      source = std::make_unique<net::LocalBrickSource>(*cache);
-    } else {
-      source = std::make_unique<net::BrickFetcher>(server, *cache, fetcher_options);
     }
     const TextureResolution resolution{choice.finest_level_log2, brick_size,
                                        MipSettings{mip_from(mip_name), 2}};
@@ -357,7 +376,7 @@ int main(int argc, char** argv) {
                         screenshot);
     }
 #endif
-    mark("probe's source closed, the scene's opened");
+    mark("cache and brick source ready");
     const PreparedScene prepared = prepare_scene(scene, resolution, *source);
     mark("scene prepared, textures registered");
     FrameRenderer renderer(*cache, render_options);
