@@ -194,7 +194,11 @@ void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& 
       stats_.decoded_bytes[codec] += decoded_bytes;
     }
     if (brick && holding_) {
-      held_.emplace_back(key, std::move(*brick));  // still in flight until released
+      // Arrived, so no longer counted against the in-flight bound; still pending (idle() is
+      // false) until released.
+      in_flight_.erase(key);
+      held_keys_.insert(key);
+      held_.emplace_back(key, std::move(*brick));
       continue;
     }
     if (brick) {
@@ -230,7 +234,7 @@ void BrickFetcher::hold_arrivals(bool hold) {
   {
     std::lock_guard lock(mutex_);
     for (const auto& [key, brick] : held) {
-      in_flight_.erase(key);
+      held_keys_.erase(key);
       refetches_.erase(key);
       ++stats_.received;
     }
@@ -260,7 +264,10 @@ void BrickFetcher::want(std::vector<BrickWant> wants) {
     }
     waiting_.clear();
     for (const BrickWant& w : fresh) {
-      if (in_flight_.contains(w.key) || failed_.contains(w.key) || cache_.contains(w.key)) continue;
+      if (in_flight_.contains(w.key) || held_keys_.contains(w.key) || failed_.contains(w.key) ||
+          cache_.contains(w.key)) {
+        continue;
+      }
       waiting_.push_back(w);
     }
   }
@@ -273,7 +280,10 @@ void BrickFetcher::want_early(std::vector<BrickWant> wants) {
   {
     std::lock_guard lock(mutex_);
     for (const BrickWant& w : wants) {
-      if (in_flight_.contains(w.key) || failed_.contains(w.key) || cache_.contains(w.key)) continue;
+      if (in_flight_.contains(w.key) || held_keys_.contains(w.key) || failed_.contains(w.key) ||
+          cache_.contains(w.key)) {
+        continue;
+      }
       // A key another render thread found first is waiting already (a short list: the frame
       // sends as it goes).
       const bool waiting = std::any_of(waiting_.begin(), waiting_.end(),
@@ -319,7 +329,9 @@ void BrickFetcher::write_loop() {
     std::size_t taken = 0;
     while (taken < waiting_.size() && in_flight_.size() < options_.max_in_flight) {
       const BrickWant& w = waiting_[taken++];
-      if (cache_.contains(w.key) || in_flight_.contains(w.key)) continue;
+      if (cache_.contains(w.key) || in_flight_.contains(w.key) || held_keys_.contains(w.key)) {
+        continue;
+      }
       in_flight_.insert(w.key);
       auto* want = request.add_want();
       *want->mutable_key() = to_proto(w.key);
@@ -357,19 +369,19 @@ void BrickFetcher::set_codec(Codec codec) {
 
 bool BrickFetcher::idle() const {
   std::lock_guard lock(mutex_);
-  return waiting_.empty() && in_flight_.empty();
+  return waiting_.empty() && in_flight_.empty() && held_.empty();
 }
 
 bool BrickFetcher::wait_idle(std::chrono::milliseconds timeout) {
   std::unique_lock lock(mutex_);
-  return changed_.wait_for(lock, timeout,
-                           [this] { return waiting_.empty() && in_flight_.empty(); });
+  return changed_.wait_for(
+      lock, timeout, [this] { return waiting_.empty() && in_flight_.empty() && held_.empty(); });
 }
 
 SourceStats BrickFetcher::stats() const {
   std::lock_guard lock(mutex_);
   SourceStats s = stats_;
-  s.in_flight = in_flight_.size();
+  s.in_flight = in_flight_.size() + held_.size();
   s.waiting = waiting_.size();
   return s;
 }

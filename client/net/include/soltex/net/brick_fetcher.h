@@ -111,7 +111,8 @@ class BrickFetcher final : public BrickSource {
   Codec codec_;
   bool codec_changed_ = false;  // codec_ goes out with the next request
   bool holding_ = false;        // hold_arrivals(true): arrivals wait in held_
-  std::vector<std::pair<BrickKey, CachedBrick>> held_;
+  std::vector<std::pair<BrickKey, CachedBrick>> held_;    // arrived, not yet in the cache
+  std::unordered_set<BrickKey, BrickKeyHash> held_keys_;  // held_'s keys
   SourceStats stats_;
   bool stopping_ = false;
   std::thread supervisor_;
