@@ -332,9 +332,14 @@ Choice choose(const Capability& capability, const Scene& scene, int width, int h
   choice.start_level_log2 = start;
   why << "start at 2^" << start << ", refine when idle: about "
       << static_cast<long>(surface_bricks(start) * capability.bytes_per_brick / 1e3)
-      << " kB of bricks in " << static_cast<long>(fetch_seconds(start) * 1e3) << " ms over a "
-      << capability.bandwidth_mb_per_s << " MB/s link with " << capability.brick_latency_ms
-      << " ms latency (budget " << limits.fetch_seconds * 1e3 << " ms)";
+      << " kB of bricks in " << static_cast<long>(fetch_seconds(start) * 1e3) << " ms over ";
+  if (capability.bandwidth_mb_per_s > 0.0) {
+    why << "a " << capability.bandwidth_mb_per_s << " MB/s link";
+  } else {
+    why << "a link of unlimited bandwidth";  // 0: in-process, loopback, or too fast to tell
+  }
+  why << " with " << capability.brick_latency_ms << " ms latency (budget "
+      << limits.fetch_seconds * 1e3 << " ms)";
   choice.reason = why.str();
   return choice;
 }
