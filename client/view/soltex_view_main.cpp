@@ -273,7 +273,7 @@ int main(int argc, char** argv) {
     net::FetcherOptions fetcher_options;
     fetcher_options.security = net::finish_channel_security(security_options);
     // Null marks nothing: the timeline costs only where it is printed.
-    view::StartupTimeline* const marks = print_timeline ? &timeline : nullptr;
+    view::StartupTimeline* const marks = print_timeline && headless ? &timeline : nullptr;
     const auto mark = [&](std::string what) {
       if (marks != nullptr) marks->mark(std::move(what));
     };
@@ -369,7 +369,7 @@ int main(int argc, char** argv) {
 #ifdef SOLTEX_HAVE_SDL2
     if (!headless) {
       for (const char* option :
-           {"--out", "--exact", "--reference", "--supersample", "--max-time-s"}) {
+           {"--out", "--exact", "--reference", "--supersample", "--max-time-s", "--timeline"}) {
         if (app.count(option) > 0) spdlog::warn("{} applies to --headless only; ignored", option);
       }
       return run_window(scene, resolution, *cache, *source, render_options, choice, window_frames,
