@@ -1,5 +1,7 @@
 #include "headless_session.h"
 
+#include <spdlog/fmt/fmt.h>
+
 #include <algorithm>
 #include <climits>
 #include <ctime>
@@ -15,10 +17,43 @@ double process_cpu_ms() {
   return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) / 1e6;
 }
 
+// While a frame is drawn: hands each raster tile's misses to `source` as the cap (if any)
+// lets them be fetched, and holds the bricks that arrive meanwhile out of the cache until the
+// frame ends (an insertion makes every lookup the frame found missing look again); for as
+// long as it lives.
+class EarlyRequests {
+ public:
+  EarlyRequests(FrameRenderer& renderer, net::BrickSource& source, const LevelCap* cap,
+                const BrickCache* cache, bool on)
+      : renderer_(renderer), source_(on ? &source : nullptr) {
+    if (!on) return;
+    source.hold_arrivals(true);
+    renderer.set_on_tile_misses([&source, cap, cache](std::vector<net::BrickWant> wants) {
+      if (cap != nullptr && cache != nullptr) wants = not_resident(cap->apply(wants), *cache);
+      if (!wants.empty()) source.want_early(std::move(wants));
+    });
+  }
+  ~EarlyRequests() {
+    if (source_ == nullptr) return;
+    renderer_.set_on_tile_misses(nullptr);
+    source_->hold_arrivals(false);
+  }
+  EarlyRequests(const EarlyRequests&) = delete;
+  EarlyRequests& operator=(const EarlyRequests&) = delete;
+
+ private:
+  FrameRenderer& renderer_;
+  net::BrickSource* source_;
+};
+
 // One frame, counted and timed into `result`; in false-colour levels when it is drawn only
 // for its misses.
 Frame draw(FrameRenderer& renderer, const PreparedScene& scene, const Camera& camera, int width,
-           int height, bool for_misses, HeadlessResult& result) {
+           int height, bool for_misses, HeadlessResult& result, StartupTimeline* timeline) {
+  if (timeline != nullptr) {
+    timeline->mark(fmt::format("frame {} starts{}", result.frames + 1,
+                               for_misses ? " (for its misses, false colour)" : ""));
+  }
   const auto start = std::chrono::steady_clock::now();
   if (for_misses) renderer.set_false_colour_levels(true);
   Frame frame = renderer.render(scene, camera, width, height);
@@ -28,6 +63,10 @@ Frame draw(FrameRenderer& renderer, const PreparedScene& scene, const Camera& ca
   ++result.frames;
   result.last_frame_ms = frame.stats.raster_ms + frame.stats.shade_ms;
   result.last_stats = frame.stats;
+  if (timeline != nullptr) {
+    timeline->mark(fmt::format("frame {} ends: {} misses, {} pixels from a coarser level",
+                               result.frames, frame.misses.size(), frame.stats.fallback_pixels));
+  }
   return frame;
 }
 
@@ -55,7 +94,11 @@ HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, con
   bool for_misses = options.first_frame_for_misses && !renderer.options().false_colour_levels;
   for (;;) {
     const uint64_t received_before_frame = source.stats().received;
-    Frame frame = draw(renderer, scene, camera, width, height, for_misses, result);
+    Frame frame = [&] {
+      const EarlyRequests early(renderer, source, cap, options.cache,
+                                options.request_while_drawing);
+      return draw(renderer, scene, camera, width, height, for_misses, result, options.timeline);
+    }();
     if (result.frames == 1) result.first_frame_ms = elapsed_ms();
     const FrameNeeds needs =
         needs_of(frame, cap, options.cache, source.stats().received != received_before_frame);
@@ -93,7 +136,8 @@ HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, con
       // Out of time after a frame drawn only for its misses: the output is the scene as the
       // cache holds it, shaded.
       if (result.image.rgb.empty()) {
-        result.image = draw(renderer, scene, camera, width, height, false, result).image;
+        result.image =
+            draw(renderer, scene, camera, width, height, false, result, options.timeline).image;
       }
       return result;
     }
@@ -113,7 +157,9 @@ HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, con
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         start + options.max_time - Clock::now());
     const auto wait_start = Clock::now();
+    if (options.timeline != nullptr) options.timeline->mark("waits for bricks");
     source.wait_idle(std::max(left, std::chrono::milliseconds(1)));
+    if (options.timeline != nullptr) options.timeline->mark("nothing pending any more");
     result.waiting_ms +=
         std::chrono::duration<double, std::milli>(Clock::now() - wait_start).count();
   }

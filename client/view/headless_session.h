@@ -10,6 +10,7 @@
 #include "soltex/common/texture_sampler.h"
 #include "soltex/net/brick_source.h"
 #include "soltex/render/frame_renderer.h"
+#include "startup_timeline.h"
 
 namespace soltex::view {
 
@@ -25,8 +26,13 @@ struct HeadlessOptions {
   // evaluating any texture per pixel. Its picture is never the output: should it miss
   // nothing, the next frame, drawn at once, is shaded.
   bool first_frame_for_misses = true;
+  // Ask for each raster tile's misses as soon as the tile is shaded (BrickSource::
+  // want_early), so that the server makes bricks while the frame is still being drawn.
+  bool request_while_drawing = true;
   // Called with each frame's misses before they go to the source (e.g. to record them).
   std::function<void(double seconds, const std::vector<net::BrickWant>& misses)> on_misses;
+  // Marks each frame's start and end and each wait for bricks (null: none).
+  StartupTimeline* timeline = nullptr;
 };
 
 struct HeadlessResult {

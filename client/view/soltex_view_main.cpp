@@ -14,6 +14,7 @@
 #include "headless_session.h"
 #include "request_log.h"
 #include "soltex/cli/tool_cli.h"
+#include "startup_timeline.h"
 #ifdef SOLTEX_HAVE_SDL2
 #include "viewer_window.h"
 #endif
@@ -21,6 +22,7 @@
 #include "soltex/net/brick_fetcher.h"
 #include "soltex/net/channel_security_options.h"
 #include "soltex/net/local_brick_source.h"
+#include "soltex/net/loopback_address.h"
 #include "soltex/render/frame_renderer.h"
 #include "soltex/scene/default_scene.h"
 #include "soltex/scene/scene_error.h"
@@ -65,13 +67,20 @@ MipMode mip_from(const std::string& name) {
   return MipMode::band_limited;
 }
 
-// The codec bricks travel in: --codec's, else the one the link warrants (the probe's, or a
-// simulated --capability bandwidth's), logged with why.
+// The codec bricks travel in: --codec's, else the one the link warrants (the probe's, a
+// simulated --capability bandwidth's, or raw over an unprobed loopback link), logged with why.
 Codec choose_codec(std::optional<Codec> forced, const capability::Capability& measured,
-                   const capability::CapabilityOverride& override) {
+                   const capability::CapabilityOverride& override, bool probed) {
   if (forced) {
     spdlog::info("codec: {} (--codec)", codec_name(*forced));
     return *forced;
+  }
+  if (!probed) {
+    spdlog::info(
+        "codec: {}: loopback, where encoding and decoding cost more than the bytes they save "
+        "(--codec overrides; a port forwarded to another machine wants --codec zstd)",
+        codec_name(measured.codec));
+    return measured.codec;
   }
   const double zstd_ratio = capability::kRawBrickBytes / measured.bytes_per_brick;
   Codec codec = measured.codec;
@@ -134,6 +143,7 @@ int run_window(const Scene& scene, const TextureResolution& resolution, BrickCac
 }  // namespace
 
 int main(int argc, char** argv) {
+  view::StartupTimeline timeline;  // the program's start: the first thing it does
   CLI::App app{"soltex-view: software-rendered solid textures from a sparse brick cache"};
   std::string server;
   bool local = false;
@@ -158,6 +168,7 @@ int main(int argc, char** argv) {
   int brick_size = 16;
   int width = 0, height = 0;
   std::filesystem::path record_path;
+  bool print_timeline = false;
   std::string log_level = "info";
   int window_frames = 0;
   std::filesystem::path screenshot;
@@ -239,6 +250,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--record", record_path,
                  "write every brick request to FILE (soltex-load --mix replay plays it back)");
+  app.add_flag("--timeline", print_timeline,
+               "headless: print when each step of the start happened (probes, frames, requests, "
+               "each batch of bricks received), in ms since the program started");
   net::ChannelSecurityOptions security_options;
   net::add_channel_security_options(app, security_options);
   if (const auto exit_code = cli::parse(app, "soltex-view", argc, argv)) return *exit_code;
@@ -258,26 +272,41 @@ int main(int argc, char** argv) {
   try {
     net::FetcherOptions fetcher_options;
     fetcher_options.security = net::finish_channel_security(security_options);
+    // Null marks nothing: the timeline costs only where it is printed.
+    view::StartupTimeline* const marks = print_timeline && headless ? &timeline : nullptr;
+    const auto mark = [&](std::string what) {
+      if (marks != nullptr) marks->mark(std::move(what));
+    };
+    if (marks != nullptr) fetcher_options.on_event = fetch_marks(*marks);
+    mark("command line read");
     const Scene scene = scene_path.empty() ? default_scene() : load_scene(scene_path);
     capability::CapabilityOverride override;
     if (!capability_text.empty()) override = capability::parse_override(capability_text);
 
-    capability::Capability measured = capability::measure_machine();
-    // The cache exists before the link probe so that the probe's bricks have a home; its
-    // budget is set from the choice below.
-    auto cache = std::make_unique<BrickCache>(256u << 20);
-    std::unique_ptr<net::BrickSource> source;
-    if (local) {
-      source = std::make_unique<net::LocalBrickSource>(*cache);
-    } else {
-      auto fetcher = std::make_unique<net::BrickFetcher>(server, *cache, fetcher_options);
-      measured.round_trip_ms = static_cast<double>(fetcher->measure_round_trip().count()) / 1e3;
-      source = std::move(fetcher);
-    }
+    // Headless output keeps the size asked for, so nothing needs this machine's drawing speed.
+    capability::Capability measured =
+        headless ? capability::measure_memory() : capability::measure_machine();
+    mark(headless ? "memory measured" : "machine probe done");
     const std::optional<Codec> forced_codec = codec_from(codec_name);
-    if (!scene.objects.empty()) {
-      capability::measure_link(*source, scene.objects.front().material.texture, measured,
+    // Over loopback the link is this machine's memory: the probe would find no latency worth a
+    // coarser start and raw bricks cheapest (docs/PROTOCOL.md, section 6), after costing the
+    // start about 30 ms and soltexd the CPU of its probe bricks. An in-process source moves no
+    // bytes, so a probe of it measures nothing. A simulated bandwidth needs the probe's zstd
+    // figures to choose a codec.
+    const bool loopback = !local && net::is_loopback_address(server);
+    const bool probe_link =
+        !local && !scene.objects.empty() && (!loopback || override.bandwidth_mb_per_s.has_value());
+    if (probe_link) {
+      // The probe's own cache and source: its bricks are no part of the picture.
+      BrickCache probe_cache(256u << 20);
+      net::BrickFetcher probe(server, probe_cache, fetcher_options);
+      measured.round_trip_ms = static_cast<double>(probe.measure_round_trip().count()) / 1e3;
+      mark(fmt::format("connected: GetServerInfo answered in {:.2f} ms", measured.round_trip_ms));
+      capability::measure_link(probe, scene.objects.front().material.texture, measured,
                                !forced_codec.has_value());
+      mark("link probe done");
+    } else if (loopback) {
+      measured.codec = Codec::raw;
     }
     const capability::Capability effective = capability::apply(measured, override);
     // Headless output, and a window given a size, keep the size asked for exactly; a window
@@ -294,27 +323,38 @@ int main(int argc, char** argv) {
       choice.finest_level_log2 = finest_level;
       choice.start_level_log2 = std::min(choice.start_level_log2, finest_level);
     }
-    spdlog::info(
-        "capability: {:.1f} Mpixel/s, {} MiB available, round trip {:.2f} ms, brick latency "
-        "{:.1f} ms, link {:.1f} MB/s{}",
-        effective.pixels_per_second / 1e6, effective.available_memory_mb, measured.round_trip_ms,
-        effective.brick_latency_ms, effective.bandwidth_mb_per_s,
-        capability_text.empty() ? "" : " (simulated: " + capability_text + ")");
+    if (!local) {
+      fetcher_options.codec = choose_codec(forced_codec, measured, override, probe_link);
+    }
+    auto cache = std::make_unique<BrickCache>(choice.cache_budget_bytes);
+    std::unique_ptr<net::BrickSource> source;
+    if (local) {
+      source = std::make_unique<net::LocalBrickSource>(*cache);
+    } else {
+      auto fetcher = std::make_unique<net::BrickFetcher>(server, *cache, fetcher_options);
+      if (!probe_link) {
+        measured.round_trip_ms = static_cast<double>(fetcher->measure_round_trip().count()) / 1e3;
+        mark(
+            fmt::format("connected: GetServerInfo answered in {:.2f} ms (loopback: no link "
+                        "probe)",
+                        measured.round_trip_ms));
+      }
+      source = std::move(fetcher);
+    }
+    spdlog::info("capability: {}, {} MiB available, round trip {:.2f} ms, {}{}",
+                 effective.pixels_per_second > 0.0
+                     ? fmt::format("{:.1f} Mpixel/s", effective.pixels_per_second / 1e6)
+                     : std::string("drawing speed not measured (the frame keeps its size)"),
+                 effective.available_memory_mb, measured.round_trip_ms,
+                 probe_link || local
+                     ? fmt::format("brick latency {:.1f} ms, link {:.1f} MB/s",
+                                   effective.brick_latency_ms, effective.bandwidth_mb_per_s)
+                     : std::string("loopback link (not probed)"),
+                 capability_text.empty() ? "" : " (simulated: " + capability_text + ")");
     for (std::size_t begin = 0; begin < choice.reason.size();) {
       const std::size_t end = choice.reason.find('\n', begin);
       spdlog::info("choice: {}", choice.reason.substr(begin, end - begin));
       begin = end == std::string::npos ? choice.reason.size() : end + 1;
-    }
-
-    if (!local) fetcher_options.codec = choose_codec(forced_codec, measured, override);
-
-    // The real cache, with the chosen budget; the probe's cache goes with its source.
-    source.reset();
-    cache = std::make_unique<BrickCache>(choice.cache_budget_bytes);
-    if (local) {
-      source = std::make_unique<net::LocalBrickSource>(*cache);
-    } else {
-      source = std::make_unique<net::BrickFetcher>(server, *cache, fetcher_options);
     }
     const TextureResolution resolution{choice.finest_level_log2, brick_size,
                                        MipSettings{mip_from(mip_name), 2}};
@@ -329,20 +369,23 @@ int main(int argc, char** argv) {
 #ifdef SOLTEX_HAVE_SDL2
     if (!headless) {
       for (const char* option :
-           {"--out", "--exact", "--reference", "--supersample", "--max-time-s"}) {
+           {"--out", "--exact", "--reference", "--supersample", "--max-time-s", "--timeline"}) {
         if (app.count(option) > 0) spdlog::warn("{} applies to --headless only; ignored", option);
       }
       return run_window(scene, resolution, *cache, *source, render_options, choice, window_frames,
                         screenshot);
     }
 #endif
+    mark("cache and brick source ready");
     const PreparedScene prepared = prepare_scene(scene, resolution, *source);
+    mark("scene prepared, textures registered");
     FrameRenderer renderer(*cache, render_options);
 
     view::HeadlessOptions options;
     options.max_time = std::chrono::milliseconds(static_cast<long>(max_seconds * 1000));
     options.start_level_log2 = choice.start_level_log2;
     options.cache = cache.get();
+    options.timeline = marks;
     std::ofstream record_file;
     std::optional<load::RequestLogWriter> recorder;
     if (!record_path.empty()) {
@@ -358,6 +401,7 @@ int main(int argc, char** argv) {
     }
     const view::HeadlessResult result = view::render_until_converged(
         renderer, prepared, scene.camera, choice.width, choice.height, *source, options);
+    mark(result.converged_ms >= 0.0 ? "converged" : "stopped, not converged");
     const net::SourceStats fetched = source->stats();
     const BrickCacheStats cached = cache->stats();
     std::printf("scene:      %s, %zu objects, %dx%d, finest level 2^%d, %s filter\n",
@@ -415,6 +459,7 @@ int main(int argc, char** argv) {
     if (!out.parent_path().empty()) std::filesystem::create_directories(out.parent_path());
     write_png(out, result.image);
     std::printf("wrote:      %s\n", out.c_str());
+    if (marks != nullptr) marks->print(stdout);
     if (reference) {
       // Timed on a second call, as the cached frame is: the first faults in the reference's
       // buffers, which is not what per-pixel evaluation costs.

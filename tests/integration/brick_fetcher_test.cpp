@@ -149,6 +149,45 @@ TEST(BrickFetcher, DuplicatesResidentAndStaleWantsAreNotFetchedTwice) {
   EXPECT_EQ(fetcher.stats().received, 8u);
 }
 
+// A frame's misses asked for in pieces while it is drawn (from several threads, overlapping),
+// each key once; what arrives while arrivals are held stays out of the cache, in flight, until
+// released, and then all of it goes in; the frame's own want() afterwards cancels nothing.
+TEST(BrickFetcher, EarlyWantsWhileArrivalsAreHeld) {
+  FetcherAgainstServer setup;
+  auto& [server, cache, fetcher, id] = setup;
+  const std::vector<net::BrickWant> frame = level(id, 1, 4);
+  fetcher.hold_arrivals(true);
+  std::vector<std::thread> tiles;
+  for (int t = 0; t < 4; ++t) {
+    tiles.emplace_back([&, t] {
+      // Each "thread" asks for half the keys, so every key is asked for twice.
+      for (std::size_t i = 0; i < frame.size(); ++i) {
+        if ((i / 8 + static_cast<std::size_t>(t)) % 2 == 0) fetcher.want_early({frame[i]});
+      }
+    });
+  }
+  for (std::thread& tile : tiles) tile.join();
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (fetcher.stats().bytes == 0 || fetcher.stats().waiting > 0 ||
+         fetcher.stats().in_flight < frame.size()) {
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "nothing arrived";
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  // Let the rest arrive; held, none is in the cache and the fetcher is not idle.
+  EXPECT_FALSE(fetcher.wait_idle(std::chrono::milliseconds(500)));
+  EXPECT_EQ(fetcher.stats().received, 0u);
+  EXPECT_FALSE(cache.contains(frame.front().key));
+
+  fetcher.hold_arrivals(false);
+  fetcher.want(frame);
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
+  const net::SourceStats stats = fetcher.stats();
+  EXPECT_EQ(stats.requested, frame.size());
+  EXPECT_EQ(stats.received, frame.size());
+  EXPECT_EQ(stats.cancelled, 0u);
+  expect_cached_brick_is_local(cache, id, 1, {2, 1, 3});
+}
+
 TEST(BrickFetcher, RefusedKeysAreReportedAndNotAskedAgain) {
   FetcherAgainstServer setup;
   auto& [server, cache, fetcher, id] = setup;

@@ -128,6 +128,31 @@ TEST_F(ViewCli, EveryCodecConvergesToTheSamePicture) {
   }
 }
 
+// --timeline prints the start's steps in the order they happened: the stream, the first frame
+// and the requests for its misses, the batches of bricks, the converged frame.
+TEST_F(ViewCli, TimelineShowsTheStartStepByStep) {
+  SoltexdProcess server;
+  const ViewRun run = view("timeline", against(server, {"--timeline"}));
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::string& out = run.output;
+  std::size_t at = 0;
+  EXPECT_NE(out.find("brick stream open"), std::string::npos) << out;
+  for (const char* step :
+       {"timeline: origin at", "frame 1 starts", "frame 1 ends", "frame 2 starts", "converged"}) {
+    const std::size_t found = out.find(step, at);
+    ASSERT_NE(found, std::string::npos) << "no '" << step << "' after byte " << at << ":\n" << out;
+    at = found;
+  }
+  // The first frame's misses are asked for while it is drawn (the writer thread may get to
+  // them only after it ends); bricks come in during it or after.
+  const std::size_t first_frame = out.find("frame 1 starts");
+  EXPECT_NE(out.find("bricks wanted", first_frame), std::string::npos) << out;
+  EXPECT_NE(out.find("batch received", first_frame), std::string::npos) << out;
+  const ViewRun quiet = view("no-timeline", against(server));
+  ASSERT_EQ(quiet.exit_code, 0) << quiet.output;
+  EXPECT_EQ(quiet.output.find("timeline:"), std::string::npos) << quiet.output;
+}
+
 // The output is the size asked for, however slow this machine measures.
 TEST_F(ViewCli, HeadlessKeepsTheRequestedImageSize) {
   const ViewRun scene_size = view(

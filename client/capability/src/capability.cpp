@@ -79,9 +79,14 @@ Capability apply(Capability measured, const CapabilityOverride& o) {
   return measured;
 }
 
-Capability measure_machine() {
+Capability measure_memory() {
   Capability c;
   c.available_memory_mb = available_memory_mb();
+  return c;
+}
+
+Capability measure_machine() {
+  Capability c = measure_memory();
   // The probe: a lit sphere carved from the colour cube, 320 x 180, drawn from an
   // in-process cache that already holds what the frame needs.
   Scene scene;
@@ -137,13 +142,14 @@ void fit_link(const LinkTiming& small, const LinkTiming& large, Capability& capa
 namespace {
 
 // Asks for `keys` at once and waits until all are in.
-LinkTiming burst(net::BrickSource& source, std::vector<net::BrickWant> wants) {
+LinkTiming burst(net::BrickSource& source, std::vector<net::BrickWant> wants,
+                 const ProbeClock& clock) {
   const net::SourceStats before = source.stats();
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = clock();
   source.want(std::move(wants));
   source.wait_idle(std::chrono::seconds(20));
   LinkTiming timing;
-  timing.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  timing.seconds = std::chrono::duration<double>(clock() - start).count();
   const net::SourceStats after = source.stats();
   timing.bytes = static_cast<double>(after.bytes - before.bytes);
   timing.bricks = static_cast<double>(after.received - before.received);
@@ -179,7 +185,7 @@ namespace {
 // so that a thin link pays for about 120 kB of probe, not a megabyte. 0: the raw bursts were
 // no slower (the link is faster than the probe can tell).
 double raw_link_mb_per_s(net::BrickSource& source, const Volume& volume, double zstd_ratio,
-                         double decode_ns) {
+                         double decode_ns, const ProbeClock& clock) {
   const TextureSpec cube = validated(TextureSpec{ColourCubeParams{0.5}, {}, {}, {}, {}});
   const MipSettings point{MipMode::point, 1};
   const auto shifted = [&](double by) {
@@ -192,9 +198,9 @@ double raw_link_mb_per_s(net::BrickSource& source, const Volume& volume, double 
   const uint64_t raw = source.register_texture(cube, shifted(8.0), 16, point);
   const auto extra_bandwidth = [&](int level) {
     source.set_codec(Codec::zstd);
-    const LinkTiming small = burst(source, probe_level(packed, level));
+    const LinkTiming small = burst(source, probe_level(packed, level), clock);
     source.set_codec(Codec::raw);
-    const LinkTiming large = burst(source, probe_level(raw, level));
+    const LinkTiming large = burst(source, probe_level(raw, level), clock);
     const double extra_seconds = large.seconds - small.seconds;
     return extra_seconds > 0.0 ? (large.bytes - small.bytes) / extra_seconds / 1e6 : 0.0;
   };
@@ -209,16 +215,16 @@ double raw_link_mb_per_s(net::BrickSource& source, const Volume& volume, double 
 }  // namespace
 
 void measure_link(net::BrickSource& source, const TextureSpec& texture, Capability& capability,
-                  bool choose_codec) {
+                  bool choose_codec, const ProbeClock& clock) {
   Volume probe;
   probe.min = glm::dvec3(-1.0);
   probe.max = glm::dvec3(1.0);
   probe.finest_level_log2 = 7;  // 16^3-cell bricks: levels 3, 2, 1 hold 1, 8 and 64 of them
   source.set_codec(Codec::zstd);
   const uint64_t id = source.register_texture(texture, probe, 16, {});
-  burst(source, probe_level(id, 3));  // opens the stream: its set-up is no part of the link
-  const LinkTiming small = burst(source, probe_level(id, 2));
-  const LinkTiming large = burst(source, probe_level(id, 1));
+  burst(source, probe_level(id, 3), clock);  // opens the stream: no part of the link
+  const LinkTiming small = burst(source, probe_level(id, 2), clock);
+  const LinkTiming large = burst(source, probe_level(id, 1), clock);
   fit_link(small, large, capability);
   if (!choose_codec || large.bytes <= 0.0) return;
   const net::SourceStats stats = source.stats();
@@ -228,7 +234,7 @@ void measure_link(net::BrickSource& source, const TextureSpec& texture, Capabili
       stats.decode_seconds[zstd] * 1e9 / static_cast<double>(stats.decoded_bytes[zstd]);
   const double ratio = kRawBrickBytes / capability.bytes_per_brick;
   capability.raw_link_mb_per_s =
-      raw_link_mb_per_s(source, probe, ratio, capability.zstd_decode_ns_per_byte);
+      raw_link_mb_per_s(source, probe, ratio, capability.zstd_decode_ns_per_byte, clock);
   capability.codec =
       capability.raw_link_mb_per_s > 0.0
           ? codec_for_link(capability.raw_link_mb_per_s, ratio, capability.zstd_decode_ns_per_byte)
@@ -326,9 +332,14 @@ Choice choose(const Capability& capability, const Scene& scene, int width, int h
   choice.start_level_log2 = start;
   why << "start at 2^" << start << ", refine when idle: about "
       << static_cast<long>(surface_bricks(start) * capability.bytes_per_brick / 1e3)
-      << " kB of bricks in " << static_cast<long>(fetch_seconds(start) * 1e3) << " ms over a "
-      << capability.bandwidth_mb_per_s << " MB/s link with " << capability.brick_latency_ms
-      << " ms latency (budget " << limits.fetch_seconds * 1e3 << " ms)";
+      << " kB of bricks in " << static_cast<long>(fetch_seconds(start) * 1e3) << " ms over ";
+  if (capability.bandwidth_mb_per_s > 0.0) {
+    why << "a " << capability.bandwidth_mb_per_s << " MB/s link";
+  } else {
+    why << "a link of unlimited bandwidth";  // 0: in-process, loopback, or too fast to tell
+  }
+  why << " with " << capability.brick_latency_ms << " ms latency (budget "
+      << limits.fetch_seconds * 1e3 << " ms)";
   choice.reason = why.str();
   return choice;
 }

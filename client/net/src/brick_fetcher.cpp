@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <optional>
 #include <stdexcept>
 
 #include "soltex/common/brick_codec.h"
@@ -105,6 +106,7 @@ void BrickFetcher::supervise() {
         if (!first) ++stats_.reconnects;
       }
       changed_.notify_all();
+      if (options_.on_event) options_.on_event(FetchEvent::stream_opened, 0);
       v1::BrickBatch batch;
       bool received_any = false;
       while (stream->call->Read(&batch)) {
@@ -116,6 +118,7 @@ void BrickFetcher::supervise() {
           payloads.emplace_back(from_proto(brick.key()), std::move(*brick.mutable_payload()));
         }
         receive(payloads);
+        if (options_.on_event) options_.on_event(FetchEvent::batch_received, payloads.size());
         if (batch.errors_size() > 0 || batch.request_errors_size() > 0) {
           std::lock_guard lock(mutex_);
           for (const auto& error : batch.errors()) {
@@ -166,7 +169,7 @@ void BrickFetcher::supervise() {
 
 void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& payloads) {
   for (const auto& [key, payload] : payloads) {
-    bool ok = false;
+    std::optional<CachedBrick> brick;
     std::size_t codec = std::size(stats_.decode_seconds);  // none: not decoded
     double decode_seconds = 0.0;
     std::size_t decoded_bytes = 0;
@@ -176,22 +179,35 @@ void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& 
           decode_brick(std::span(reinterpret_cast<const uint8_t*>(payload.data()), payload.size()));
       decode_seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      cache_.insert(key, decoded.brick_size, decoded.channels, decoded.samples);
-      ok = true;
+      // Converted here, outside every lock: inserting it is then only bookkeeping.
+      brick.emplace(decoded.brick_size, decoded.channels, decoded.samples);
       // A brick that decoded has a whole header; its byte 7 is the codec (docs/PROTOCOL.md).
       codec = static_cast<uint8_t>(payload[7]);
       decoded_bytes = decoded.samples.size();
     } catch (const CodecError& e) {
       spdlog::warn("corrupt brick from {}: {}", address_, e.what());
     }
-    std::lock_guard lock(mutex_);
-    in_flight_.erase(key);
+    std::unique_lock lock(mutex_);
     stats_.bytes += payload.size();
     if (codec < std::size(stats_.decode_seconds)) {
       stats_.decode_seconds[codec] += decode_seconds;
       stats_.decoded_bytes[codec] += decoded_bytes;
     }
-    if (ok) {
+    if (brick && holding_) {
+      // Arrived, so no longer counted against the in-flight bound; still pending (idle() is
+      // false) until released.
+      in_flight_.erase(key);
+      held_keys_.insert(key);
+      held_.emplace_back(key, std::move(*brick));
+      continue;
+    }
+    if (brick) {
+      lock.unlock();
+      cache_.insert(key, std::move(*brick));
+      lock.lock();
+    }
+    in_flight_.erase(key);
+    if (brick) {
       ++stats_.received;
       refetches_.erase(key);
     } else if (++refetches_[key] <= options_.max_refetches) {
@@ -203,6 +219,27 @@ void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& 
       ++stats_.errors;
     }
   }
+}
+
+void BrickFetcher::hold_arrivals(bool hold) {
+  std::vector<std::pair<BrickKey, CachedBrick>> held;
+  {
+    std::lock_guard lock(mutex_);
+    holding_ = hold;
+    if (hold) return;
+    held.swap(held_);
+  }
+  if (held.empty()) return;
+  for (auto& [key, brick] : held) cache_.insert(key, std::move(brick));
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [key, brick] : held) {
+      held_keys_.erase(key);
+      refetches_.erase(key);
+      ++stats_.received;
+    }
+  }
+  changed_.notify_all();
 }
 
 void BrickFetcher::want(std::vector<BrickWant> wants) {
@@ -227,11 +264,36 @@ void BrickFetcher::want(std::vector<BrickWant> wants) {
     }
     waiting_.clear();
     for (const BrickWant& w : fresh) {
-      if (in_flight_.contains(w.key) || failed_.contains(w.key) || cache_.contains(w.key)) continue;
+      if (in_flight_.contains(w.key) || held_keys_.contains(w.key) || failed_.contains(w.key) ||
+          cache_.contains(w.key)) {
+        continue;
+      }
       waiting_.push_back(w);
     }
   }
   changed_.notify_all();
+}
+
+void BrickFetcher::want_early(std::vector<BrickWant> wants) {
+  std::sort(wants.begin(), wants.end(), fetched_before);
+  bool added = false;
+  {
+    std::lock_guard lock(mutex_);
+    for (const BrickWant& w : wants) {
+      if (in_flight_.contains(w.key) || held_keys_.contains(w.key) || failed_.contains(w.key) ||
+          cache_.contains(w.key)) {
+        continue;
+      }
+      // A key another render thread found first is waiting already (a short list: the frame
+      // sends as it goes).
+      const bool waiting = std::any_of(waiting_.begin(), waiting_.end(),
+                                       [&](const BrickWant& o) { return o.key == w.key; });
+      if (waiting) continue;
+      waiting_.push_back(w);
+      added = true;
+    }
+  }
+  if (added) changed_.notify_all();
 }
 
 void BrickFetcher::write_loop() {
@@ -267,7 +329,9 @@ void BrickFetcher::write_loop() {
     std::size_t taken = 0;
     while (taken < waiting_.size() && in_flight_.size() < options_.max_in_flight) {
       const BrickWant& w = waiting_[taken++];
-      if (cache_.contains(w.key) || in_flight_.contains(w.key)) continue;
+      if (cache_.contains(w.key) || in_flight_.contains(w.key) || held_keys_.contains(w.key)) {
+        continue;
+      }
       in_flight_.insert(w.key);
       auto* want = request.add_want();
       *want->mutable_key() = to_proto(w.key);
@@ -281,6 +345,9 @@ void BrickFetcher::write_loop() {
     {
       std::lock_guard writing(stream->write_mutex);
       ok = stream->call->Write(request);
+    }
+    if (ok && options_.on_event) {
+      options_.on_event(FetchEvent::request_written, static_cast<std::size_t>(request.want_size()));
     }
     lock.lock();
     if (!ok && stream_ == stream) {
@@ -302,19 +369,19 @@ void BrickFetcher::set_codec(Codec codec) {
 
 bool BrickFetcher::idle() const {
   std::lock_guard lock(mutex_);
-  return waiting_.empty() && in_flight_.empty();
+  return waiting_.empty() && in_flight_.empty() && held_.empty();
 }
 
 bool BrickFetcher::wait_idle(std::chrono::milliseconds timeout) {
   std::unique_lock lock(mutex_);
-  return changed_.wait_for(lock, timeout,
-                           [this] { return waiting_.empty() && in_flight_.empty(); });
+  return changed_.wait_for(
+      lock, timeout, [this] { return waiting_.empty() && in_flight_.empty() && held_.empty(); });
 }
 
 SourceStats BrickFetcher::stats() const {
   std::lock_guard lock(mutex_);
   SourceStats s = stats_;
-  s.in_flight = in_flight_.size();
+  s.in_flight = in_flight_.size() + held_.size();
   s.waiting = waiting_.size();
   return s;
 }

@@ -206,6 +206,7 @@ Frame FrameRenderer::render_pixels(const PreparedScene& scene, const Camera& cam
       scene, render::SurfaceUnprojection{glm::inverse(vp), camera.position, width, height},
       options);
   std::vector<std::unique_ptr<render::TileShader>> shaders = tile_shaders(shading);
+  reported_.assign(on_tile_misses_ ? shaders.size() : 0, {});
   render::EdgeAntialiasing* edges = nullptr;
   if (options.edge_antialias > 0) {
     if (!edges_) edges_ = std::make_shared<render::EdgeAntialiasing>();
@@ -228,6 +229,7 @@ Frame FrameRenderer::render_pixels(const PreparedScene& scene, const Camera& cam
       edges->antialias_tile(rasterizer_, shader, g, origin_x, origin_y, x0, y0, x1, y1,
                             worker_index, frame.image);
     }
+    if (on_tile_misses_) report_tile_misses(shader, worker_index);
     shader.counts().shading += Clock::now() - shade_start;
   };
   if (options.keep_gbuffer) {
@@ -265,6 +267,10 @@ void FrameRenderer::gather(std::vector<std::unique_ptr<render::TileShader>>& sha
     for (auto& sampler : worker_samplers) sampler->flush_statistics();
   }
   std::unordered_map<BrickKey, uint32_t, BrickKeyHash> misses;
+  for (auto& reported : reported_) {
+    for (const auto& [key, pixels] : reported) misses[key] += pixels;
+  }
+  reported_.clear();
   for (auto& shader : shaders) {
     shader->misses().drain([&](const BrickKey& key, uint32_t pixels) { misses[key] += pixels; });
     const render::TileCounts& counts = shader->counts();
@@ -280,6 +286,17 @@ void FrameRenderer::gather(std::vector<std::unique_ptr<render::TileShader>>& sha
   std::sort(
       frame.misses.begin(), frame.misses.end(),
       [](const net::BrickWant& a, const net::BrickWant& b) { return key_less(a.key, b.key); });
+}
+
+void FrameRenderer::report_tile_misses(render::TileShader& shader, int worker_index) {
+  auto& reported = reported_[static_cast<std::size_t>(worker_index)];
+  std::vector<net::BrickWant> fresh;
+  shader.misses().drain([&](const BrickKey& key, uint32_t pixels) {
+    const auto [it, first] = reported.try_emplace(key, 0u);
+    it->second += pixels;
+    if (first) fresh.push_back({key, pixels});
+  });
+  if (!fresh.empty()) on_tile_misses_(std::move(fresh));
 }
 
 // Every pixel evaluated over its footprint, as TileShader does for evaluated textures, at k x k

@@ -6,6 +6,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <mutex>
+#include <unordered_map>
 
 #include "soltex/common/brick_cache.h"
 #include "soltex/net/local_brick_source.h"
@@ -87,6 +89,44 @@ SphereFrame draw_fine_sphere(bool levels) {
   }
   EXPECT_TRUE(frame.complete());
   return {frame.image, frame.stats.raster.triangles_in};
+}
+
+// A cold frame hands each tile's new misses out while it is drawn (from the render threads),
+// and its misses at the end are the same, key for key and pixel for pixel, as without.
+TEST(FrameRenderer, TileMissesAddUpToTheFramesMisses) {
+  const Scene scene = default_scene();
+  BrickCache cache(256u << 20);
+  net::LocalBrickSource source(cache);
+  const PreparedScene prepared = prepare_scene(scene, TextureResolution{6, 16, {}}, source);
+  FrameRenderer renderer(cache, RenderOptions{.threads = 2});
+  const Frame plain = renderer.render(prepared, scene.camera, 320, 180);
+  ASSERT_FALSE(plain.misses.empty());
+
+  std::mutex mutex;
+  std::unordered_map<BrickKey, uint32_t, BrickKeyHash> reported;
+  std::size_t calls = 0;
+  renderer.set_on_tile_misses([&](std::vector<net::BrickWant> wants) {
+    std::lock_guard lock(mutex);
+    ++calls;
+    for (const net::BrickWant& w : wants) {
+      EXPECT_GT(w.screen_pixels, 0u);
+      reported[w.key] += 1;
+    }
+  });
+  const Frame told = renderer.render(prepared, scene.camera, 320, 180);
+  renderer.set_on_tile_misses(nullptr);
+  EXPECT_GT(calls, 1u) << "one call per tile with new misses, not one per frame";
+  ASSERT_EQ(told.misses.size(), plain.misses.size());
+  for (std::size_t i = 0; i < told.misses.size(); ++i) {
+    EXPECT_EQ(told.misses[i].key, plain.misses[i].key);
+    EXPECT_EQ(told.misses[i].screen_pixels, plain.misses[i].screen_pixels);
+    // Every miss was told, at most once per render thread.
+    const auto it = reported.find(plain.misses[i].key);
+    ASSERT_NE(it, reported.end());
+    EXPECT_LE(it->second, 2u);
+  }
+  EXPECT_EQ(reported.size(), plain.misses.size());
+  EXPECT_TRUE(told.image == plain.image);
 }
 
 TEST(FrameRenderer, SimplifiedLevelsDrawNearlyTheSamePicture) {

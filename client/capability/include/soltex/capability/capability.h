@@ -1,6 +1,8 @@
 #pragma once
 
+#include <chrono>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -47,6 +49,10 @@ Capability apply(Capability measured, const CapabilityOverride& override);
 // A short raster + lookup probe on this machine (a small built-in scene drawn from an
 // in-process cache), and the memory the kernel reports available.
 Capability measure_machine();
+// The memory alone (pixels_per_second stays 0: not measured), for a client whose frame size
+// is fixed, such as headless output: the drawing probe would only decide a frame size
+// (ChoiceLimits::scale_frame), and it costs about 50 ms of both cores at start-up.
+Capability measure_memory();
 
 // One burst of the link probe: bricks asked for at once, and how long until all were in.
 struct LinkTiming {
@@ -63,6 +69,13 @@ struct LinkTiming {
 // link's bandwidth did not limit it) and bytes_per_brick. Leaves them when nothing moved.
 void fit_link(const LinkTiming& small, const LinkTiming& large, Capability& capability);
 
+// Where the link probe reads the time. The steady clock, unless a test drives a link of its
+// own on a clock it controls (so that a burst takes exactly what the test says).
+using ProbeClock = std::function<std::chrono::steady_clock::time_point()>;
+inline std::chrono::steady_clock::time_point steady_now() {
+  return std::chrono::steady_clock::now();
+}
+
 // Fetches a throw-away probe volume of `texture` through `source` in bursts of 1 (to open the
 // stream), 8 and 64 bricks, and fits the last two (fit_link). A source that moves no bytes
 // (in-process) leaves the bandwidth at 0: unlimited, and the latency at 0.
@@ -71,7 +84,7 @@ void fit_link(const LinkTiming& small, const LinkTiming& large, Capability& capa
 // make, so the server's evaluation does not hide the link) and sets Capability::codec and
 // raw_link_mb_per_s. Leaves the source asking for zstd.
 void measure_link(net::BrickSource& source, const TextureSpec& texture, Capability& capability,
-                  bool choose_codec = false);
+                  bool choose_codec = false, const ProbeClock& clock = steady_now);
 
 // 17^3 8-bit RGB samples and the 28-byte header: a 16^3-cell RGB brick, raw.
 inline constexpr double kRawBrickBytes = 17.0 * 17.0 * 17.0 * 3.0 + 28.0;

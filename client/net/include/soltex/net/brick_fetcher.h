@@ -4,6 +4,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -16,11 +17,17 @@
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/brick_evaluator.h"
 #include "soltex/common/brick_key.h"
+#include "soltex/common/cached_brick.h"
 #include "soltex/common/texture_spec.h"
 #include "soltex/net/brick_source.h"
 #include "soltex/net/channel_security.h"
 
 namespace soltex::net {
+
+// What the fetcher's threads report as it happens, for a start-up timeline: the stream opened,
+// a request written (its number of wanted keys), a batch received (its number of bricks, once
+// they are in the cache).
+enum class FetchEvent { stream_opened, request_written, batch_received };
 
 struct FetcherOptions {
   std::size_t max_in_flight = 256;  // bricks requested and not yet received
@@ -31,6 +38,8 @@ struct FetcherOptions {
   // The codec bricks are asked in (accept_codecs); set_codec() changes it on a live stream.
   Codec codec = Codec::zstd;
   ChannelSecurity security;
+  // Called on the fetcher's own threads, outside its lock; keep it short. Null: not reported.
+  std::function<void(FetchEvent, std::size_t count)> on_event;
 };
 
 // The client's one gRPC stream to soltexd. Render threads hand it each frame's misses; a
@@ -56,6 +65,11 @@ class BrickFetcher final : public BrickSource {
   // keys in flight that this frame no longer wants are cancelled; the rest are sent in order,
   // up to the in-flight bound.
   void want(std::vector<BrickWant> wants) override;
+  // Appends the keys not resident, in flight, failed or waiting, and wakes the writer.
+  void want_early(std::vector<BrickWant> wants) override;
+  // Held bricks are converted for the cache on the receiving thread as they arrive; release
+  // inserts them on the calling thread.
+  void hold_arrivals(bool hold) override;
 
   // Asks for the bricks of later wants in `codec` (bricks in flight keep theirs).
   void set_codec(Codec codec) override;
@@ -96,6 +110,9 @@ class BrickFetcher final : public BrickSource {
   bool resend_ = false;  // a new stream: everything in flight must be asked for again
   Codec codec_;
   bool codec_changed_ = false;  // codec_ goes out with the next request
+  bool holding_ = false;        // hold_arrivals(true): arrivals wait in held_
+  std::vector<std::pair<BrickKey, CachedBrick>> held_;    // arrived, not yet in the cache
+  std::unordered_set<BrickKey, BrickKeyHash> held_keys_;  // held_'s keys
   SourceStats stats_;
   bool stopping_ = false;
   std::thread supervisor_;

@@ -53,6 +53,15 @@ class BrickSource {
                                     const MipSettings& mip) = 0;
   // This frame's misses; replaces the previous frame's wants (stale ones are cancelled).
   virtual void want(std::vector<BrickWant> wants) = 0;
+  // More of the frame being drawn's misses, found before it ends (FrameRenderer::
+  // set_on_tile_misses): asked for at once, after what is already waiting; nothing is
+  // cancelled. The frame's want() follows with all of them. May be called from several
+  // threads at once. A source that gains nothing by starting early ignores it.
+  virtual void want_early(std::vector<BrickWant> /*wants*/) {}
+  // While held, arriving bricks are made ready but not yet put into the cache (they stay
+  // in flight), and go in together when released: a frame being drawn sees no insertions,
+  // which would make every lookup it already found missing look again. Default: ignored.
+  virtual void hold_arrivals(bool /*hold*/) {}
   // The codec later bricks travel in; a source that moves no bytes (in-process) ignores it.
   virtual void set_codec(Codec) {}
   virtual bool idle() const = 0;

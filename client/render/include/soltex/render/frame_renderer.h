@@ -1,7 +1,9 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include "soltex/common/brick_cache.h"
@@ -107,6 +109,14 @@ class FrameRenderer {
   const GBuffer& last_gbuffer() const { return gbuffer_; }
   void set_level_bias(double bias) { options_.level_bias = bias; }
   void set_false_colour_levels(bool on) { options_.false_colour_levels = on; }
+  // Called while a frame is drawn, on the render thread that shaded a raster tile, with the
+  // keys that tile missed and its thread had not missed before in this frame (each with the
+  // pixels that wanted it so far): a client can ask for them before the frame ends. The
+  // frame's misses are the same with or without it. Null (the default): not called.
+  using TileMisses = std::function<void(std::vector<net::BrickWant>)>;
+  void set_on_tile_misses(TileMisses on_tile_misses) {
+    on_tile_misses_ = std::move(on_tile_misses);
+  }
 
  private:
   // Samplers (per render thread and object) and evaluators (per object), kept across frames
@@ -121,6 +131,9 @@ class FrameRenderer {
   Frame render_pixels(const PreparedScene& scene, const Camera& camera, int width, int height,
                       const RenderOptions& options);
   void gather(std::vector<std::unique_ptr<render::TileShader>>& shaders, Frame& frame);
+  // Moves the misses `shader` has tallied into its thread's reported_ and hands the keys new
+  // to that thread to on_tile_misses_.
+  void report_tile_misses(render::TileShader& shader, int worker_index);
 
   BrickCache& cache_;
   RenderOptions options_;
@@ -134,6 +147,9 @@ class FrameRenderer {
   std::vector<std::unique_ptr<TextureEvaluator>> evaluators_;           // [object]
   std::vector<uint64_t> sampler_textures_;           // the textures samplers_ was made for
   std::shared_ptr<render::EdgeAntialiasing> edges_;  // made on the first edge-anti-aliased frame
+  TileMisses on_tile_misses_;
+  // Per render thread, the misses already handed to on_tile_misses_ in this frame.
+  std::vector<std::unordered_map<BrickKey, uint32_t, BrickKeyHash>> reported_;
 };
 
 // Camera matrices shared by the renderer and tools.
