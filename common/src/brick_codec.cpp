@@ -308,11 +308,11 @@ std::vector<uint8_t> encode_brick(std::span<const uint8_t> quantized_planes, int
   return out;
 }
 
-std::string encode_brick_samples(std::span<const float> samples, int brick_size, int channels,
-                                 const CodecOptions& options) {
+void encode_brick_samples(std::span<const float> samples, int brick_size, int channels,
+                          const CodecOptions& options, std::vector<uint8_t>& out) {
   check_encoding(samples.size(), brick_size, channels, options);
   // Scratch per thread, with the slack the vector kernels write into.
-  thread_local std::vector<uint8_t> quantized, filtered, encoded;
+  thread_local std::vector<uint8_t> quantized, filtered;
   quantized.resize(samples.size() + kQuantizePredictSlack);
   const std::span<const uint8_t> planes(quantized.data(), samples.size());
   BrickFilter filter = BrickFilter::none;
@@ -322,11 +322,17 @@ std::string encode_brick_samples(std::span<const float> samples, int brick_size,
     filtered.resize(samples.size() + kQuantizePredictSlack);
     quantize_and_predict(samples, brick_size + 1, quantized, filtered);
     write_encoded(std::span<const uint8_t>(filtered.data(), samples.size()), planes, brick_size,
-                  channels, options, filter, encoded);
+                  channels, options, filter, out);
   } else {
     quantize_values(samples, quantized);
-    write_encoded(planes, planes, brick_size, channels, options, filter, encoded);
+    write_encoded(planes, planes, brick_size, channels, options, filter, out);
   }
+}
+
+std::string encode_brick_samples(std::span<const float> samples, int brick_size, int channels,
+                                 const CodecOptions& options) {
+  thread_local std::vector<uint8_t> encoded;
+  encode_brick_samples(samples, brick_size, channels, options, encoded);
   return std::string(encoded.begin(), encoded.end());
 }
 

@@ -84,6 +84,11 @@ std::vector<uint8_t> encode_brick(std::span<const uint8_t> quantized_planes, int
 std::string encode_brick_samples(std::span<const float> samples, int brick_size, int channels,
                                  const CodecOptions& options);
 
+// The same into `out` (resized to the encoded brick), for a caller that keeps the buffer from
+// brick to brick: no allocation and no copy beyond the compressor's output.
+void encode_brick_samples(std::span<const float> samples, int brick_size, int channels,
+                          const CodecOptions& options, std::vector<uint8_t>& out);
+
 // ---- Decoding ------------------------------------------------------------------------------
 
 // An encoded brick that is malformed, truncated or corrupt. The message names what is wrong
