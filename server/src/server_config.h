@@ -28,7 +28,7 @@ struct ServerConfig {
   uint32_t max_message_bytes = 4u << 20;
   // Bricks a message waits for while more are being made, and for at most how long (µs):
   // fewer, larger messages cost both ends fewer wake-ups (docs/PERFORMANCE.md, "soltexd under
-  // load": a cold brick costs both processes 6 % less CPU at 32 than at 8).
+  // load").
   uint32_t coalesce_bricks = 32;
   uint32_t coalesce_wait_us = 2000;
   double shutdown_grace_seconds = 5.0;
