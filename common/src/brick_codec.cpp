@@ -298,17 +298,18 @@ void check_encoding(std::size_t samples, int brick_size, int channels,
   }
 }
 
-// Header and compressed `filtered` into `out` (resized to fit); `quantized` is what the
-// checksum covers.
-void write_encoded(std::span<const uint8_t> filtered, std::span<const uint8_t> quantized,
-                   int brick_size, int channels, const CodecOptions& options, BrickFilter filter,
-                   std::vector<uint8_t>& out) {
+// Header and compressed `filtered` at the start of `out`, which grows to the codec's bound
+// but never shrinks (shrinking and growing again would zero the bytes between, every brick);
+// returns the encoded size. `quantized` is what the checksum covers.
+std::size_t write_encoded(std::span<const uint8_t> filtered, std::span<const uint8_t> quantized,
+                          int brick_size, int channels, const CodecOptions& options,
+                          BrickFilter filter, std::vector<uint8_t>& out) {
   const std::size_t decoded_size = filtered.size();
-  out.resize(kBrickHeaderSize + compress_bound(options.codec, decoded_size));
+  const std::size_t bound = kBrickHeaderSize + compress_bound(options.codec, decoded_size);
+  if (out.size() < bound) out.resize(bound);
   const std::size_t payload_size =
       compress(options.codec, options.zstd_level, filtered, out.data() + kBrickHeaderSize,
-               out.size() - kBrickHeaderSize);
-  out.resize(kBrickHeaderSize + payload_size);
+               bound - kBrickHeaderSize);
 
   uint8_t* header = out.data();
   std::memcpy(header, kBrickMagic, sizeof kBrickMagic);
@@ -321,6 +322,7 @@ void write_encoded(std::span<const uint8_t> filtered, std::span<const uint8_t> q
   put_u32(header + kDecodedSizeOffset, static_cast<uint32_t>(decoded_size));
   put_u32(header + kPayloadSizeOffset, static_cast<uint32_t>(payload_size));
   put_u64(header + kChecksumOffset, checksum(quantized));
+  return kBrickHeaderSize + payload_size;
 }
 
 }  // namespace
@@ -332,35 +334,37 @@ std::vector<uint8_t> encode_brick(std::span<const uint8_t> quantized_planes, int
   filtered.assign(quantized_planes.begin(), quantized_planes.end());
   apply_brick_filter(filter, brick_size + 1, filtered);
   std::vector<uint8_t> out;
-  write_encoded(filtered, quantized_planes, brick_size, channels, options, filter, out);
+  out.resize(write_encoded(filtered, quantized_planes, brick_size, channels, options, filter, out));
   return out;
 }
 
-void encode_brick_samples(std::span<const float> samples, int brick_size, int channels,
-                          const CodecOptions& options, std::vector<uint8_t>& out) {
+std::span<const uint8_t> encode_brick_samples(std::span<const float> samples, int brick_size,
+                                              int channels, const CodecOptions& options,
+                                              std::vector<uint8_t>& out) {
   check_encoding(samples.size(), brick_size, channels, options);
   // Scratch per thread, with the slack the vector kernels write into.
   thread_local std::vector<uint8_t> quantized, filtered;
   quantized.resize(samples.size() + kQuantizePredictSlack);
   const std::span<const uint8_t> planes(quantized.data(), samples.size());
-  BrickFilter filter = BrickFilter::none;
+  std::size_t size = 0;
   if (options.filter) {
-    filter = kBrickCodecFilter;
     static_assert(kBrickCodecFilter == BrickFilter::gradient_3d, "the fused kernel's predictor");
     filtered.resize(samples.size() + kQuantizePredictSlack);
     quantize_and_predict(samples, brick_size + 1, quantized, filtered);
-    write_encoded(std::span<const uint8_t>(filtered.data(), samples.size()), planes, brick_size,
-                  channels, options, filter, out);
+    size = write_encoded(std::span<const uint8_t>(filtered.data(), samples.size()), planes,
+                         brick_size, channels, options, kBrickCodecFilter, out);
   } else {
     quantize_values(samples, quantized);
-    write_encoded(planes, planes, brick_size, channels, options, filter, out);
+    size = write_encoded(planes, planes, brick_size, channels, options, BrickFilter::none, out);
   }
+  return {out.data(), size};
 }
 
 std::string encode_brick_samples(std::span<const float> samples, int brick_size, int channels,
                                  const CodecOptions& options) {
-  thread_local std::vector<uint8_t> encoded;
-  encode_brick_samples(samples, brick_size, channels, options, encoded);
+  thread_local std::vector<uint8_t> buffer;
+  const std::span<const uint8_t> encoded =
+      encode_brick_samples(samples, brick_size, channels, options, buffer);
   return std::string(encoded.begin(), encoded.end());
 }
 

@@ -77,8 +77,9 @@ EncodedBrickPtr BrickProducer::evaluate(const WorkItem& item) {
   const auto evaluated = std::chrono::steady_clock::now();
   // Raw bricks skip the predictor: it only helps a compressor, and the client would undo it.
   const CodecOptions options{item.codec, zstd_level_, item.codec != Codec::raw};
-  thread_local std::vector<uint8_t> encoded;
-  encode_brick_samples(samples, texture.layout.brick_size(), channels, options, encoded);
+  thread_local std::vector<uint8_t> buffer;
+  const std::span<const uint8_t> encoded =
+      encode_brick_samples(samples, texture.layout.brick_size(), channels, options, buffer);
   const uint64_t checksum = encoded_brick_checksum(encoded);
   metrics_.record(BrickStage::evaluate, evaluated - start);
   metrics_.record(BrickStage::encode, std::chrono::steady_clock::now() - evaluated);
