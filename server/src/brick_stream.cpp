@@ -258,10 +258,20 @@ std::function<void()> BrickStream::take() {
   if (items.empty()) return {};
   return [self = shared_from_this(), items = std::move(items)] {
     for (const WorkItem& item : items) {
+      if (self->let_go_if_gone()) continue;  // cancelled mid-run: none of the rest is wanted
       self->context_.producer.produce(
           item, [self, item](const EncodedBrickPtr& brick) { self->deliver(item, brick); });
     }
   };
+}
+
+bool BrickStream::let_go_if_gone() {
+  std::lock_guard lock(mutex_);
+  if (!cancelled_ && !shutting_down_ && !finished_) return false;
+  queue_.finished();
+  context_.metrics.bricks_cancelled.fetch_add(1, std::memory_order_relaxed);
+  pump();
+  return true;
 }
 
 void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick) {

@@ -94,8 +94,11 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   void on_cancel();
   void on_done();
 
-  // Worker callback.
+  // Worker callbacks.
   void deliver(const WorkItem& item, const EncodedBrickPtr& brick);
+  // Whether the stream sends no more bricks (cancelled, shutting down, finished); if so, lets go
+  // of one taken item without making it, counted as cancelled.
+  bool let_go_if_gone();
 
   // All below: mutex_ held.
   std::size_t accept_request();  // returns how many keys were queued
