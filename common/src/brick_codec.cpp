@@ -101,6 +101,47 @@ void check_shape(int brick_size, int channels) {
   }
 }
 
+// Whether a predicted brick is mostly runs of one byte value (a smooth pattern's zero
+// residuals), from one probe every 64 bytes: four equal bytes in a row.
+bool mostly_runs(std::span<const uint8_t> input) {
+  constexpr std::size_t kStride = 64;
+  std::size_t probes = 0, runs = 0;
+  for (std::size_t i = 0; i + 4 <= input.size(); i += kStride) {
+    ++probes;
+    runs += input[i] == input[i + 1] && input[i] == input[i + 2] && input[i] == input[i + 3];
+  }
+  return 3 * runs >= 2 * probes;
+}
+
+std::size_t compress_zstd(int zstd_level, std::span<const uint8_t> input, uint8_t* out,
+                          std::size_t capacity) {
+  ZSTD_CCtx* context = thread_compressor();
+  // ZSTD_compressSequences leaves the session open; parameters are set only between frames.
+  ZSTD_CCtx_reset(context, ZSTD_reset_session_only);
+  // Literals are always entropy coded: after the predictor a brick is mostly literals, and
+  // their Huffman coding is most of what zstd gains over lz4 (docs/PERFORMANCE.md, "Brick
+  // codec").
+  set_zstd_parameter(context, ZSTD_c_compressionLevel, zstd_level);
+  set_zstd_parameter(context, ZSTD_c_literalCompressionMode, ZSTD_ps_enable);
+  std::size_t written = 0;
+  if (zstd_level < 0 && input.size() <= ZSTD_BLOCKSIZE_MAX && !mostly_runs(input)) {
+    // A fast level on a noisy brick: the matches a fast search finds cost more bytes than they
+    // save, so the brick goes as one block of literals, with no search at all. The same kind of
+    // frame; a fifth less CPU.
+    set_zstd_parameter(context, ZSTD_c_blockDelimiters, ZSTD_sf_explicitBlockDelimiters);
+    const ZSTD_Sequence literals{0, static_cast<unsigned>(input.size()), 0, 0};
+    written =
+        ZSTD_compressSequences(context, out, capacity, &literals, 1, input.data(), input.size());
+  } else {
+    written = ZSTD_compress2(context, out, capacity, input.data(), input.size());
+  }
+  if (ZSTD_isError(written)) {
+    throw std::runtime_error(std::string("encode_brick: zstd compression failed: ") +
+                             ZSTD_getErrorName(written));
+  }
+  return written;
+}
+
 // Compresses `input` into `out` (capacity `capacity`); returns the bytes written.
 std::size_t compress(Codec codec, int zstd_level, std::span<const uint8_t> input, uint8_t* out,
                      std::size_t capacity) {
@@ -115,21 +156,8 @@ std::size_t compress(Codec codec, int zstd_level, std::span<const uint8_t> input
       if (written <= 0) throw std::runtime_error("encode_brick: lz4 compression failed");
       return static_cast<std::size_t>(written);
     }
-    case Codec::zstd: {
-      ZSTD_CCtx* context = thread_compressor();
-      // Literals are always entropy coded: after the predictor a brick is mostly literals, and
-      // their Huffman coding is most of what zstd gains over lz4. Negative levels then only
-      // make the match search cheaper (docs/PERFORMANCE.md, "Brick codec").
-      set_zstd_parameter(context, ZSTD_c_compressionLevel, zstd_level);
-      set_zstd_parameter(context, ZSTD_c_literalCompressionMode, ZSTD_ps_enable);
-      const std::size_t written =
-          ZSTD_compress2(context, out, capacity, input.data(), input.size());
-      if (ZSTD_isError(written)) {
-        throw std::runtime_error(std::string("encode_brick: zstd compression failed: ") +
-                                 ZSTD_getErrorName(written));
-      }
-      return written;
-    }
+    case Codec::zstd:
+      return compress_zstd(zstd_level, input, out, capacity);
   }
   throw std::invalid_argument("encode_brick: codec id " + std::to_string(static_cast<int>(codec)) +
                               " is unknown");
@@ -270,17 +298,18 @@ void check_encoding(std::size_t samples, int brick_size, int channels,
   }
 }
 
-// Header and compressed `filtered` into `out` (resized to fit); `quantized` is what the
-// checksum covers.
-void write_encoded(std::span<const uint8_t> filtered, std::span<const uint8_t> quantized,
-                   int brick_size, int channels, const CodecOptions& options, BrickFilter filter,
-                   std::vector<uint8_t>& out) {
+// Header and compressed `filtered` at the start of `out`, which grows to the codec's bound
+// but never shrinks (shrinking and growing again would zero the bytes between, every brick);
+// returns the encoded size. `quantized` is what the checksum covers.
+std::size_t write_encoded(std::span<const uint8_t> filtered, std::span<const uint8_t> quantized,
+                          int brick_size, int channels, const CodecOptions& options,
+                          BrickFilter filter, std::vector<uint8_t>& out) {
   const std::size_t decoded_size = filtered.size();
-  out.resize(kBrickHeaderSize + compress_bound(options.codec, decoded_size));
+  const std::size_t bound = kBrickHeaderSize + compress_bound(options.codec, decoded_size);
+  if (out.size() < bound) out.resize(bound);
   const std::size_t payload_size =
       compress(options.codec, options.zstd_level, filtered, out.data() + kBrickHeaderSize,
-               out.size() - kBrickHeaderSize);
-  out.resize(kBrickHeaderSize + payload_size);
+               bound - kBrickHeaderSize);
 
   uint8_t* header = out.data();
   std::memcpy(header, kBrickMagic, sizeof kBrickMagic);
@@ -293,6 +322,7 @@ void write_encoded(std::span<const uint8_t> filtered, std::span<const uint8_t> q
   put_u32(header + kDecodedSizeOffset, static_cast<uint32_t>(decoded_size));
   put_u32(header + kPayloadSizeOffset, static_cast<uint32_t>(payload_size));
   put_u64(header + kChecksumOffset, checksum(quantized));
+  return kBrickHeaderSize + payload_size;
 }
 
 }  // namespace
@@ -304,29 +334,37 @@ std::vector<uint8_t> encode_brick(std::span<const uint8_t> quantized_planes, int
   filtered.assign(quantized_planes.begin(), quantized_planes.end());
   apply_brick_filter(filter, brick_size + 1, filtered);
   std::vector<uint8_t> out;
-  write_encoded(filtered, quantized_planes, brick_size, channels, options, filter, out);
+  out.resize(write_encoded(filtered, quantized_planes, brick_size, channels, options, filter, out));
   return out;
+}
+
+std::span<const uint8_t> encode_brick_samples(std::span<const float> samples, int brick_size,
+                                              int channels, const CodecOptions& options,
+                                              std::vector<uint8_t>& out) {
+  check_encoding(samples.size(), brick_size, channels, options);
+  // Scratch per thread, with the slack the vector kernels write into.
+  thread_local std::vector<uint8_t> quantized, filtered;
+  quantized.resize(samples.size() + kQuantizePredictSlack);
+  const std::span<const uint8_t> planes(quantized.data(), samples.size());
+  std::size_t size = 0;
+  if (options.filter) {
+    static_assert(kBrickCodecFilter == BrickFilter::gradient_3d, "the fused kernel's predictor");
+    filtered.resize(samples.size() + kQuantizePredictSlack);
+    quantize_and_predict(samples, brick_size + 1, quantized, filtered);
+    size = write_encoded(std::span<const uint8_t>(filtered.data(), samples.size()), planes,
+                         brick_size, channels, options, kBrickCodecFilter, out);
+  } else {
+    quantize_values(samples, quantized);
+    size = write_encoded(planes, planes, brick_size, channels, options, BrickFilter::none, out);
+  }
+  return {out.data(), size};
 }
 
 std::string encode_brick_samples(std::span<const float> samples, int brick_size, int channels,
                                  const CodecOptions& options) {
-  check_encoding(samples.size(), brick_size, channels, options);
-  // Scratch per thread, with the slack the vector kernels write into.
-  thread_local std::vector<uint8_t> quantized, filtered, encoded;
-  quantized.resize(samples.size() + kQuantizePredictSlack);
-  const std::span<const uint8_t> planes(quantized.data(), samples.size());
-  BrickFilter filter = BrickFilter::none;
-  if (options.filter) {
-    filter = kBrickCodecFilter;
-    static_assert(kBrickCodecFilter == BrickFilter::gradient_3d, "the fused kernel's predictor");
-    filtered.resize(samples.size() + kQuantizePredictSlack);
-    quantize_and_predict(samples, brick_size + 1, quantized, filtered);
-    write_encoded(std::span<const uint8_t>(filtered.data(), samples.size()), planes, brick_size,
-                  channels, options, filter, encoded);
-  } else {
-    quantize_values(samples, quantized);
-    write_encoded(planes, planes, brick_size, channels, options, filter, encoded);
-  }
+  thread_local std::vector<uint8_t> buffer;
+  const std::span<const uint8_t> encoded =
+      encode_brick_samples(samples, brick_size, channels, options, buffer);
   return std::string(encoded.begin(), encoded.end());
 }
 

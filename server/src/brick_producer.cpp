@@ -75,14 +75,18 @@ EncodedBrickPtr BrickProducer::evaluate(const WorkItem& item) {
   evaluate_brick(texture.evaluator, texture.layout, item.key.level, item.key.brick, texture.mip,
                  samples);
   const auto evaluated = std::chrono::steady_clock::now();
-  std::string encoded = encode_brick_samples(samples, texture.layout.brick_size(), channels,
-                                             CodecOptions{item.codec, zstd_level_, true});
-  const uint64_t checksum = encoded_brick_checksum(
-      std::span(reinterpret_cast<const uint8_t*>(encoded.data()), encoded.size()));
+  // Raw bricks skip the predictor: it only helps a compressor, and the client would undo it.
+  const CodecOptions options{item.codec, zstd_level_, item.codec != Codec::raw};
+  thread_local std::vector<uint8_t> buffer;
+  const std::span<const uint8_t> encoded =
+      encode_brick_samples(samples, texture.layout.brick_size(), channels, options, buffer);
+  const uint64_t checksum = encoded_brick_checksum(encoded);
   metrics_.record(BrickStage::evaluate, evaluated - start);
   metrics_.record(BrickStage::encode, std::chrono::steady_clock::now() - evaluated);
   metrics_.bricks_evaluated.fetch_add(1, std::memory_order_relaxed);
-  return std::make_shared<const EncodedBrick>(item.key, item.codec, encoded, checksum);
+  return std::make_shared<const EncodedBrick>(
+      item.key, item.codec,
+      std::string_view(reinterpret_cast<const char*>(encoded.data()), encoded.size()), checksum);
 }
 
 }  // namespace soltex::server

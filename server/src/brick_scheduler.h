@@ -16,8 +16,9 @@ namespace soltex::server {
 class WorkSource {
  public:
   virtual ~WorkSource() = default;
-  // Takes the best pending item off the queue and returns the work to do for it (run by the
-  // scheduler outside its lock), or an empty function when nothing is pending. Called with
+  // Takes the best pending item (or a short run of them, best first) off the queue and returns
+  // the work to do for it (run by the scheduler outside its lock), or an empty function when
+  // nothing is pending. Called with
   // the scheduler's lock held: keep it short.
   virtual std::function<void()> take() = 0;
   virtual bool has_work() const = 0;
@@ -28,8 +29,9 @@ class WorkSource {
 };
 
 // Brick work runs on our own worker threads, never on gRPC's threads. Fair across streams:
-// sources with work take turns, one item each (round robin); within a stream the source's
-// own order decides (coarse levels first, then priority).
+// sources with work take turns, one take() each (round robin: one item, or a run of a few when
+// many sources wait, the same for every source); within a stream the source's own order
+// decides (coarse levels first, then priority).
 //
 // A worker keeps taking items until no source has any, so a busy server hands bricks to its
 // workers without a wake-up per brick: a worker sleeps only when there is nothing to do, and

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <absl/container/flat_hash_map.h>
+
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -8,7 +10,6 @@
 #include <memory>
 #include <mutex>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "encoded_brick.h"
@@ -71,11 +72,13 @@ class BrickStore {
       return BrickKeyHash{}(k.key) ^ (static_cast<std::size_t>(k.codec) * 0x9E3779B97F4A7C15ULL);
     }
   };
+  // Open addressing (abseil's Swiss table): a cold brick looks its key up several times, and
+  // std::unordered_map's node per entry costs each lookup a pointer chase more.
   struct Shard {
     mutable std::mutex mutex;
-    std::unordered_map<CodecKey, Entry, CodecKeyHash> entries;
+    absl::flat_hash_map<CodecKey, Entry, CodecKeyHash> entries;
     std::list<const EncodedBrick*> lru;
-    std::unordered_map<CodecKey, std::vector<Waiter>, CodecKeyHash> in_flight;
+    absl::flat_hash_map<CodecKey, std::vector<Waiter>, CodecKeyHash> in_flight;
     std::size_t bytes = 0;
   };
   static constexpr std::size_t kShards = 16;

@@ -241,15 +241,37 @@ bool BrickStream::answer_from_cache(const BrickKey& key,
 }
 
 std::function<void()> BrickStream::take() {
-  std::optional<WorkItem> item = queue_.pop();
-  if (!item) return {};
-  count_queued(-1);
-  context_.metrics.record(BrickStage::queue_wait,
-                          std::chrono::steady_clock::now() - item->enqueued);
-  return [self = shared_from_this(), item = std::move(*item)] {
-    self->context_.producer.produce(
-        item, [self, item](const EncodedBrickPtr& brick) { self->deliver(item, brick); });
+  const auto now = std::chrono::steady_clock::now();
+  // More streams wait than there are workers (the same test as hold_back()'s): this stream's
+  // next turn is far off, so this turn makes a run of its bricks, to share one message.
+  const bool crowded =
+      context_.scheduler.waiting_sources() > static_cast<std::size_t>(context_.scheduler.threads());
+  const std::size_t run = crowded ? std::max<std::size_t>(context_.limits.run_bricks, 1) : 1;
+  std::vector<WorkItem> items;
+  while (items.size() < run) {
+    std::optional<WorkItem> item = queue_.pop();
+    if (!item) break;
+    count_queued(-1);
+    context_.metrics.record(BrickStage::queue_wait, now - item->enqueued);
+    items.push_back(std::move(*item));
+  }
+  if (items.empty()) return {};
+  return [self = shared_from_this(), items = std::move(items)] {
+    for (const WorkItem& item : items) {
+      if (self->let_go_if_gone()) continue;  // cancelled mid-run: none of the rest is wanted
+      self->context_.producer.produce(
+          item, [self, item](const EncodedBrickPtr& brick) { self->deliver(item, brick); });
+    }
   };
+}
+
+bool BrickStream::let_go_if_gone() {
+  std::lock_guard lock(mutex_);
+  if (!cancelled_ && !shutting_down_ && !finished_) return false;
+  queue_.finished();
+  context_.metrics.bricks_cancelled.fetch_add(1, std::memory_order_relaxed);
+  pump();
+  return true;
 }
 
 void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick) {

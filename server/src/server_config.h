@@ -27,8 +27,9 @@ struct ServerConfig {
   uint32_t max_queued_per_stream = 4096;
   uint32_t max_message_bytes = 4u << 20;
   // Bricks a message waits for while more are being made, and for at most how long (µs):
-  // fewer, larger messages cost both ends fewer wake-ups (docs/PERFORMANCE.md).
-  uint32_t coalesce_bricks = 8;
+  // fewer, larger messages cost both ends fewer wake-ups (docs/PERFORMANCE.md, "soltexd under
+  // load").
+  uint32_t coalesce_bricks = 32;
   uint32_t coalesce_wait_us = 2000;
   double shutdown_grace_seconds = 5.0;
   std::string ready_file;  // written once listening: "grpc=PORT\nmetrics=PORT\n[http=PORT\n]"

@@ -67,10 +67,16 @@ const glm::ivec3 kBricks[] = {{0, 0, 0}, {15, 15, 15}, {3, 7, 11},  {12, 4, 9},
 
 // zstd levels the server's encoder is measured at, and lz4 for comparison.
 const NamedCodec kServerCodecs[] = {
-    {"lz4", soltex::Codec::lz4, 0},         {"zstd--200", soltex::Codec::zstd, -200},
-    {"zstd--50", soltex::Codec::zstd, -50}, {"zstd--20", soltex::Codec::zstd, -20},
-    {"zstd--5", soltex::Codec::zstd, -5},   {"zstd--1", soltex::Codec::zstd, -1},
-    {"zstd-1", soltex::Codec::zstd, 1},     {"zstd-3", soltex::Codec::zstd, 3},
+    {"lz4", soltex::Codec::lz4, 0},
+    {"zstd--10000", soltex::Codec::zstd, -10000},
+    {"zstd--1000", soltex::Codec::zstd, -1000},
+    {"zstd--200", soltex::Codec::zstd, -200},
+    {"zstd--50", soltex::Codec::zstd, -50},
+    {"zstd--20", soltex::Codec::zstd, -20},
+    {"zstd--5", soltex::Codec::zstd, -5},
+    {"zstd--1", soltex::Codec::zstd, -1},
+    {"zstd-1", soltex::Codec::zstd, 1},
+    {"zstd-3", soltex::Codec::zstd, 3},
 };
 
 using Planes = std::vector<uint8_t>;

@@ -153,6 +153,34 @@ TEST(Soltexd, ALoneBrickIsSentAtOnce) {
   EXPECT_EQ(result.bricks_per_message, std::vector<int>{1});
 }
 
+// With more streams waiting than workers, a stream's turn makes a run of its bricks, and the
+// run shares a message: not one message per brick. Every stream is still served in full.
+TEST(Soltexd, AmongManyStreamsATurnsBricksShareAMessage) {
+  SoltexdProcess server({"--threads", "1", "--coalesce-wait-us", "1000000"});
+  auto stub = connect(server);
+  const v1::TextureHandle handle = register_texture(*stub, marble_request(8, 16));
+  constexpr int kStreams = 6;
+  std::vector<std::future<StreamResult>> results;
+  for (int s = 0; s < kStreams; ++s) {
+    results.push_back(std::async(std::launch::async, [&, s] {
+      // Each stream its own 16 bricks, so none is answered from another's work.
+      std::vector<v1::BrickKey> keys;
+      for (int i = 0; i < 16; ++i) keys.push_back(key_of(handle.id(), 0, i % 4, i / 4, s));
+      return stream_once(*stub, want(keys));
+    }));
+  }
+  std::size_t messages = 0;
+  for (auto& f : results) {
+    const StreamResult r = f.get();
+    ASSERT_TRUE(r.status.ok()) << r.status.error_message();
+    EXPECT_EQ(r.bricks.size(), 16u);
+    messages += r.bricks_per_message.size();
+  }
+  // One brick a message would be 96; runs of 8 make about 2 a stream (the first requests may
+  // arrive before the others and be served a brick at a time).
+  EXPECT_LE(messages, static_cast<std::size_t>(kStreams * 16 / 3)) << messages << " messages";
+}
+
 TEST(Soltexd, ManyConcurrentStreamsAndSingleFlight) {
   SoltexdProcess server;
   auto stub = connect(server);

@@ -63,6 +63,7 @@ struct CodecCase {
 std::vector<CodecCase> all_codecs(bool filter) {
   return {{"raw", {Codec::raw, 0, filter}},
           {"lz4", {Codec::lz4, 0, filter}},
+          {"zstd--200", {Codec::zstd, -200, filter}},
           {"zstd-1", {Codec::zstd, 1, filter}},
           {"zstd-3", {Codec::zstd, 3, filter}}};
 }
@@ -122,6 +123,12 @@ TEST(BrickCodec, EncodingSamplesEqualsQuantizingThenEncoding) {
             const std::string encoded =
                 encode_brick_samples(samples, brick_size, channels, c.options);
             ASSERT_EQ(std::vector<uint8_t>(encoded.begin(), encoded.end()), expected);
+            // Into a buffer kept from a larger brick: the same bytes at its start.
+            std::vector<uint8_t> buffer(expected.size() + 40000, 0xA5);
+            const std::span<const uint8_t> in_buffer =
+                encode_brick_samples(samples, brick_size, channels, c.options, buffer);
+            ASSERT_EQ(in_buffer.data(), buffer.data());
+            ASSERT_EQ(std::vector<uint8_t>(in_buffer.begin(), in_buffer.end()), expected);
           }
         }
       }
@@ -188,6 +195,21 @@ TEST(BrickCodec, CompressesRealBricks) {
   EXPECT_LT(encode_brick(marble, 16, 3, CodecOptions{}).size(), marble.size() * 3 / 4);
   const std::vector<uint8_t> cube = real_brick(ColourCubeParams{0.3}, 16, 3);
   EXPECT_LT(encode_brick(cube, 16, 3, CodecOptions{}).size(), cube.size() / 4);
+}
+
+// At a fast (negative) level a noisy brick goes as Huffman-coded literals only (not stored:
+// it shrinks), and a smooth one keeps the match search: its ratio is beyond what coding
+// literals alone can reach (at least one bit a byte, a ratio of at most 8).
+TEST(BrickCodec, FastLevelsCodeNoisyBricksAsLiteralsAndSmoothOnesWithMatches) {
+  const CodecOptions fast{Codec::zstd, -200, true};
+  const std::vector<uint8_t> marble = real_brick(MarbleParams{}, 16, 3);
+  const std::vector<uint8_t> noisy = encode_brick(marble, 16, 3, fast);
+  EXPECT_EQ(decode_brick(noisy).samples, marble);
+  EXPECT_LT(noisy.size(), marble.size() * 3 / 4);
+  const std::vector<uint8_t> cube = real_brick(ColourCubeParams{0.3}, 16, 3);
+  const std::vector<uint8_t> smooth = encode_brick(cube, 16, 3, fast);
+  EXPECT_EQ(decode_brick(smooth).samples, cube);
+  EXPECT_LT(smooth.size() * 8, cube.size());
 }
 
 TEST(BrickCodec, EncodeRejectsBadArguments) {

@@ -84,6 +84,13 @@ std::vector<uint8_t> encode_brick(std::span<const uint8_t> quantized_planes, int
 std::string encode_brick_samples(std::span<const float> samples, int brick_size, int channels,
                                  const CodecOptions& options);
 
+// The same into `buffer`, for a caller that keeps it from brick to brick: no allocation and no
+// copy beyond the compressor's output. Returns the encoded brick, at the start of `buffer`
+// (which grows to the codec's bound and never shrinks) and valid until its next use.
+std::span<const uint8_t> encode_brick_samples(std::span<const float> samples, int brick_size,
+                                              int channels, const CodecOptions& options,
+                                              std::vector<uint8_t>& buffer);
+
 // ---- Decoding ------------------------------------------------------------------------------
 
 // An encoded brick that is malformed, truncated or corrupt. The message names what is wrong
