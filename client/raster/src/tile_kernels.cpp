@@ -13,6 +13,7 @@
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -84,69 +85,159 @@ void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float*
   stats.fragments_depth_passed += depth_passed;
 }
 
-void interpolate_surfaces_target(SurfaceLanes& s, std::size_t count) {
-  for (std::size_t l = 0; l < count; ++l) {
-    const float inv_area = 1.0f / s.area[l];
-    const float step = static_cast<float>(kSubpixelScale) * inv_area;
-    float sum_q = 0.0f, dq_dx = 0.0f, dq_dy = 0.0f;
-    float sx = 0.0f, sy = 0.0f, sz = 0.0f;  // sum b q P
-    float dx_x = 0.0f, dx_y = 0.0f, dx_z = 0.0f, dy_x = 0.0f, dy_y = 0.0f, dy_z = 0.0f;
-    float mx = 0.0f, my = 0.0f, mz = 0.0f;  // sum b q N
-    for (std::size_t k = 0; k < 3; ++k) {
-      const float weight = s.edge[k][l] * inv_area;
-      const float q_k = s.q[k][l];
-      const float weight_q = weight * q_k;
-      const float weight_q_dx = -s.edge_dy[k][l] * step * q_k;
-      const float weight_q_dy = s.edge_dx[k][l] * step * q_k;
-      sum_q += weight_q;
-      dq_dx += weight_q_dx;
-      dq_dy += weight_q_dy;
-      sx += weight_q * s.ox[k][l];
-      sy += weight_q * s.oy[k][l];
-      sz += weight_q * s.oz[k][l];
-      dx_x += weight_q_dx * s.ox[k][l];
-      dx_y += weight_q_dx * s.oy[k][l];
-      dx_z += weight_q_dx * s.oz[k][l];
-      dy_x += weight_q_dy * s.ox[k][l];
-      dy_y += weight_q_dy * s.oy[k][l];
-      dy_z += weight_q_dy * s.oz[k][l];
-      mx += weight_q * s.nx[k][l];
-      my += weight_q * s.ny[k][l];
-      mz += weight_q * s.nz[k][l];
+// One triangle's data for interpolating its attributes, in float (see
+// resolve_surface_runs_target): the double area; per vertex k, 1/w, the texture offset and
+// the normal; per edge k (opposite vertex k), its steps.
+struct TriangleTerms {
+  float area;
+  std::array<float, 3> q, ox, oy, oz, nx, ny, nz, edge_dy, edge_dx;
+};
+
+// Perspective-correct attributes at `count` pixel centres of one triangle, whose vertex k's
+// barycentric numerators (edge functions) are edge[k]: with barycentric weights b and
+// q = 1/w, P = sum(b q P) / sum(b q). Its derivative per pixel step is analytic: dP/dx =
+// (d(sum b q P)/dx - P d(sum b q)/dx) / sum(b q), the weights' derivatives being constant
+// over the triangle. Float suffices: P is an offset from the triangle's double origin, so
+// float's error is relative to the triangle's size. Per pixel the same IEEE operations in the
+// same order whatever the run, selects standing in for branches, so the loop runs in vector
+// lanes; the triangle's terms are the same in every lane.
+struct SurfaceChunk {
+  static constexpr std::size_t kCapacity = kTileSize;
+  template <typename T>
+  using Lanes = std::array<T, kCapacity>;
+
+  alignas(64) std::array<Lanes<float>, 3> edge;  // in
+  alignas(64) Lanes<float> offset_x, offset_y, offset_z, footprint, normal_x, normal_y, normal_z;
+
+  void interpolate(const TriangleTerms& t, std::size_t count) {
+    for (std::size_t l = 0; l < count; ++l) {
+      const float inv_area = 1.0f / t.area;
+      const float step = static_cast<float>(kSubpixelScale) * inv_area;
+      float sum_q = 0.0f, dq_dx = 0.0f, dq_dy = 0.0f;
+      float sx = 0.0f, sy = 0.0f, sz = 0.0f;  // sum b q P
+      float dx_x = 0.0f, dx_y = 0.0f, dx_z = 0.0f, dy_x = 0.0f, dy_y = 0.0f, dy_z = 0.0f;
+      float mx = 0.0f, my = 0.0f, mz = 0.0f;  // sum b q N
+      for (std::size_t k = 0; k < 3; ++k) {
+        const float weight = edge[k][l] * inv_area;
+        const float q_k = t.q[k];
+        const float weight_q = weight * q_k;
+        const float weight_q_dx = -t.edge_dy[k] * step * q_k;
+        const float weight_q_dy = t.edge_dx[k] * step * q_k;
+        sum_q += weight_q;
+        dq_dx += weight_q_dx;
+        dq_dy += weight_q_dy;
+        sx += weight_q * t.ox[k];
+        sy += weight_q * t.oy[k];
+        sz += weight_q * t.oz[k];
+        dx_x += weight_q_dx * t.ox[k];
+        dx_y += weight_q_dx * t.oy[k];
+        dx_z += weight_q_dx * t.oz[k];
+        dy_x += weight_q_dy * t.ox[k];
+        dy_y += weight_q_dy * t.oy[k];
+        dy_z += weight_q_dy * t.oz[k];
+        mx += weight_q * t.nx[k];
+        my += weight_q * t.ny[k];
+        mz += weight_q * t.nz[k];
+      }
+      const bool has_q = (sum_q > 0.0f) & finite(sum_q);
+      const float inv_q = 1.0f / sum_q;
+      const float cx = sx * inv_q, cy = sy * inv_q, cz = sz * inv_q;
+      const float ddx_x = (dx_x - cx * dq_dx) * inv_q;
+      const float ddx_y = (dx_y - cy * dq_dx) * inv_q;
+      const float ddx_z = (dx_z - cz * dq_dx) * inv_q;
+      const float ddy_x = (dy_x - cx * dq_dy) * inv_q;
+      const float ddy_y = (dy_y - cy * dq_dy) * inv_q;
+      const float ddy_z = (dy_z - cz * dq_dy) * inv_q;
+      const float along_x = (ddx_x * ddx_x + ddx_y * ddx_y) + ddx_z * ddx_z;
+      const float along_y = (ddy_x * ddy_x + ddy_y * ddy_y) + ddy_z * ddy_z;
+      const float size = std::sqrt(along_x < along_y ? along_y : along_x);  // std::max
+      // Non-finite offsets only come from absurd inputs: stay at a vertex, never NaN.
+      const bool keep = has_q & finite(cx) & finite(cy) & finite(cz);
+      constexpr float kInfinity = std::numeric_limits<float>::infinity();
+      offset_x[l] = keep ? cx : 0.0f;
+      offset_y[l] = keep ? cy : 0.0f;
+      offset_z[l] = keep ? cz : 0.0f;
+      const float kept_size = keep ? size : kInfinity;
+      footprint[l] = kept_size != kept_size ? kInfinity : kept_size;  // NaN -> +inf
+      // The unit normal: sum b q N normalised, or the first vertex's normal where that has no
+      // length, or +z.
+      const float length = std::sqrt((mx * mx + my * my) + mz * mz);
+      const float fx = t.nx[0], fy = t.ny[0], fz = t.nz[0];
+      const float fallback_length = std::sqrt((fx * fx + fy * fy) + fz * fz);
+      const bool has_sum = (length > 0.0f) & finite(length);
+      const bool has_fallback = fallback_length > 0.0f;
+      const float ux = has_fallback ? fx / fallback_length : 0.0f;
+      const float uy = has_fallback ? fy / fallback_length : 0.0f;
+      const float uz = has_fallback ? fz / fallback_length : 1.0f;
+      normal_x[l] = has_sum ? mx / length : ux;
+      normal_y[l] = has_sum ? my / length : uy;
+      normal_z[l] = has_sum ? mz / length : uz;
     }
-    const bool has_q = (sum_q > 0.0f) & finite(sum_q);
-    const float inv_q = 1.0f / sum_q;
-    const float cx = sx * inv_q, cy = sy * inv_q, cz = sz * inv_q;
-    const float ddx_x = (dx_x - cx * dq_dx) * inv_q;
-    const float ddx_y = (dx_y - cy * dq_dx) * inv_q;
-    const float ddx_z = (dx_z - cz * dq_dx) * inv_q;
-    const float ddy_x = (dy_x - cx * dq_dy) * inv_q;
-    const float ddy_y = (dy_y - cy * dq_dy) * inv_q;
-    const float ddy_z = (dy_z - cz * dq_dy) * inv_q;
-    const float along_x = (ddx_x * ddx_x + ddx_y * ddx_y) + ddx_z * ddx_z;
-    const float along_y = (ddy_x * ddy_x + ddy_y * ddy_y) + ddy_z * ddy_z;
-    const float size = std::sqrt(along_x < along_y ? along_y : along_x);  // std::max
-    // Non-finite offsets only come from absurd inputs: stay at a vertex, never NaN.
-    const bool keep = has_q & finite(cx) & finite(cy) & finite(cz);
-    constexpr float kInfinity = std::numeric_limits<float>::infinity();
-    s.offset_x[l] = keep ? cx : 0.0f;
-    s.offset_y[l] = keep ? cy : 0.0f;
-    s.offset_z[l] = keep ? cz : 0.0f;
-    const float kept_size = keep ? size : kInfinity;
-    s.footprint[l] = kept_size != kept_size ? kInfinity : kept_size;  // NaN -> +inf
-    // The unit normal: sum b q N normalised, or the first vertex's normal where that has no
-    // length, or +z.
-    const float length = std::sqrt((mx * mx + my * my) + mz * mz);
-    const float fx = s.nx[0][l], fy = s.ny[0][l], fz = s.nz[0][l];
-    const float fallback_length = std::sqrt((fx * fx + fy * fy) + fz * fz);
-    const bool has_sum = (length > 0.0f) & finite(length);
-    const bool has_fallback = fallback_length > 0.0f;
-    const float ux = has_fallback ? fx / fallback_length : 0.0f;
-    const float uy = has_fallback ? fy / fallback_length : 0.0f;
-    const float uz = has_fallback ? fz / fallback_length : 1.0f;
-    s.normal_x[l] = has_sum ? mx / length : ux;
-    s.normal_y[l] = has_sum ? my / length : uy;
-    s.normal_z[l] = has_sum ? mz / length : uz;
+  }
+};
+
+TriangleTerms triangle_terms(const ScreenTriangle& t) {
+  TriangleTerms terms;
+  terms.area = static_cast<float>(t.double_area);
+  for (std::size_t k = 0; k < 3; ++k) {
+    // Edge k runs from vertex k + 1 to vertex k + 2 (as drawing takes it).
+    const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+    terms.edge_dy[k] = static_cast<float>(int64_t{t.y[b]} - int64_t{t.y[a]});
+    terms.edge_dx[k] = static_cast<float>(int64_t{t.x[b]} - int64_t{t.x[a]});
+    terms.q[k] = t.inv_w[k];
+    terms.ox[k] = t.texture_offset[k].x;
+    terms.oy[k] = t.texture_offset[k].y;
+    terms.oz[k] = t.texture_offset[k].z;
+    terms.nx[k] = t.normal[k].x;
+    terms.ny[k] = t.normal[k].y;
+    terms.nz[k] = t.normal[k].z;
+  }
+  return terms;
+}
+
+void resolve_surface_runs_target(const SurfaceRun* runs, std::size_t run_count,
+                                 const GBufferPlanes& target) {
+  SurfaceChunk chunk;
+  for (std::size_t r = 0; r < run_count; ++r) {
+    const SurfaceRun& run = runs[r];
+    const ScreenTriangle& t = *run.triangle;
+    const TriangleTerms terms = triangle_terms(t);
+    // Vertex k's barycentric numerator, the edge function opposite it, at the run's first
+    // pixel centre and per pixel to the right: exact integers, so each pixel's is the one its
+    // own centre gives.
+    std::array<int64_t, 3> first{}, per_pixel{};
+    const int64_t px = int64_t{run.x} * kSubpixelScale + kSubpixelScale / 2;
+    const int64_t py = int64_t{run.y} * kSubpixelScale + kSubpixelScale / 2;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+      first[k] = edge_function(t.x[a], t.y[a], t.x[b], t.y[b], px, py);
+      per_pixel[k] = -(int64_t{t.y[b]} - int64_t{t.y[a]}) * kSubpixelScale;
+    }
+    const auto n = static_cast<std::size_t>(run.count);
+    for (std::size_t k = 0; k < 3; ++k) {
+      const int64_t e = first[k], de = per_pixel[k];
+      for (std::size_t l = 0; l < n; ++l) {
+        chunk.edge[k][l] = static_cast<float>(e + de * static_cast<int64_t>(l));
+      }
+    }
+    chunk.interpolate(terms, n);
+    // Plane by plane, through pointers of their own: a store through the flags' uint8_t*
+    // would otherwise make every other pointer be reloaded after it.
+    const std::size_t i = run.target;
+    std::copy_n(run.depth, n, target.depth + i);
+    std::fill_n(target.flags + i, n, run.flags);
+    std::fill_n(target.object_id + i, n, run.object_id);
+    std::copy_n(chunk.footprint.data(), n, target.footprint + i);
+    glm::vec3* __restrict normal = target.normal + i;
+    for (std::size_t l = 0; l < n; ++l) {
+      normal[l] = glm::vec3(chunk.normal_x[l], chunk.normal_y[l], chunk.normal_z[l]);
+    }
+    glm::dvec3* __restrict position = target.texture_position + i;
+    const glm::dvec3 origin = t.texture_origin;
+    for (std::size_t l = 0; l < n; ++l) {
+      position[l] =
+          origin + glm::dvec3(glm::vec3(chunk.offset_x[l], chunk.offset_y[l], chunk.offset_z[l]));
+    }
   }
 }
 
@@ -157,15 +248,15 @@ HWY_AFTER_NAMESPACE();
 namespace soltex::raster_internal {
 
 HWY_EXPORT(draw_unclipped_target);
-HWY_EXPORT(interpolate_surfaces_target);
+HWY_EXPORT(resolve_surface_runs_target);
 
 void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
                     const ScreenTriangle** winner, RasterStats& stats) {
   HWY_DYNAMIC_DISPATCH(draw_unclipped_target)(t, span, depth, winner, stats);
 }
 
-void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count) {
-  HWY_DYNAMIC_DISPATCH(interpolate_surfaces_target)(lanes, count);
+void resolve_surface_runs(std::span<const SurfaceRun> runs, const GBufferPlanes& target) {
+  HWY_DYNAMIC_DISPATCH(resolve_surface_runs_target)(runs.data(), runs.size(), target);
 }
 
 }  // namespace soltex::raster_internal

@@ -33,25 +33,6 @@ int64_t pixel_centre(int pixel) {
   return static_cast<int64_t>(pixel) * kSubpixelScale + kSubpixelScale / 2;
 }
 
-// The G-buffer's planes as raw pointers, taken once per tile: a store through uint8_t* (the
-// flags) may alias anything, so through the vectors every store would reload every data pointer.
-struct GBufferPlanes {
-  explicit GBufferPlanes(GBuffer& g)
-      : depth(g.depth.data()),
-        flags(g.flags.data()),
-        object_id(g.object_id.data()),
-        texture_position(g.texture_position.data()),
-        normal(g.normal.data()),
-        footprint(g.footprint.data()) {}
-
-  float* depth;
-  uint8_t* flags;
-  uint32_t* object_id;
-  glm::dvec3* texture_position;
-  glm::vec3* normal;
-  float* footprint;
-};
-
 // Pixels [i, i + count) of one row: nothing drawn.
 void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) {
   std::fill_n(target.depth + i, count, std::numeric_limits<float>::infinity());
@@ -62,83 +43,31 @@ void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) 
   std::fill_n(target.footprint + i, count, 0.0f);
 }
 
-// The winners' attributes at up to kCapacity pixels, perspective-correct: with barycentric
-// weights b (from the exact integer edge functions) and q = 1/w, P = sum(b q P) / sum(b q).
-// Its derivative per pixel step is analytic: dP/dx = (d(sum b q P)/dx - P d(sum b q)/dx) /
-// sum(b q), the weights' derivatives being constant over the triangle. Float suffices: P is an
-// offset from the triangle's double origin, so float's error is relative to the triangle's
-// size.
-//
-// The pixels' triangle data is gathered into arrays first, so that the arithmetic runs as one
-// loop across the pixels (vector lanes); every lane does the same IEEE operations in the same
-// order as a pixel-at-a-time loop would, selects standing in for its branches.
-struct SurfaceBatch {
-  static constexpr int kCapacity = SurfaceLanes::kCapacity;
-  template <typename T>
-  using Lanes = std::array<T, kCapacity>;
-
-  int count = 0;
+// Runs of pixels waiting to be resolved together (resolve_surface_runs(), dispatched once per
+// batch rather than per run).
+struct SurfaceRuns {
+  static constexpr std::size_t kCapacity = 64;
+  std::size_t count = 0;
   uint64_t back_faces = 0;  // pixels written, seen from behind
-  Lanes<const ScreenTriangle*> triangle;
-  Lanes<int> x, y;
-  Lanes<std::size_t> index;
-  Lanes<float> depth;
-  SurfaceLanes lanes;
+  std::array<SurfaceRun, kCapacity> runs;
 
-  void add(const ScreenTriangle* t, int px, int py, std::size_t i, float z) {
-    // The lines past the first (which drawing read) hold what write() gathers.
+  void add(const TileFrame& frame, const ScreenTriangle* t, int x, int y, int pixels, std::size_t i,
+           const float* depth, const GBufferPlanes& target) {
+    // Resolving reads all three of the triangle's lines; drawing's one may have left the cache.
+    __builtin_prefetch(t);
     __builtin_prefetch(reinterpret_cast<const char*>(t) + 64);
     __builtin_prefetch(reinterpret_cast<const char*>(t) + 128);
-    const auto l = static_cast<std::size_t>(count++);
-    triangle[l] = t;
-    x[l] = px;
-    y[l] = py;
-    index[l] = i;
-    depth[l] = z;
+    const auto flags =
+        static_cast<uint8_t>(GBuffer::kCovered | (t->back_face ? GBuffer::kBackFace : 0));
+    back_faces += t->back_face ? static_cast<uint64_t>(pixels) : 0;
+    runs[count++] =
+        SurfaceRun{t, x, y, pixels, i, depth, frame.objects[t->object].source->object_id, flags};
+    if (count == kCapacity) write(target);
   }
 
-  void write(const TileFrame& frame, const GBufferPlanes& target) {
-    const auto n = static_cast<std::size_t>(count);
-    if (n == 0) return;
-    // Per lane: vertex k's barycentric numerator (the edge function opposite it at the pixel
-    // centre) and edge k's steps, already in float, so that the loop below is float arithmetic
-    // alone (no 64-bit products or conversions) and runs in vector lanes; then vertex k's 1/w,
-    // texture offset and normal.
-    SurfaceLanes& s = lanes;
-    for (std::size_t l = 0; l < n; ++l) {
-      const ScreenTriangle& t = *triangle[l];
-      const int64_t px = pixel_centre(x[l]), py = pixel_centre(y[l]);
-      for (std::size_t k = 0; k < 3; ++k) {
-        // Edge k runs from vertex k + 1 to vertex k + 2 (edges_of()).
-        const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
-        const int64_t ax = t.x[a], ay = t.y[a], bx = t.x[b], by = t.y[b];
-        s.edge[k][l] = static_cast<float>(edge_function(ax, ay, bx, by, px, py));
-        s.edge_dy[k][l] = static_cast<float>(by - ay);
-        s.edge_dx[k][l] = static_cast<float>(bx - ax);
-        s.q[k][l] = t.inv_w[k];
-        s.ox[k][l] = t.texture_offset[k].x;
-        s.oy[k][l] = t.texture_offset[k].y;
-        s.oz[k][l] = t.texture_offset[k].z;
-        s.nx[k][l] = t.normal[k].x;
-        s.ny[k][l] = t.normal[k].y;
-        s.nz[k][l] = t.normal[k].z;
-      }
-      s.area[l] = static_cast<float>(t.double_area);
-    }
-    interpolate_surfaces(lanes, n);
-    for (std::size_t l = 0; l < n; ++l) {
-      const ScreenTriangle& t = *triangle[l];
-      const std::size_t i = index[l];
-      target.depth[i] = depth[l];
-      target.flags[i] = GBuffer::kCovered | (t.back_face ? GBuffer::kBackFace : 0);
-      back_faces += t.back_face ? 1 : 0;
-      target.object_id[i] = frame.objects[t.object].source->object_id;
-      target.texture_position[i] =
-          t.texture_origin +
-          glm::dvec3(glm::vec3(lanes.offset_x[l], lanes.offset_y[l], lanes.offset_z[l]));
-      target.normal[i] = glm::vec3(lanes.normal_x[l], lanes.normal_y[l], lanes.normal_z[l]);
-      target.footprint[i] = lanes.footprint[l];
-    }
+  void write(const GBufferPlanes& target) {
+    if (count == 0) return;
+    resolve_surface_runs({runs.data(), count}, target);
     count = 0;
   }
 };
@@ -238,7 +167,7 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
   const GBufferPlanes target(gbuffer);
   const auto width = static_cast<std::ptrdiff_t>(gbuffer.width);
   uint64_t covered = 0, cap_rays = 0, caps = 0;
-  SurfaceBatch surfaces;
+  SurfaceRuns surfaces;
   static_assert(CapRayRows::kColumns >= kTileSize + 1);
   CapRayRows rays;
   if (frame.caps != nullptr) rays.begin(x0_, y0_);
@@ -247,8 +176,8 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
     // Where pixel (0, y) would be in the target: x is added below (x >= origin_x).
     const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(y - origin_y) * width - origin_x;
     const ScreenTriangle* const* winners = winner_.data() + (y - y0_) * kTileSize;  // from x0_
+    const float* winners_depth = depth_.data() + (y - y0_) * kTileSize;
     for (int x = x0_; x < x1_; ++x) {
-      const auto local = static_cast<std::size_t>((y - y0_) * kTileSize + (x - x0_));
       const auto i = static_cast<std::size_t>(row + x);
       const ScreenTriangle* winner = winners[x - x0_];
       if (winner == nullptr) {
@@ -259,30 +188,41 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
         x = end - 1;
         continue;
       }
-      ++covered;
+      // The run of pixels that see the same triangle.
+      int end = x + 1;
+      while (end < x1_ && winners[end - x0_] == winner) ++end;
+      covered += static_cast<uint64_t>(end - x);
       // Only a frame with caps reads the winner here: its object and facing are on the
-      // triangle's second cache line, which drawing did not load, and which add() prefetches.
+      // triangle's second cache line, which drawing did not load.
       const ObjectFrame* object = frame.caps != nullptr ? &frame.objects[winner->object] : nullptr;
-      if (object != nullptr && winner->back_face && object->source->closed) {
+      if (object == nullptr || !winner->back_face || !object->source->closed) {
+        surfaces.add(frame, winner, x, y, end - x, i, winners_depth + (x - x0_), target);
+        x = end - 1;
+        continue;
+      }
+      // The back of a cut solid: each pixel sees a cap, or (its ray entering no kept region in
+      // front of the camera) the back face.
+      for (; x < end; ++x) {
+        const auto at = static_cast<std::size_t>(row + x);
         ++cap_rays;
         CapSample cap;
         if (frame.caps->trace(x, y, object->texture_from_world, object->source->clip_plane_mask,
                               rays, cap)) {
           ++caps;
-          target.depth[i] = cap.depth;
-          target.flags[i] = GBuffer::kCovered | GBuffer::kCap;
-          target.object_id[i] = object->source->object_id;
-          target.texture_position[i] = cap.texture_position;
-          target.normal[i] = cap.normal;
-          target.footprint[i] = cap.footprint;
-          continue;
+          target.depth[at] = cap.depth;
+          target.flags[at] = GBuffer::kCovered | GBuffer::kCap;
+          target.object_id[at] = object->source->object_id;
+          target.texture_position[at] = cap.texture_position;
+          target.normal[at] = cap.normal;
+          target.footprint[at] = cap.footprint;
+        } else {
+          surfaces.add(frame, winner, x, y, 1, at, winners_depth + (x - x0_), target);
         }
       }
-      surfaces.add(winner, x, y, i, depth_[local]);
-      if (surfaces.count == SurfaceBatch::kCapacity) surfaces.write(frame, target);
+      x = end - 1;
     }
   }
-  surfaces.write(frame, target);
+  surfaces.write(target);
   stats.pixels_covered += covered;
   stats.back_face_pixels += surfaces.back_faces;
   stats.cap_rays += cap_rays;
