@@ -47,11 +47,14 @@ inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
   const auto l = static_cast<std::size_t>(level);
   SOLTEX_DCHECK(l < CachedPixels::kLevels);
   CachedPixels::Group& group = cached_.groups[l];
-  group.pixels[group.count] = pixel;
-  group.points[group.count] = p;
-  ++group.count;
+  // The count read once: a store of the pixel's size_t index may alias it, and would make the
+  // compiler read it back from memory.
+  const std::size_t count = group.count;
+  group.pixels[count] = pixel;
+  group.points[count] = p;
+  group.count = count + 1;
   cached_.pending |= 1u << l;
-  if (group.count == CachedPixels::kCapacity) look_up(level, image);
+  if (count + 1 == CachedPixels::kCapacity) look_up(level, image);
 }
 
 void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
@@ -60,6 +63,9 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
   gbuffer_ = &g;
   const auto& background = background_row();
   const std::size_t object_count = frame_.objects.size();
+  // Counted in a register and added once: an increment in memory per pixel chains each pixel
+  // to the one before through a store and a load.
+  std::size_t covered = 0;
   for (int y = y0; y < y1; ++y) {
     std::copy_n(background.begin(), 3 * (x1 - x0),
                 image.rgb.begin() + 3 * (static_cast<std::ptrdiff_t>(y) * image.width + x0));
@@ -68,7 +74,7 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
       if (!g.covered(pixel.index)) continue;  // the background is there already
       const uint32_t id = g.object_id[pixel.index];
       if (id >= object_count) continue;
-      ++counts_.covered;
+      ++covered;
       const ObjectShading& object = frame_.objects[id];
       if (object.evaluator != nullptr) {
         shade_evaluated(g, pixel, object, image);
@@ -83,6 +89,7 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
       }
     }
   }
+  counts_.covered += covered;
   if (cached_.pending != 0) look_up_all(image);
   if (evaluated_.count > 0) evaluate(image);
   if (lit_.batch.count > 0) flush(image);
