@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "material_inputs.h"
 #include "soltex/common/texture_sampler.h"
@@ -59,10 +60,15 @@ struct LitPixels {
 // to the eye through `inverse_vp`, the eye added back in double), the direction to the viewer,
 // and the unit normal turned to face the viewer (seen from inside: flipped).
 struct SurfaceUnprojection {
+  SurfaceUnprojection(const glm::dmat4& inverse_vp, const glm::dvec3& eye, int width, int height);
+
   glm::dmat4 inverse_vp;
   glm::dvec3 eye;
   int width;
   int height;
+  // Each column's and row's pixel centre in normalised device coordinates, made once per
+  // frame: the same two double divisions every pixel of a column or row would otherwise make.
+  std::vector<double> ndc_x, ndc_y;
 
   // Writes the batch's position, to_viewer and normal lanes from the G-buffer's depth and
   // normal at the pixels `lit` holds (lighting_kernels.cpp: runtime-dispatched, every target
