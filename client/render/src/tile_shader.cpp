@@ -57,6 +57,43 @@ inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
   if (count + 1 == CachedPixels::kCapacity) look_up(level, image);
 }
 
+// The fast path's pixels [x_begin, x_end) of row y, all of `object`, pixel x_begin at `first`
+// in the G-buffer: add_cached() for each, the object settled once and the group of the level
+// in hand kept (with its count) while the level stays the same, as it mostly does from one
+// pixel to the next.
+void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y, std::size_t first,
+                                const ObjectShading& object, TextureSampler& sampler,
+                                Image& image) {
+  if (cached_.pending != 0 && cached_.object != &object) look_up_all(image);
+  cached_.object = &object;
+  cached_.sampler = &sampler;
+  const NearestLevelTable& table = object.level_table;
+  CachedPixels::Group* group = nullptr;
+  int level = -1;
+  std::size_t count = 0;
+  for (int x = x_begin; x < x_end; ++x) {
+    const std::size_t i = first + static_cast<std::size_t>(x - x_begin);
+    const int l = table.level(g.footprint[i]);
+    if (l != level) {
+      if (group != nullptr) group->count = count;
+      level = l;
+      SOLTEX_DCHECK(static_cast<std::size_t>(l) < CachedPixels::kLevels);
+      group = &cached_.groups[static_cast<std::size_t>(l)];
+      count = group->count;
+      cached_.pending |= 1u << l;
+    }
+    group->pixels[count] = Pixel{x, y, i};
+    group->points[count] = g.texture_position[i];
+    if (++count == CachedPixels::kCapacity) {
+      group->count = count;
+      look_up(level, image);
+      group = nullptr;
+      level = -1;
+    }
+  }
+  if (group != nullptr) group->count = count;
+}
+
 void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
                        Image& image) {
   assert(x1 - x0 <= kTile);
@@ -69,23 +106,34 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
   for (int y = y0; y < y1; ++y) {
     std::copy_n(background.begin(), 3 * (x1 - x0),
                 image.rgb.begin() + 3 * (static_cast<std::ptrdiff_t>(y) * image.width + x0));
-    for (int x = x0; x < x1; ++x) {
-      const Pixel pixel{x, y, g.index(x - origin_x, y - origin_y)};
-      if (!g.covered(pixel.index)) continue;  // the background is there already
-      const uint32_t id = g.object_id[pixel.index];
-      if (id >= object_count) continue;
-      ++covered;
+    const std::size_t row = g.index(x0 - origin_x, y - origin_y);  // pixel (x0, y)
+    for (int x = x0; x < x1;) {
+      const std::size_t i = row + static_cast<std::size_t>(x - x0);
+      const uint32_t id = g.object_id[i];
+      // An uncovered pixel keeps the background that is there already.
+      if (!g.covered(i) || id >= object_count) {
+        ++x;
+        continue;
+      }
+      // The run of pixels that see the same object, taken together.
+      int end = x + 1;
+      for (std::size_t j = i + 1; end < x1 && g.covered(j) && g.object_id[j] == id; ++j) ++end;
+      covered += static_cast<std::size_t>(end - x);
       const ObjectShading& object = frame_.objects[id];
-      if (object.evaluator != nullptr) {
-        shade_evaluated(g, pixel, object, image);
-      } else if (object.rgb_fast_path && object.cached_inset == 0.0) {
+      if (object.evaluator == nullptr && object.rgb_fast_path && object.cached_inset == 0.0) {
         // shade_cached()'s fast path without its calls: the level from the table (the fast
         // path has one), the point where the surface was drawn.
-        add_cached(pixel, g.texture_position[pixel.index],
-                   object.level_table.level(g.footprint[pixel.index]), object, *samplers_[id],
-                   image);
-      } else {
-        shade_cached(g, pixel, object, *samplers_[id], image);
+        add_cached_run(g, x, end, y, i, object, *samplers_[id], image);
+        x = end;
+        continue;
+      }
+      for (; x < end; ++x) {
+        const Pixel pixel{x, y, row + static_cast<std::size_t>(x - x0)};
+        if (object.evaluator != nullptr) {
+          shade_evaluated(g, pixel, object, image);
+        } else {
+          shade_cached(g, pixel, object, *samplers_[id], image);
+        }
       }
     }
   }
