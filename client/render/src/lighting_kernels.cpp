@@ -14,6 +14,7 @@
 
 // After Highway: lit_pixels.h reaches the sampler's per-target kernels (-inl.h).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <glm/mat4x4.hpp>
@@ -168,6 +169,35 @@ void shade_batch_target(const PreparedLights& lights, ShadeBatch& b) {
   }
 }
 
+// LitPixels::write()'s bytes: per lane what set_pixel() gives (over_background(), then
+// Image's rounding), with selects for its branches. bytes[3 l + c]: lane l's channel c.
+void colour_bytes_target(const LitPixels& lit, uint8_t* bytes) {
+  const ShadeBatch& b = lit.batch;
+  const auto count = static_cast<std::size_t>(b.count);
+  alignas(64) ShadeBatch::Lanes<uint8_t> red, green, blue;
+  const glm::vec3 background = render::kBackground;
+  const auto to_byte = [](float v) {
+    const float rounded = (v > 1.0f ? 1.0f : v) * 255.0f + 0.5f;  // std::min(v, 1.0f)
+    const auto byte = static_cast<uint8_t>(static_cast<int32_t>(v > 0.0f ? rounded : 0.0f));
+    return byte;
+  };
+  for (std::size_t l = 0; l < count; ++l) {
+    const float opacity = lit.opacity[l];
+    const bool blend = opacity < 1.0f;
+    const float r = background.r + opacity * (b.colour_r[l] - background.r);
+    const float g = background.g + opacity * (b.colour_g[l] - background.g);
+    const float bl = background.b + opacity * (b.colour_b[l] - background.b);
+    red[l] = to_byte(blend ? r : b.colour_r[l]);
+    green[l] = to_byte(blend ? g : b.colour_g[l]);
+    blue[l] = to_byte(blend ? bl : b.colour_b[l]);
+  }
+  for (std::size_t l = 0; l < count; ++l) {
+    bytes[3 * l] = red[l];
+    bytes[3 * l + 1] = green[l];
+    bytes[3 * l + 2] = blue[l];
+  }
+}
+
 }  // namespace soltex::render_internal::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -177,6 +207,7 @@ namespace render_internal {
 
 HWY_EXPORT(unproject_target);
 HWY_EXPORT(shade_batch_target);
+HWY_EXPORT(colour_bytes_target);
 
 // Dispatched from this namespace, where the kernels' per-target namespaces are: a build with
 // one target only (-march=native) calls that target's kernel directly by the same name.
@@ -205,6 +236,14 @@ render::SurfaceUnprojection::SurfaceUnprojection(const glm::dmat4& inverse_vp_in
   }
   for (std::size_t y = 0; y < ndc_y.size(); ++y) {
     ndc_y[y] = 1.0 - (static_cast<int>(y) + 0.5) / h * 2.0;
+  }
+}
+
+void render::LitPixels::write(Image& image) const {
+  alignas(64) std::array<uint8_t, 3 * ShadeBatch::kCapacity> bytes;
+  HWY_DYNAMIC_DISPATCH(render_internal::colour_bytes_target)(*this, bytes.data());
+  for (std::size_t l = 0; l < static_cast<std::size_t>(batch.count); ++l) {
+    std::copy_n(bytes.data() + 3 * l, 3, image.pixel(x[l], y[l]));
   }
 }
 

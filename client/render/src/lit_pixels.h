@@ -48,12 +48,9 @@ struct LitPixels {
     batch.shininess[l] = shininess;
   }
 
-  void write(Image& image) const {
-    for (std::size_t l = 0; l < static_cast<std::size_t>(batch.count); ++l) {
-      set_pixel(image, x[l], y[l], {batch.colour_r[l], batch.colour_g[l], batch.colour_b[l]},
-                opacity[l]);
-    }
-  }
+  // Writes the batch's colours, seen through their opacity, to their pixels of `image`, as
+  // set_pixel() writes them (lighting_kernels.cpp: the bytes made in vector lanes).
+  void write(Image& image) const;
 };
 
 // The lighting inputs of a batch's pixels: the world position unprojected from depth (relative
