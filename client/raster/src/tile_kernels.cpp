@@ -224,12 +224,16 @@ void resolve_surface_runs_target(const SurfaceRun* runs, std::size_t run_count,
     // Plane by plane, through pointers of their own: a store through the flags' uint8_t*
     // would otherwise make every other pointer be reloaded after it.
     const std::size_t i = run.target;
-    std::copy_n(run.depth, n, target.depth + i);
-    std::fill_n(target.flags + i, n, run.flags);
-    std::fill_n(target.object_id + i, n, run.object_id);
-    std::copy_n(chunk.footprint.data(), n, target.footprint + i);
+    float* __restrict depth = target.depth + i;
+    uint8_t* __restrict flags = target.flags + i;
+    uint32_t* __restrict object_id = target.object_id + i;
+    float* __restrict footprint = target.footprint + i;
     glm::vec3* __restrict normal = target.normal + i;
     for (std::size_t l = 0; l < n; ++l) {
+      depth[l] = run.depth[l];
+      flags[l] = run.flags;
+      object_id[l] = run.object_id;
+      footprint[l] = chunk.footprint[l];
       normal[l] = glm::vec3(chunk.normal_x[l], chunk.normal_y[l], chunk.normal_z[l]);
     }
     glm::dvec3* __restrict position = target.texture_position + i;

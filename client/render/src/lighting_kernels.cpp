@@ -243,7 +243,10 @@ void render::LitPixels::write(Image& image) const {
   alignas(64) std::array<uint8_t, 3 * ShadeBatch::kCapacity> bytes;
   HWY_DYNAMIC_DISPATCH(render_internal::colour_bytes_target)(*this, bytes.data());
   for (std::size_t l = 0; l < static_cast<std::size_t>(batch.count); ++l) {
-    std::copy_n(bytes.data() + 3 * l, 3, image.pixel(x[l], y[l]));
+    uint8_t* pixel = image.pixel(x[l], y[l]);
+    pixel[0] = bytes[3 * l];
+    pixel[1] = bytes[3 * l + 1];
+    pixel[2] = bytes[3 * l + 2];
   }
 }
 
