@@ -103,6 +103,9 @@ struct TriangleTerms {
 // lanes; the triangle's terms are the same in every lane.
 struct SurfaceChunk {
   static constexpr std::size_t kCapacity = kTileSize;
+  // Lanes computed together: a multiple of every target's vector width in floats.
+  static constexpr std::size_t kBlock = 16;
+  static_assert(kCapacity % kBlock == 0);
   template <typename T>
   using Lanes = std::array<T, kCapacity>;
 
@@ -214,13 +217,18 @@ void resolve_surface_runs_target(const SurfaceRun* runs, std::size_t run_count,
       per_pixel[k] = -(int64_t{t.y[b]} - int64_t{t.y[a]}) * kSubpixelScale;
     }
     const auto n = static_cast<std::size_t>(run.count);
+    // Computed for whole blocks of lanes (the pixels past the run are never written): a run
+    // is mostly shorter than a vector loop's remainder, which would otherwise run a lane at a
+    // time.
+    const std::size_t lanes =
+        (n + SurfaceChunk::kBlock - 1) / SurfaceChunk::kBlock * SurfaceChunk::kBlock;
     for (std::size_t k = 0; k < 3; ++k) {
       const int64_t e = first[k], de = per_pixel[k];
-      for (std::size_t l = 0; l < n; ++l) {
+      for (std::size_t l = 0; l < lanes; ++l) {
         chunk.edge[k][l] = static_cast<float>(e + de * static_cast<int64_t>(l));
       }
     }
-    chunk.interpolate(terms, n);
+    chunk.interpolate(terms, lanes);
     // Plane by plane, through pointers of their own: a store through the flags' uint8_t*
     // would otherwise make every other pointer be reloaded after it.
     const std::size_t i = run.target;
