@@ -170,6 +170,8 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
   SurfaceRuns surfaces;
   static_assert(CapRayRows::kColumns >= kTileSize + 1);
   CapRayRows rays;
+  CapRayLanes ray_lanes;    // scratch of trace_run(), uninitialised
+  CapPixelLanes cap_lanes;  // likewise
   if (frame.caps != nullptr) rays.begin(x0_, y0_);
   for (int y = y0_; y < y1_; ++y) {
     if (frame.caps != nullptr && y > y0_) rays.next_row();
@@ -191,33 +193,42 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
       // The run of pixels that see the same triangle.
       int end = x + 1;
       while (end < x1_ && winners[end - x0_] == winner) ++end;
-      covered += static_cast<uint64_t>(end - x);
       // Only a frame with caps reads the winner here: its object and facing are on the
       // triangle's second cache line, which drawing did not load.
       const ObjectFrame* object = frame.caps != nullptr ? &frame.objects[winner->object] : nullptr;
       if (object == nullptr || !winner->back_face || !object->source->closed) {
+        covered += static_cast<uint64_t>(end - x);
         surfaces.add(frame, winner, x, y, end - x, i, winners_depth + (x - x0_), target);
         x = end - 1;
         continue;
       }
       // The back of a cut solid: each pixel sees a cap, or (its ray entering no kept region in
-      // front of the camera) the back face.
-      for (; x < end; ++x) {
+      // front of the camera) the back face. A cap depends on the object alone, so the run
+      // goes on over the object's other back faces and is traced in lanes.
+      for (const ScreenTriangle* next = nullptr;
+           end < x1_ && (next = winners[end - x0_]) != nullptr && next->back_face &&
+           next->object == winner->object;) {
+        ++end;
+      }
+      covered += static_cast<uint64_t>(end - x);
+      frame.caps->trace_run(x, end, y, object->texture_from_world, object->source->clip_plane_mask,
+                            rays, ray_lanes, cap_lanes);
+      cap_rays += static_cast<uint64_t>(end - x);
+      for (std::size_t k = 0; x < end; ++x, ++k) {
         const auto at = static_cast<std::size_t>(row + x);
-        ++cap_rays;
-        CapSample cap;
-        if (frame.caps->trace(x, y, object->texture_from_world, object->source->clip_plane_mask,
-                              rays, cap)) {
-          ++caps;
-          target.depth[at] = cap.depth;
-          target.flags[at] = GBuffer::kCovered | GBuffer::kCap;
-          target.object_id[at] = object->source->object_id;
-          target.texture_position[at] = cap.texture_position;
-          target.normal[at] = cap.normal;
-          target.footprint[at] = cap.footprint;
-        } else {
-          surfaces.add(frame, winner, x, y, 1, at, winners_depth + (x - x0_), target);
+        const CapPixelLanes& cap = cap_lanes;
+        if (cap.hit[k] == 0) {
+          surfaces.add(frame, winners[x - x0_], x, y, 1, at, winners_depth + (x - x0_), target);
+          continue;
         }
+        ++caps;
+        target.depth[at] = cap.depth[k];
+        target.flags[at] = GBuffer::kCovered | GBuffer::kCap;
+        target.object_id[at] = object->source->object_id;
+        target.texture_position[at] =
+            glm::dvec3(cap.texture_x[k], cap.texture_y[k], cap.texture_z[k]);
+        target.normal[at] = glm::vec3(cap.normal_x[k], cap.normal_y[k], cap.normal_z[k]);
+        target.footprint[at] = cap.footprint[k];
       }
       x = end - 1;
     }
