@@ -1,7 +1,7 @@
 // Runtime dispatch of the tile's per-pixel loops (tile_kernels.h). Highway compiles this file
 // once per target (hwy/foreach_target.h re-includes it) and HWY_DYNAMIC_DISPATCH calls the
 // widest one the CPU supports, once per triangle drawn into a tile and once per batch of
-// resolved pixels. The loops are plain per-lane code, written with selects rather than
+// resolved runs of pixels. The loops are plain per-lane code, written with selects rather than
 // branches so that the compiler runs them in vector lanes; a target only widens the lanes
 // (AVX2: 8 floats, AVX-512: 16, against 4 in the baseline build, whose lack of 64-bit vector
 // compares keeps drawing scalar). The same IEEE operations in the same order per lane, and no

@@ -171,20 +171,29 @@ void TileShader::shade_evaluated(const GBuffer& g, Pixel pixel, const ObjectShad
     return;
   }
   if (evaluated_.count > 0 && evaluated_.object != &object) evaluate(image);
-  const glm::dvec3 n = object.surface.normal(g.normal[pixel.index]);
-  const double footprint = g.footprint[pixel.index];
   const std::size_t i = evaluated_.count++;
   evaluated_.object = &object;
   evaluated_.pixels[i] = pixel;
-  evaluated_.points[i] = inset(g.texture_position[pixel.index], n, kEvaluatedInset * footprint);
-  evaluated_.footprints[i] = surface_footprint(footprint, n);
+  // The point and box are made for the whole batch at once (evaluated_inputs()).
+  EvaluatedLanes& e = evaluated_.lanes;
+  const glm::dvec3& p = g.texture_position[pixel.index];
+  const glm::vec3& n = g.normal[pixel.index];
+  e.position_x[i] = p.x;
+  e.position_y[i] = p.y;
+  e.position_z[i] = p.z;
+  e.normal_x[i] = n.x;
+  e.normal_y[i] = n.y;
+  e.normal_z[i] = n.z;
+  e.footprint[i] = g.footprint[pixel.index];
   if (evaluated_.count == EvaluatedPixels::kCapacity) evaluate(image);
 }
 
 void TileShader::evaluate(Image& image) {
   const std::size_t n = evaluated_.count;
   const ObjectShading& object = *evaluated_.object;
-  object.evaluator->sample({evaluated_.points.data(), n}, {evaluated_.footprints.data(), n},
+  EvaluatedLanes& e = evaluated_.lanes;
+  evaluated_inputs(object.surface.normal_from_world(), e, n);
+  object.evaluator->sample({e.points.data(), n}, {e.footprints.data(), n},
                            {evaluated_.texels.data(), n});
   evaluated_.count = 0;
   const TextureSpec& spec = object.evaluator->spec();
