@@ -243,19 +243,33 @@ void TileShader::look_up(int level, Image& image) {
   const SampleFilter filter = frame_.options.filter;
   sampler.sample({group.points.data(), n}, static_cast<double>(level), filter,
                  {cached_.results.data(), n});
+  // shade_values() for each pixel, inline: the fast path's material is lit, so every pixel
+  // joins the lit batch; the batch's count stays in a register (a store of a pixel's int lane
+  // may alias it in memory) and is written back before a flush reads it.
+  const MaterialInputs& m = object.material;
+  SOLTEX_DCHECK(!m.unlit);
+  int lit = lit_.batch.count;
   for (std::size_t i = 0; i < n; ++i) {
-    const SampleResult& result = cached_.results[i];
-    if (result.complete) {
-      shade_values(group.pixels[i], object.material, result.values.data(), image);
-      continue;
+    const SampleResult* result = &cached_.results[i];
+    SampleResult again;
+    if (!result->complete) {
+      // A miss (rare once warm): the single lookup again, for the bricks it names.
+      again = sampler.sample_after_miss(group.points[i], level, filter, &missed_);
+      for (const BrickKey& key : missed_.view()) misses_.add(key);
+      if (!again.complete) ++counts_.fallback;
+      if (again.level < 0) ++counts_.empty;
+      result = &again;
     }
-    // A miss (rare once warm): the single lookup again, for the bricks it names.
-    const SampleResult again = sampler.sample_after_miss(group.points[i], level, filter, &missed_);
-    for (const BrickKey& key : missed_.view()) misses_.add(key);
-    if (!again.complete) ++counts_.fallback;
-    if (again.level < 0) ++counts_.empty;
-    shade_values(group.pixels[i], object.material, again.values.data(), image);
+    const Pixel pixel = group.pixels[i];
+    lit_.add(lit, pixel.x, pixel.y, pixel.index, m.read(result->values.data()), m.shininess);
+    if (++lit == ShadeBatch::kCapacity) {
+      lit_.batch.count = lit;
+      flush(image);
+      lit = 0;
+    }
   }
+  lit_.batch.count = lit;
+  counts_.shaded += n;
 }
 
 void TileShader::look_up_all(Image& image) {
