@@ -112,9 +112,11 @@ struct SurfaceChunk {
   alignas(64) std::array<Lanes<float>, 3> edge;  // in
   alignas(64) Lanes<float> offset_x, offset_y, offset_z, footprint, normal_x, normal_y, normal_z;
 
-  void interpolate(const TriangleTerms& t, std::size_t count) {
+  // `t`: the terms of each lane's triangle, t.area(l), t.q(k, l) and so on (RunTerms, LaneTerms).
+  template <typename Terms>
+  void interpolate(const Terms& t, std::size_t count) {
     for (std::size_t l = 0; l < count; ++l) {
-      const float inv_area = 1.0f / t.area;
+      const float inv_area = 1.0f / t.area(l);
       const float step = static_cast<float>(kSubpixelScale) * inv_area;
       float sum_q = 0.0f, dq_dx = 0.0f, dq_dy = 0.0f;
       float sx = 0.0f, sy = 0.0f, sz = 0.0f;  // sum b q P
@@ -122,25 +124,25 @@ struct SurfaceChunk {
       float mx = 0.0f, my = 0.0f, mz = 0.0f;  // sum b q N
       for (std::size_t k = 0; k < 3; ++k) {
         const float weight = edge[k][l] * inv_area;
-        const float q_k = t.q[k];
+        const float q_k = t.q(k, l);
         const float weight_q = weight * q_k;
-        const float weight_q_dx = -t.edge_dy[k] * step * q_k;
-        const float weight_q_dy = t.edge_dx[k] * step * q_k;
+        const float weight_q_dx = -t.edge_dy(k, l) * step * q_k;
+        const float weight_q_dy = t.edge_dx(k, l) * step * q_k;
         sum_q += weight_q;
         dq_dx += weight_q_dx;
         dq_dy += weight_q_dy;
-        sx += weight_q * t.ox[k];
-        sy += weight_q * t.oy[k];
-        sz += weight_q * t.oz[k];
-        dx_x += weight_q_dx * t.ox[k];
-        dx_y += weight_q_dx * t.oy[k];
-        dx_z += weight_q_dx * t.oz[k];
-        dy_x += weight_q_dy * t.ox[k];
-        dy_y += weight_q_dy * t.oy[k];
-        dy_z += weight_q_dy * t.oz[k];
-        mx += weight_q * t.nx[k];
-        my += weight_q * t.ny[k];
-        mz += weight_q * t.nz[k];
+        sx += weight_q * t.ox(k, l);
+        sy += weight_q * t.oy(k, l);
+        sz += weight_q * t.oz(k, l);
+        dx_x += weight_q_dx * t.ox(k, l);
+        dx_y += weight_q_dx * t.oy(k, l);
+        dx_z += weight_q_dx * t.oz(k, l);
+        dy_x += weight_q_dy * t.ox(k, l);
+        dy_y += weight_q_dy * t.oy(k, l);
+        dy_z += weight_q_dy * t.oz(k, l);
+        mx += weight_q * t.nx(k, l);
+        my += weight_q * t.ny(k, l);
+        mz += weight_q * t.nz(k, l);
       }
       const bool has_q = (sum_q > 0.0f) & finite(sum_q);
       const float inv_q = 1.0f / sum_q;
@@ -165,7 +167,7 @@ struct SurfaceChunk {
       // The unit normal: sum b q N normalised, or the first vertex's normal where that has no
       // length, or +z.
       const float length = std::sqrt((mx * mx + my * my) + mz * mz);
-      const float fx = t.nx[0], fy = t.ny[0], fz = t.nz[0];
+      const float fx = t.nx(0, l), fy = t.ny(0, l), fz = t.nz(0, l);
       const float fallback_length = std::sqrt((fx * fx + fy * fy) + fz * fz);
       const bool has_sum = (length > 0.0f) & finite(length);
       const bool has_fallback = fallback_length > 0.0f;
@@ -175,6 +177,58 @@ struct SurfaceChunk {
       normal_x[l] = has_sum ? mx / length : ux;
       normal_y[l] = has_sum ? my / length : uy;
       normal_z[l] = has_sum ? mz / length : uz;
+    }
+  }
+};
+
+// One triangle's terms in every lane (a run).
+struct RunTerms {
+  const TriangleTerms& t;
+  float area(std::size_t) const { return t.area; }
+  float q(std::size_t k, std::size_t) const { return t.q[k]; }
+  float ox(std::size_t k, std::size_t) const { return t.ox[k]; }
+  float oy(std::size_t k, std::size_t) const { return t.oy[k]; }
+  float oz(std::size_t k, std::size_t) const { return t.oz[k]; }
+  float nx(std::size_t k, std::size_t) const { return t.nx[k]; }
+  float ny(std::size_t k, std::size_t) const { return t.ny[k]; }
+  float nz(std::size_t k, std::size_t) const { return t.nz[k]; }
+  float edge_dy(std::size_t k, std::size_t) const { return t.edge_dy[k]; }
+  float edge_dx(std::size_t k, std::size_t) const { return t.edge_dx[k]; }
+};
+
+// Each lane's own triangle's terms, gathered (pixels of short runs, taken together).
+struct LaneTerms {
+  static constexpr std::size_t kCapacity = SurfaceChunk::kCapacity;
+  template <typename T>
+  using Lanes = std::array<T, kCapacity>;
+  alignas(64) Lanes<float> area_;
+  alignas(64) std::array<Lanes<float>, 3> q_, ox_, oy_, oz_, nx_, ny_, nz_, edge_dy_, edge_dx_;
+
+  float area(std::size_t l) const { return area_[l]; }
+  float q(std::size_t k, std::size_t l) const { return q_[k][l]; }
+  float ox(std::size_t k, std::size_t l) const { return ox_[k][l]; }
+  float oy(std::size_t k, std::size_t l) const { return oy_[k][l]; }
+  float oz(std::size_t k, std::size_t l) const { return oz_[k][l]; }
+  float nx(std::size_t k, std::size_t l) const { return nx_[k][l]; }
+  float ny(std::size_t k, std::size_t l) const { return ny_[k][l]; }
+  float nz(std::size_t k, std::size_t l) const { return nz_[k][l]; }
+  float edge_dy(std::size_t k, std::size_t l) const { return edge_dy_[k][l]; }
+  float edge_dx(std::size_t k, std::size_t l) const { return edge_dx_[k][l]; }
+
+  // Lane l's terms, read from the triangle itself (as triangle_terms() makes them).
+  void set(std::size_t l, const ScreenTriangle& t) {
+    area_[l] = static_cast<float>(t.double_area);
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+      edge_dy_[k][l] = static_cast<float>(int64_t{t.y[b]} - int64_t{t.y[a]});
+      edge_dx_[k][l] = static_cast<float>(int64_t{t.x[b]} - int64_t{t.x[a]});
+      q_[k][l] = t.inv_w[k];
+      ox_[k][l] = t.texture_offset[k].x;
+      oy_[k][l] = t.texture_offset[k].y;
+      oz_[k][l] = t.texture_offset[k].z;
+      nx_[k][l] = t.normal[k].x;
+      ny_[k][l] = t.normal[k].y;
+      nz_[k][l] = t.normal[k].z;
     }
   }
 };
@@ -198,59 +252,133 @@ TriangleTerms triangle_terms(const ScreenTriangle& t) {
   return terms;
 }
 
+// Vertex k's barycentric numerator, the edge function opposite it, at pixel (x, y)'s centre:
+// an exact integer.
+std::array<int64_t, 3> edge_numerators(const ScreenTriangle& t, int x, int y) {
+  const int64_t px = int64_t{x} * kSubpixelScale + kSubpixelScale / 2;
+  const int64_t py = int64_t{y} * kSubpixelScale + kSubpixelScale / 2;
+  std::array<int64_t, 3> e{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+    e[k] = edge_function(t.x[a], t.y[a], t.x[b], t.y[b], px, py);
+  }
+  return e;
+}
+
+// Lanes computed for whole blocks (the lanes past `count` are never written out): a vector
+// loop's remainder would otherwise run a lane at a time.
+std::size_t whole_blocks(std::size_t count) {
+  return (count + SurfaceChunk::kBlock - 1) / SurfaceChunk::kBlock * SurfaceChunk::kBlock;
+}
+
+// A run of at least kLongRun pixels: the triangle's terms taken once, the pixels across the
+// lanes, written plane by plane.
+void resolve_long_run(const SurfaceRun& run, SurfaceChunk& chunk, const GBufferPlanes& target) {
+  const ScreenTriangle& t = *run.triangle;
+  const TriangleTerms terms = triangle_terms(t);
+  // Per pixel to the right, edge k's function steps by an exact integer, so each pixel's
+  // numerator is the one its own centre gives.
+  const std::array<int64_t, 3> first = edge_numerators(t, run.x, run.y);
+  const auto n = static_cast<std::size_t>(run.count);
+  const std::size_t lanes = whole_blocks(n);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+    const int64_t e = first[k], de = -(int64_t{t.y[b]} - int64_t{t.y[a]}) * kSubpixelScale;
+    for (std::size_t l = 0; l < lanes; ++l) {
+      chunk.edge[k][l] = static_cast<float>(e + de * static_cast<int64_t>(l));
+    }
+  }
+  chunk.interpolate(RunTerms{terms}, lanes);
+  // Plane by plane, through pointers of their own: a store through the flags' uint8_t* would
+  // otherwise make every other pointer be reloaded after it.
+  const std::size_t i = run.target;
+  float* __restrict depth = target.depth + i;
+  uint8_t* __restrict flags = target.flags + i;
+  uint32_t* __restrict object_id = target.object_id + i;
+  float* __restrict footprint = target.footprint + i;
+  glm::vec3* __restrict normal = target.normal + i;
+  for (std::size_t l = 0; l < n; ++l) {
+    depth[l] = run.depth[l];
+    flags[l] = run.flags;
+    object_id[l] = run.object_id;
+    footprint[l] = chunk.footprint[l];
+    normal[l] = glm::vec3(chunk.normal_x[l], chunk.normal_y[l], chunk.normal_z[l]);
+  }
+  glm::dvec3* __restrict position = target.texture_position + i;
+  const glm::dvec3 origin = t.texture_origin;
+  for (std::size_t l = 0; l < n; ++l) {
+    position[l] =
+        origin + glm::dvec3(glm::vec3(chunk.offset_x[l], chunk.offset_y[l], chunk.offset_z[l]));
+  }
+}
+
+// The pixels of short runs (a fine mesh's), each lane with its own triangle's terms: one
+// run's arithmetic alone would wait on its own divisions, several runs' together do not.
+struct ShortRunPixels {
+  std::size_t count = 0;
+  LaneTerms terms;
+  SurfaceChunk chunk;
+  std::array<const SurfaceRun*, SurfaceChunk::kCapacity> run;
+  std::array<int, SurfaceChunk::kCapacity> pixel;  // in the run
+
+  void add(const SurfaceRun& r, const GBufferPlanes& target) {
+    const ScreenTriangle& t = *r.triangle;
+    const std::array<int64_t, 3> first = edge_numerators(t, r.x, r.y);
+    for (int j = 0; j < r.count; ++j) {
+      for (std::size_t k = 0; k < 3; ++k) {
+        // Edge k's function one pixel to the right: an exact integer step.
+        const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+        const int64_t step = -(int64_t{t.y[b]} - int64_t{t.y[a]}) * kSubpixelScale;
+        chunk.edge[k][count] = static_cast<float>(first[k] + step * j);
+      }
+      terms.set(count, t);
+      run[count] = &r;
+      pixel[count] = j;
+      if (++count == SurfaceChunk::kCapacity) write(target);
+    }
+  }
+
+  void write(const GBufferPlanes& target) {
+    if (count == 0) return;
+    // The last lane repeated up to a whole block (computed, not written).
+    const std::size_t lanes = whole_blocks(count);
+    for (std::size_t l = count; l < lanes; ++l) {
+      for (std::size_t k = 0; k < 3; ++k) chunk.edge[k][l] = chunk.edge[k][count - 1];
+      terms.set(l, *run[count - 1]->triangle);
+    }
+    chunk.interpolate(terms, lanes);
+    for (std::size_t l = 0; l < count; ++l) {
+      const SurfaceRun& r = *run[l];
+      const auto j = static_cast<std::size_t>(pixel[l]);
+      const std::size_t i = r.target + j;
+      target.depth[i] = r.depth[j];
+      target.flags[i] = r.flags;
+      target.object_id[i] = r.object_id;
+      target.texture_position[i] =
+          r.triangle->texture_origin +
+          glm::dvec3(glm::vec3(chunk.offset_x[l], chunk.offset_y[l], chunk.offset_z[l]));
+      target.normal[i] = glm::vec3(chunk.normal_x[l], chunk.normal_y[l], chunk.normal_z[l]);
+      target.footprint[i] = chunk.footprint[l];
+    }
+    count = 0;
+  }
+};
+
+// Runs shorter than this go pixel by pixel into lanes shared with other runs.
+constexpr int kLongRun = 4;
+
 void resolve_surface_runs_target(const SurfaceRun* runs, std::size_t run_count,
                                  const GBufferPlanes& target) {
   SurfaceChunk chunk;
+  ShortRunPixels short_runs;
   for (std::size_t r = 0; r < run_count; ++r) {
-    const SurfaceRun& run = runs[r];
-    const ScreenTriangle& t = *run.triangle;
-    const TriangleTerms terms = triangle_terms(t);
-    // Vertex k's barycentric numerator, the edge function opposite it, at the run's first
-    // pixel centre and per pixel to the right: exact integers, so each pixel's is the one its
-    // own centre gives.
-    std::array<int64_t, 3> first{}, per_pixel{};
-    const int64_t px = int64_t{run.x} * kSubpixelScale + kSubpixelScale / 2;
-    const int64_t py = int64_t{run.y} * kSubpixelScale + kSubpixelScale / 2;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
-      first[k] = edge_function(t.x[a], t.y[a], t.x[b], t.y[b], px, py);
-      per_pixel[k] = -(int64_t{t.y[b]} - int64_t{t.y[a]}) * kSubpixelScale;
-    }
-    const auto n = static_cast<std::size_t>(run.count);
-    // Computed for whole blocks of lanes (the pixels past the run are never written): a run
-    // is mostly shorter than a vector loop's remainder, which would otherwise run a lane at a
-    // time.
-    const std::size_t lanes =
-        (n + SurfaceChunk::kBlock - 1) / SurfaceChunk::kBlock * SurfaceChunk::kBlock;
-    for (std::size_t k = 0; k < 3; ++k) {
-      const int64_t e = first[k], de = per_pixel[k];
-      for (std::size_t l = 0; l < lanes; ++l) {
-        chunk.edge[k][l] = static_cast<float>(e + de * static_cast<int64_t>(l));
-      }
-    }
-    chunk.interpolate(terms, lanes);
-    // Plane by plane, through pointers of their own: a store through the flags' uint8_t*
-    // would otherwise make every other pointer be reloaded after it.
-    const std::size_t i = run.target;
-    float* __restrict depth = target.depth + i;
-    uint8_t* __restrict flags = target.flags + i;
-    uint32_t* __restrict object_id = target.object_id + i;
-    float* __restrict footprint = target.footprint + i;
-    glm::vec3* __restrict normal = target.normal + i;
-    for (std::size_t l = 0; l < n; ++l) {
-      depth[l] = run.depth[l];
-      flags[l] = run.flags;
-      object_id[l] = run.object_id;
-      footprint[l] = chunk.footprint[l];
-      normal[l] = glm::vec3(chunk.normal_x[l], chunk.normal_y[l], chunk.normal_z[l]);
-    }
-    glm::dvec3* __restrict position = target.texture_position + i;
-    const glm::dvec3 origin = t.texture_origin;
-    for (std::size_t l = 0; l < n; ++l) {
-      position[l] =
-          origin + glm::dvec3(glm::vec3(chunk.offset_x[l], chunk.offset_y[l], chunk.offset_z[l]));
+    if (runs[r].count >= kLongRun) {
+      resolve_long_run(runs[r], chunk, target);
+    } else {
+      short_runs.add(runs[r], target);
     }
   }
+  short_runs.write(target);
 }
 
 }  // namespace soltex::raster_internal::HWY_NAMESPACE
