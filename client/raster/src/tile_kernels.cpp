@@ -111,75 +111,77 @@ struct SurfaceChunk {
 
   alignas(64) std::array<Lanes<float>, 3> edge;  // in
   alignas(64) Lanes<float> offset_x, offset_y, offset_z, footprint, normal_x, normal_y, normal_z;
-
-  // `t`: the terms of each lane's triangle, t.area(l), t.q(k, l) and so on (RunTerms, LaneTerms).
-  template <typename Terms>
-  void interpolate(const Terms& t, std::size_t count) {
-    for (std::size_t l = 0; l < count; ++l) {
-      const float inv_area = 1.0f / t.area(l);
-      const float step = static_cast<float>(kSubpixelScale) * inv_area;
-      float sum_q = 0.0f, dq_dx = 0.0f, dq_dy = 0.0f;
-      float sx = 0.0f, sy = 0.0f, sz = 0.0f;  // sum b q P
-      float dx_x = 0.0f, dx_y = 0.0f, dx_z = 0.0f, dy_x = 0.0f, dy_y = 0.0f, dy_z = 0.0f;
-      float mx = 0.0f, my = 0.0f, mz = 0.0f;  // sum b q N
-      for (std::size_t k = 0; k < 3; ++k) {
-        const float weight = edge[k][l] * inv_area;
-        const float q_k = t.q(k, l);
-        const float weight_q = weight * q_k;
-        const float weight_q_dx = -t.edge_dy(k, l) * step * q_k;
-        const float weight_q_dy = t.edge_dx(k, l) * step * q_k;
-        sum_q += weight_q;
-        dq_dx += weight_q_dx;
-        dq_dy += weight_q_dy;
-        sx += weight_q * t.ox(k, l);
-        sy += weight_q * t.oy(k, l);
-        sz += weight_q * t.oz(k, l);
-        dx_x += weight_q_dx * t.ox(k, l);
-        dx_y += weight_q_dx * t.oy(k, l);
-        dx_z += weight_q_dx * t.oz(k, l);
-        dy_x += weight_q_dy * t.ox(k, l);
-        dy_y += weight_q_dy * t.oy(k, l);
-        dy_z += weight_q_dy * t.oz(k, l);
-        mx += weight_q * t.nx(k, l);
-        my += weight_q * t.ny(k, l);
-        mz += weight_q * t.nz(k, l);
-      }
-      const bool has_q = (sum_q > 0.0f) & finite(sum_q);
-      const float inv_q = 1.0f / sum_q;
-      const float cx = sx * inv_q, cy = sy * inv_q, cz = sz * inv_q;
-      const float ddx_x = (dx_x - cx * dq_dx) * inv_q;
-      const float ddx_y = (dx_y - cy * dq_dx) * inv_q;
-      const float ddx_z = (dx_z - cz * dq_dx) * inv_q;
-      const float ddy_x = (dy_x - cx * dq_dy) * inv_q;
-      const float ddy_y = (dy_y - cy * dq_dy) * inv_q;
-      const float ddy_z = (dy_z - cz * dq_dy) * inv_q;
-      const float along_x = (ddx_x * ddx_x + ddx_y * ddx_y) + ddx_z * ddx_z;
-      const float along_y = (ddy_x * ddy_x + ddy_y * ddy_y) + ddy_z * ddy_z;
-      const float size = std::sqrt(along_x < along_y ? along_y : along_x);  // std::max
-      // Non-finite offsets only come from absurd inputs: stay at a vertex, never NaN.
-      const bool keep = has_q & finite(cx) & finite(cy) & finite(cz);
-      constexpr float kInfinity = std::numeric_limits<float>::infinity();
-      offset_x[l] = keep ? cx : 0.0f;
-      offset_y[l] = keep ? cy : 0.0f;
-      offset_z[l] = keep ? cz : 0.0f;
-      const float kept_size = keep ? size : kInfinity;
-      footprint[l] = kept_size != kept_size ? kInfinity : kept_size;  // NaN -> +inf
-      // The unit normal: sum b q N normalised, or the first vertex's normal where that has no
-      // length, or +z.
-      const float length = std::sqrt((mx * mx + my * my) + mz * mz);
-      const float fx = t.nx(0, l), fy = t.ny(0, l), fz = t.nz(0, l);
-      const float fallback_length = std::sqrt((fx * fx + fy * fy) + fz * fz);
-      const bool has_sum = (length > 0.0f) & finite(length);
-      const bool has_fallback = fallback_length > 0.0f;
-      const float ux = has_fallback ? fx / fallback_length : 0.0f;
-      const float uy = has_fallback ? fy / fallback_length : 0.0f;
-      const float uz = has_fallback ? fz / fallback_length : 1.0f;
-      normal_x[l] = has_sum ? mx / length : ux;
-      normal_y[l] = has_sum ? my / length : uy;
-      normal_z[l] = has_sum ? mz / length : uz;
-    }
-  }
 };
+
+// `t`: the terms of each lane's triangle, t.area(l), t.q(k, l) and so on (RunTerms,
+// GatheredTerms); `s`: the lanes' edge numerators in, their attributes out (SurfaceChunk,
+// SurfaceLanes).
+template <typename Terms, typename Lanes>
+void interpolate(const Terms& t, Lanes& s, std::size_t count) {
+  for (std::size_t l = 0; l < count; ++l) {
+    const float inv_area = 1.0f / t.area(l);
+    const float step = static_cast<float>(kSubpixelScale) * inv_area;
+    float sum_q = 0.0f, dq_dx = 0.0f, dq_dy = 0.0f;
+    float sx = 0.0f, sy = 0.0f, sz = 0.0f;  // sum b q P
+    float dx_x = 0.0f, dx_y = 0.0f, dx_z = 0.0f, dy_x = 0.0f, dy_y = 0.0f, dy_z = 0.0f;
+    float mx = 0.0f, my = 0.0f, mz = 0.0f;  // sum b q N
+    for (std::size_t k = 0; k < 3; ++k) {
+      const float weight = s.edge[k][l] * inv_area;
+      const float q_k = t.q(k, l);
+      const float weight_q = weight * q_k;
+      const float weight_q_dx = -t.edge_dy(k, l) * step * q_k;
+      const float weight_q_dy = t.edge_dx(k, l) * step * q_k;
+      sum_q += weight_q;
+      dq_dx += weight_q_dx;
+      dq_dy += weight_q_dy;
+      sx += weight_q * t.ox(k, l);
+      sy += weight_q * t.oy(k, l);
+      sz += weight_q * t.oz(k, l);
+      dx_x += weight_q_dx * t.ox(k, l);
+      dx_y += weight_q_dx * t.oy(k, l);
+      dx_z += weight_q_dx * t.oz(k, l);
+      dy_x += weight_q_dy * t.ox(k, l);
+      dy_y += weight_q_dy * t.oy(k, l);
+      dy_z += weight_q_dy * t.oz(k, l);
+      mx += weight_q * t.nx(k, l);
+      my += weight_q * t.ny(k, l);
+      mz += weight_q * t.nz(k, l);
+    }
+    const bool has_q = (sum_q > 0.0f) & finite(sum_q);
+    const float inv_q = 1.0f / sum_q;
+    const float cx = sx * inv_q, cy = sy * inv_q, cz = sz * inv_q;
+    const float ddx_x = (dx_x - cx * dq_dx) * inv_q;
+    const float ddx_y = (dx_y - cy * dq_dx) * inv_q;
+    const float ddx_z = (dx_z - cz * dq_dx) * inv_q;
+    const float ddy_x = (dy_x - cx * dq_dy) * inv_q;
+    const float ddy_y = (dy_y - cy * dq_dy) * inv_q;
+    const float ddy_z = (dy_z - cz * dq_dy) * inv_q;
+    const float along_x = (ddx_x * ddx_x + ddx_y * ddx_y) + ddx_z * ddx_z;
+    const float along_y = (ddy_x * ddy_x + ddy_y * ddy_y) + ddy_z * ddy_z;
+    const float size = std::sqrt(along_x < along_y ? along_y : along_x);  // std::max
+    // Non-finite offsets only come from absurd inputs: stay at a vertex, never NaN.
+    const bool keep = has_q & finite(cx) & finite(cy) & finite(cz);
+    constexpr float kInfinity = std::numeric_limits<float>::infinity();
+    s.offset_x[l] = keep ? cx : 0.0f;
+    s.offset_y[l] = keep ? cy : 0.0f;
+    s.offset_z[l] = keep ? cz : 0.0f;
+    const float kept_size = keep ? size : kInfinity;
+    s.footprint[l] = kept_size != kept_size ? kInfinity : kept_size;  // NaN -> +inf
+    // The unit normal: sum b q N normalised, or the first vertex's normal where that has no
+    // length, or +z.
+    const float length = std::sqrt((mx * mx + my * my) + mz * mz);
+    const float fx = t.nx(0, l), fy = t.ny(0, l), fz = t.nz(0, l);
+    const float fallback_length = std::sqrt((fx * fx + fy * fy) + fz * fz);
+    const bool has_sum = (length > 0.0f) & finite(length);
+    const bool has_fallback = fallback_length > 0.0f;
+    const float ux = has_fallback ? fx / fallback_length : 0.0f;
+    const float uy = has_fallback ? fy / fallback_length : 0.0f;
+    const float uz = has_fallback ? fz / fallback_length : 1.0f;
+    s.normal_x[l] = has_sum ? mx / length : ux;
+    s.normal_y[l] = has_sum ? my / length : uy;
+    s.normal_z[l] = has_sum ? mz / length : uz;
+  }
+}
 
 // One triangle's terms in every lane (a run).
 struct RunTerms {
@@ -196,41 +198,19 @@ struct RunTerms {
   float edge_dx(std::size_t k, std::size_t) const { return t.edge_dx[k]; }
 };
 
-// Each lane's own triangle's terms, gathered (pixels of short runs, taken together).
-struct LaneTerms {
-  static constexpr std::size_t kCapacity = SurfaceChunk::kCapacity;
-  template <typename T>
-  using Lanes = std::array<T, kCapacity>;
-  alignas(64) Lanes<float> area_;
-  alignas(64) std::array<Lanes<float>, 3> q_, ox_, oy_, oz_, nx_, ny_, nz_, edge_dy_, edge_dx_;
-
-  float area(std::size_t l) const { return area_[l]; }
-  float q(std::size_t k, std::size_t l) const { return q_[k][l]; }
-  float ox(std::size_t k, std::size_t l) const { return ox_[k][l]; }
-  float oy(std::size_t k, std::size_t l) const { return oy_[k][l]; }
-  float oz(std::size_t k, std::size_t l) const { return oz_[k][l]; }
-  float nx(std::size_t k, std::size_t l) const { return nx_[k][l]; }
-  float ny(std::size_t k, std::size_t l) const { return ny_[k][l]; }
-  float nz(std::size_t k, std::size_t l) const { return nz_[k][l]; }
-  float edge_dy(std::size_t k, std::size_t l) const { return edge_dy_[k][l]; }
-  float edge_dx(std::size_t k, std::size_t l) const { return edge_dx_[k][l]; }
-
-  // Lane l's terms, read from the triangle itself (as triangle_terms() makes them).
-  void set(std::size_t l, const ScreenTriangle& t) {
-    area_[l] = static_cast<float>(t.double_area);
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
-      edge_dy_[k][l] = static_cast<float>(int64_t{t.y[b]} - int64_t{t.y[a]});
-      edge_dx_[k][l] = static_cast<float>(int64_t{t.x[b]} - int64_t{t.x[a]});
-      q_[k][l] = t.inv_w[k];
-      ox_[k][l] = t.texture_offset[k].x;
-      oy_[k][l] = t.texture_offset[k].y;
-      oz_[k][l] = t.texture_offset[k].z;
-      nx_[k][l] = t.normal[k].x;
-      ny_[k][l] = t.normal[k].y;
-      nz_[k][l] = t.normal[k].z;
-    }
-  }
+// Each lane's own triangle's terms, gathered into SurfaceLanes (pixels of short runs).
+struct GatheredTerms {
+  const SurfaceLanes& s;
+  float area(std::size_t l) const { return s.area[l]; }
+  float q(std::size_t k, std::size_t l) const { return s.q[k][l]; }
+  float ox(std::size_t k, std::size_t l) const { return s.ox[k][l]; }
+  float oy(std::size_t k, std::size_t l) const { return s.oy[k][l]; }
+  float oz(std::size_t k, std::size_t l) const { return s.oz[k][l]; }
+  float nx(std::size_t k, std::size_t l) const { return s.nx[k][l]; }
+  float ny(std::size_t k, std::size_t l) const { return s.ny[k][l]; }
+  float nz(std::size_t k, std::size_t l) const { return s.nz[k][l]; }
+  float edge_dy(std::size_t k, std::size_t l) const { return s.edge_dy[k][l]; }
+  float edge_dx(std::size_t k, std::size_t l) const { return s.edge_dx[k][l]; }
 };
 
 TriangleTerms triangle_terms(const ScreenTriangle& t) {
@@ -271,7 +251,7 @@ std::size_t whole_blocks(std::size_t count) {
   return (count + SurfaceChunk::kBlock - 1) / SurfaceChunk::kBlock * SurfaceChunk::kBlock;
 }
 
-// A run of at least kLongRun pixels: the triangle's terms taken once, the pixels across the
+// A run of pixels: the triangle's terms taken once, the pixels across the
 // lanes, written plane by plane.
 void resolve_long_run(const SurfaceRun& run, SurfaceChunk& chunk, const GBufferPlanes& target) {
   const ScreenTriangle& t = *run.triangle;
@@ -288,7 +268,7 @@ void resolve_long_run(const SurfaceRun& run, SurfaceChunk& chunk, const GBufferP
       chunk.edge[k][l] = static_cast<float>(e + de * static_cast<int64_t>(l));
     }
   }
-  chunk.interpolate(RunTerms{terms}, lanes);
+  interpolate(RunTerms{terms}, chunk, lanes);
   // Plane by plane, through pointers of their own: a store through the flags' uint8_t* would
   // otherwise make every other pointer be reloaded after it.
   const std::size_t i = run.target;
@@ -312,73 +292,14 @@ void resolve_long_run(const SurfaceRun& run, SurfaceChunk& chunk, const GBufferP
   }
 }
 
-// The pixels of short runs (a fine mesh's), each lane with its own triangle's terms: one
-// run's arithmetic alone would wait on its own divisions, several runs' together do not.
-struct ShortRunPixels {
-  std::size_t count = 0;
-  LaneTerms terms;
-  SurfaceChunk chunk;
-  std::array<const SurfaceRun*, SurfaceChunk::kCapacity> run;
-  std::array<int, SurfaceChunk::kCapacity> pixel;  // in the run
-
-  void add(const SurfaceRun& r, const GBufferPlanes& target) {
-    const ScreenTriangle& t = *r.triangle;
-    const std::array<int64_t, 3> first = edge_numerators(t, r.x, r.y);
-    for (int j = 0; j < r.count; ++j) {
-      for (std::size_t k = 0; k < 3; ++k) {
-        // Edge k's function one pixel to the right: an exact integer step.
-        const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
-        const int64_t step = -(int64_t{t.y[b]} - int64_t{t.y[a]}) * kSubpixelScale;
-        chunk.edge[k][count] = static_cast<float>(first[k] + step * j);
-      }
-      terms.set(count, t);
-      run[count] = &r;
-      pixel[count] = j;
-      if (++count == SurfaceChunk::kCapacity) write(target);
-    }
-  }
-
-  void write(const GBufferPlanes& target) {
-    if (count == 0) return;
-    // The last lane repeated up to a whole block (computed, not written).
-    const std::size_t lanes = whole_blocks(count);
-    for (std::size_t l = count; l < lanes; ++l) {
-      for (std::size_t k = 0; k < 3; ++k) chunk.edge[k][l] = chunk.edge[k][count - 1];
-      terms.set(l, *run[count - 1]->triangle);
-    }
-    chunk.interpolate(terms, lanes);
-    for (std::size_t l = 0; l < count; ++l) {
-      const SurfaceRun& r = *run[l];
-      const auto j = static_cast<std::size_t>(pixel[l]);
-      const std::size_t i = r.target + j;
-      target.depth[i] = r.depth[j];
-      target.flags[i] = r.flags;
-      target.object_id[i] = r.object_id;
-      target.texture_position[i] =
-          r.triangle->texture_origin +
-          glm::dvec3(glm::vec3(chunk.offset_x[l], chunk.offset_y[l], chunk.offset_z[l]));
-      target.normal[i] = glm::vec3(chunk.normal_x[l], chunk.normal_y[l], chunk.normal_z[l]);
-      target.footprint[i] = chunk.footprint[l];
-    }
-    count = 0;
-  }
-};
-
-// Runs shorter than this go pixel by pixel into lanes shared with other runs.
-constexpr int kLongRun = 4;
-
 void resolve_surface_runs_target(const SurfaceRun* runs, std::size_t run_count,
                                  const GBufferPlanes& target) {
   SurfaceChunk chunk;
-  ShortRunPixels short_runs;
-  for (std::size_t r = 0; r < run_count; ++r) {
-    if (runs[r].count >= kLongRun) {
-      resolve_long_run(runs[r], chunk, target);
-    } else {
-      short_runs.add(runs[r], target);
-    }
-  }
-  short_runs.write(target);
+  for (std::size_t r = 0; r < run_count; ++r) resolve_long_run(runs[r], chunk, target);
+}
+
+void interpolate_surfaces_target(SurfaceLanes& lanes, std::size_t count) {
+  interpolate(GatheredTerms{lanes}, lanes, count);
 }
 
 }  // namespace soltex::raster_internal::HWY_NAMESPACE
@@ -389,10 +310,15 @@ namespace soltex::raster_internal {
 
 HWY_EXPORT(draw_unclipped_target);
 HWY_EXPORT(resolve_surface_runs_target);
+HWY_EXPORT(interpolate_surfaces_target);
 
 void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
                     const ScreenTriangle** winner, RasterStats& stats) {
   HWY_DYNAMIC_DISPATCH(draw_unclipped_target)(t, span, depth, winner, stats);
+}
+
+void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count) {
+  HWY_DYNAMIC_DISPATCH(interpolate_surfaces_target)(lanes, count);
 }
 
 void resolve_surface_runs(std::span<const SurfaceRun> runs, const GBufferPlanes& target) {

@@ -48,6 +48,24 @@ struct GBufferPlanes {
   float* footprint;
 };
 
+// The attributes of up to kCapacity pixels each of its own triangle (the pixels of short
+// runs), perspective-correct as resolve_surface_runs() computes them: the lanes' inputs,
+// gathered from each pixel's triangle, and their results.
+struct SurfaceLanes {
+  static constexpr int kCapacity = 64;
+  template <typename T>
+  using Lanes = std::array<T, kCapacity>;
+
+  // In: vertex k's barycentric numerator at the pixel centre, edge k's steps, the double
+  // area; vertex k's 1/w, texture offset and normal.
+  alignas(64) std::array<Lanes<float>, 3> edge, edge_dy, edge_dx;
+  alignas(64) Lanes<float> area;
+  alignas(64) std::array<Lanes<float>, 3> q, ox, oy, oz, nx, ny, nz;
+  // Out: the texture offset from the triangle's origin, the footprint, the unit normal.
+  alignas(64) Lanes<float> offset_x, offset_y, offset_z, footprint, normal_x, normal_y, normal_z;
+};
+void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count);
+
 // Pixels of one row of a tile that all see the same triangle (no cap): resolved together, so
 // that the triangle's data is read once per run rather than once per pixel, and the
 // arithmetic runs across the run's pixels in vector lanes.

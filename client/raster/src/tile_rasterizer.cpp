@@ -43,6 +43,84 @@ void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) 
   std::fill_n(target.footprint + i, count, 0.0f);
 }
 
+// Pixels of short runs (a fine mesh's), each with its own triangle, resolved together in
+// lanes (interpolate_surfaces()): one short run's arithmetic alone would wait on its own
+// divisions. Each lane's triangle data is gathered into arrays first.
+struct SurfaceBatch {
+  static constexpr int kCapacity = SurfaceLanes::kCapacity;
+  template <typename T>
+  using Lanes = std::array<T, kCapacity>;
+
+  int count = 0;
+  uint64_t back_faces = 0;  // pixels written, seen from behind
+  Lanes<const ScreenTriangle*> triangle;
+  Lanes<int> x, y;
+  Lanes<std::size_t> index;
+  Lanes<float> depth;
+  SurfaceLanes lanes;
+
+  void add(const ScreenTriangle* t, int px, int py, std::size_t i, float z) {
+    // The lines past the first (which drawing read) hold what write() gathers.
+    __builtin_prefetch(reinterpret_cast<const char*>(t) + 64);
+    __builtin_prefetch(reinterpret_cast<const char*>(t) + 128);
+    const auto l = static_cast<std::size_t>(count++);
+    triangle[l] = t;
+    x[l] = px;
+    y[l] = py;
+    index[l] = i;
+    depth[l] = z;
+  }
+
+  void write(const TileFrame& frame, const GBufferPlanes& target) {
+    const auto n = static_cast<std::size_t>(count);
+    if (n == 0) return;
+    // Per lane: vertex k's barycentric numerator (the edge function opposite it at the pixel
+    // centre) and edge k's steps, already in float, so that the loop below is float arithmetic
+    // alone (no 64-bit products or conversions) and runs in vector lanes; then vertex k's 1/w,
+    // texture offset and normal.
+    SurfaceLanes& s = lanes;
+    for (std::size_t l = 0; l < n; ++l) {
+      const ScreenTriangle& t = *triangle[l];
+      const int64_t px = pixel_centre(x[l]), py = pixel_centre(y[l]);
+      for (std::size_t k = 0; k < 3; ++k) {
+        // Edge k runs from vertex k + 1 to vertex k + 2 (edges_of()).
+        const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+        const int64_t ax = t.x[a], ay = t.y[a], bx = t.x[b], by = t.y[b];
+        s.edge[k][l] = static_cast<float>(edge_function(ax, ay, bx, by, px, py));
+        s.edge_dy[k][l] = static_cast<float>(by - ay);
+        s.edge_dx[k][l] = static_cast<float>(bx - ax);
+        s.q[k][l] = t.inv_w[k];
+        s.ox[k][l] = t.texture_offset[k].x;
+        s.oy[k][l] = t.texture_offset[k].y;
+        s.oz[k][l] = t.texture_offset[k].z;
+        s.nx[k][l] = t.normal[k].x;
+        s.ny[k][l] = t.normal[k].y;
+        s.nz[k][l] = t.normal[k].z;
+      }
+      s.area[l] = static_cast<float>(t.double_area);
+    }
+    interpolate_surfaces(lanes, n);
+    for (std::size_t l = 0; l < n; ++l) {
+      const ScreenTriangle& t = *triangle[l];
+      const std::size_t i = index[l];
+      target.depth[i] = depth[l];
+      target.flags[i] = GBuffer::kCovered | (t.back_face ? GBuffer::kBackFace : 0);
+      back_faces += t.back_face ? 1 : 0;
+      target.object_id[i] = frame.objects[t.object].source->object_id;
+      target.texture_position[i] =
+          t.texture_origin +
+          glm::dvec3(glm::vec3(lanes.offset_x[l], lanes.offset_y[l], lanes.offset_z[l]));
+      target.normal[i] = glm::vec3(lanes.normal_x[l], lanes.normal_y[l], lanes.normal_z[l]);
+      target.footprint[i] = lanes.footprint[l];
+    }
+    count = 0;
+  }
+};
+
+// Runs shorter than this go pixel by pixel into SurfaceBatch: below it, a run's own set-up
+// costs more than its pixels' share of a batch's gather.
+constexpr int kLongRun = 4;
+
 // Runs of pixels waiting to be resolved together (resolve_surface_runs(), dispatched once per
 // batch rather than per run).
 struct SurfaceRuns {
@@ -167,7 +245,8 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
   const GBufferPlanes target(gbuffer);
   const auto width = static_cast<std::ptrdiff_t>(gbuffer.width);
   uint64_t covered = 0, cap_rays = 0, caps = 0;
-  SurfaceRuns surfaces;
+  SurfaceRuns surfaces;  // runs of kLongRun pixels or more
+  SurfaceBatch pixels;   // the pixels of shorter runs
   static_assert(CapRayRows::kColumns >= kTileSize + 1);
   CapRayRows rays;
   CapRayLanes ray_lanes;    // scratch of trace_run(), uninitialised
@@ -198,7 +277,15 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
       const ObjectFrame* object = frame.caps != nullptr ? &frame.objects[winner->object] : nullptr;
       if (object == nullptr || !winner->back_face || !object->source->closed) {
         covered += static_cast<uint64_t>(end - x);
-        surfaces.add(frame, winner, x, y, end - x, i, winners_depth + (x - x0_), target);
+        if (end - x >= kLongRun) {
+          surfaces.add(frame, winner, x, y, end - x, i, winners_depth + (x - x0_), target);
+          x = end - 1;
+          continue;
+        }
+        for (; x < end; ++x) {
+          pixels.add(winner, x, y, static_cast<std::size_t>(row + x), winners_depth[x - x0_]);
+          if (pixels.count == SurfaceBatch::kCapacity) pixels.write(frame, target);
+        }
         x = end - 1;
         continue;
       }
@@ -218,7 +305,8 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
         const auto at = static_cast<std::size_t>(row + x);
         const CapPixelLanes& cap = cap_lanes;
         if (cap.hit[k] == 0) {
-          surfaces.add(frame, winners[x - x0_], x, y, 1, at, winners_depth + (x - x0_), target);
+          pixels.add(winners[x - x0_], x, y, at, winners_depth[x - x0_]);
+          if (pixels.count == SurfaceBatch::kCapacity) pixels.write(frame, target);
           continue;
         }
         ++caps;
@@ -234,8 +322,9 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
     }
   }
   surfaces.write(target);
+  pixels.write(frame, target);
   stats.pixels_covered += covered;
-  stats.back_face_pixels += surfaces.back_faces;
+  stats.back_face_pixels += surfaces.back_faces + pixels.back_faces;
   stats.cap_rays += cap_rays;
   stats.cap_pixels += caps;
 }
