@@ -30,6 +30,12 @@ std::optional<glm::dvec3> intersect(const glm::dvec3& origin, const glm::dvec3& 
   return origin + t * direction;
 }
 
+// Lanes are traced in blocks of 8: a multiple of every target's vector width in doubles.
+std::size_t round_up_to_block(std::size_t lanes) {
+  constexpr std::size_t kBlock = 8;
+  return (lanes + kBlock - 1) / kBlock * kBlock;
+}
+
 }  // namespace
 
 CapTracer::CapTracer(const RasterView& view)
@@ -118,6 +124,69 @@ bool CapTracer::trace(int x, int y, const glm::dmat4& texture_from_world, uint32
   }
   sample.footprint = to_footprint(footprint);
   return true;
+}
+
+void CapTracer::trace_run(int x_begin, int x_end, int y, const glm::dmat4& texture_from_world,
+                          uint32_t plane_mask, CapRayRows& rows, CapRayLanes& rays,
+                          CapPixelLanes& lanes) const {
+  assert(x_end - x_begin <= static_cast<int>(CapPixelLanes::kCapacity));
+  assert(x_begin >= rows.x0_ && x_end - rows.x0_ < CapRayRows::kColumns);
+  assert(y == rows.y_);
+  // The rays not yet traced: row y's over [x_begin, x_end] (the last one the right neighbour's)
+  // and row y + 1's over [x_begin, x_end), traced together, kept in `rows` as ray_at() keeps
+  // them.
+  struct Missing {
+    std::size_t row, column;
+  };
+  std::array<Missing, CapRayLanes::kCapacity> missing;
+  std::size_t count = 0;
+  const auto want = [&](int x, int row_y, int last) {
+    const auto row = static_cast<std::size_t>(rows.first_ ^ (row_y - rows.y_));
+    for (; x <= last; ++x) {
+      const auto column = static_cast<std::size_t>(x - rows.x0_);
+      if (rows.traced_[row][column]) continue;
+      missing[count] = {row, column};
+      rays.px[count] = x + 0.5;
+      rays.py[count] = row_y + 0.5;
+      ++count;
+    }
+  };
+  want(x_begin, y, x_end);
+  want(x_begin, y + 1, x_end - 1);
+  // Whole blocks of lanes, the last ray repeated (and not kept): a run's few rays would
+  // otherwise fall to the vector loop's remainder, a lane at a time.
+  const std::size_t ray_lanes = std::min(round_up_to_block(count), CapRayLanes::kCapacity);
+  for (std::size_t k = count; k < ray_lanes && count > 0; ++k) {
+    rays.px[k] = rays.px[count - 1];
+    rays.py[k] = rays.py[count - 1];
+  }
+  trace_ray_lanes(world_from_clip_, width_, height_, rays, count > 0 ? ray_lanes : 0);
+  for (std::size_t k = 0; k < count; ++k) {
+    Ray& ray = rows.rays_[missing[k].row][missing[k].column];
+    ray.origin = {rays.origin_x[k], rays.origin_y[k], rays.origin_z[k]};
+    ray.direction = {rays.direction_x[k], rays.direction_y[k], rays.direction_z[k]};
+    rows.traced_[missing[k].row][missing[k].column] = true;
+  }
+  const auto put = [](const Ray& ray, CapPixelLanes::Rays& to, std::size_t k) {
+    to.origin_x[k] = ray.origin.x;
+    to.origin_y[k] = ray.origin.y;
+    to.origin_z[k] = ray.origin.z;
+    to.direction_x[k] = ray.direction.x;
+    to.direction_y[k] = ray.direction.y;
+    to.direction_z[k] = ray.direction.z;
+  };
+  const auto n = static_cast<std::size_t>(x_end - x_begin);
+  const std::size_t pixel_lanes = round_up_to_block(n);
+  for (std::size_t k = 0; k < pixel_lanes; ++k) {
+    // Past the run: its last pixel again, not read back.
+    const int x = x_begin + static_cast<int>(std::min(k, n - 1));
+    put(ray_at(x, y, rows), lanes.own, k);
+    put(ray_at(x + 1, y, rows), lanes.right, k);
+    put(ray_at(x, y + 1, rows), lanes.below, k);
+  }
+  const CapFrame frame{clip_from_world_, texture_from_world, &planes_,
+                       &cap_normals_,    plane_count_,       plane_mask};
+  trace_cap_lanes(frame, lanes, pixel_lanes);
 }
 
 }  // namespace soltex::raster_internal

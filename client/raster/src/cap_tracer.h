@@ -8,6 +8,7 @@
 #include <glm/vec4.hpp>
 #include <span>
 
+#include "cap_kernels.h"
 #include "soltex/raster/raster_view.h"
 
 // Caps of clipped solids, traced per pixel in double.
@@ -64,6 +65,13 @@ class CapTracer {
   // it.
   bool trace(int x, int y, const glm::dmat4& texture_from_world, uint32_t plane_mask,
              CapRayRows& rows, CapSample& sample) const;
+
+  // trace() for the pixels [x_begin, x_end) of row y (at most CapPixelLanes::kCapacity), in
+  // vector lanes (cap_kernels.cpp): lane k of `lanes` holds pixel x_begin + k's result, its
+  // `hit` what trace() returns, the rest the sample trace() writes. The same bits.
+  void trace_run(int x_begin, int x_end, int y, const glm::dmat4& texture_from_world,
+                 uint32_t plane_mask, CapRayRows& rows, CapRayLanes& rays,
+                 CapPixelLanes& lanes) const;
 
  private:
   using Ray = CapRay;

@@ -1,7 +1,7 @@
 // Runtime dispatch of the tile's per-pixel loops (tile_kernels.h). Highway compiles this file
 // once per target (hwy/foreach_target.h re-includes it) and HWY_DYNAMIC_DISPATCH calls the
 // widest one the CPU supports, once per triangle drawn into a tile and once per batch of
-// resolved pixels. The loops are plain per-lane code, written with selects rather than
+// resolved runs of pixels. The loops are plain per-lane code, written with selects rather than
 // branches so that the compiler runs them in vector lanes; a target only widens the lanes
 // (AVX2: 8 floats, AVX-512: 16, against 4 in the baseline build, whose lack of 64-bit vector
 // compares keeps drawing scalar). The same IEEE operations in the same order per lane, and no
@@ -13,6 +13,7 @@
 #include <hwy/foreach_target.h>  // must come before highway.h
 #include <hwy/highway.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -84,9 +85,41 @@ void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float*
   stats.fragments_depth_passed += depth_passed;
 }
 
-void interpolate_surfaces_target(SurfaceLanes& s, std::size_t count) {
+// One triangle's data for interpolating its attributes, in float (see
+// resolve_surface_runs_target): the double area; per vertex k, 1/w, the texture offset and
+// the normal; per edge k (opposite vertex k), its steps.
+struct TriangleTerms {
+  float area;
+  std::array<float, 3> q, ox, oy, oz, nx, ny, nz, edge_dy, edge_dx;
+};
+
+// Perspective-correct attributes at `count` pixel centres of one triangle, whose vertex k's
+// barycentric numerators (edge functions) are edge[k]: with barycentric weights b and
+// q = 1/w, P = sum(b q P) / sum(b q). Its derivative per pixel step is analytic: dP/dx =
+// (d(sum b q P)/dx - P d(sum b q)/dx) / sum(b q), the weights' derivatives being constant
+// over the triangle. Float suffices: P is an offset from the triangle's double origin, so
+// float's error is relative to the triangle's size. Per pixel the same IEEE operations in the
+// same order whatever the run, selects standing in for branches, so the loop runs in vector
+// lanes; the triangle's terms are the same in every lane.
+struct SurfaceChunk {
+  static constexpr std::size_t kCapacity = kTileSize;
+  // Lanes computed together: a multiple of every target's vector width in floats.
+  static constexpr std::size_t kBlock = 16;
+  static_assert(kCapacity % kBlock == 0);
+  template <typename T>
+  using Lanes = std::array<T, kCapacity>;
+
+  alignas(64) std::array<Lanes<float>, 3> edge;  // in
+  alignas(64) Lanes<float> offset_x, offset_y, offset_z, footprint, normal_x, normal_y, normal_z;
+};
+
+// `t`: the terms of each lane's triangle, t.area(l), t.q(k, l) and so on (RunTerms,
+// GatheredTerms); `s`: the lanes' edge numerators in, their attributes out (SurfaceChunk,
+// SurfaceLanes).
+template <typename Terms, typename Lanes>
+void interpolate(const Terms& t, Lanes& s, std::size_t count) {
   for (std::size_t l = 0; l < count; ++l) {
-    const float inv_area = 1.0f / s.area[l];
+    const float inv_area = 1.0f / t.area(l);
     const float step = static_cast<float>(kSubpixelScale) * inv_area;
     float sum_q = 0.0f, dq_dx = 0.0f, dq_dy = 0.0f;
     float sx = 0.0f, sy = 0.0f, sz = 0.0f;  // sum b q P
@@ -94,25 +127,25 @@ void interpolate_surfaces_target(SurfaceLanes& s, std::size_t count) {
     float mx = 0.0f, my = 0.0f, mz = 0.0f;  // sum b q N
     for (std::size_t k = 0; k < 3; ++k) {
       const float weight = s.edge[k][l] * inv_area;
-      const float q_k = s.q[k][l];
+      const float q_k = t.q(k, l);
       const float weight_q = weight * q_k;
-      const float weight_q_dx = -s.edge_dy[k][l] * step * q_k;
-      const float weight_q_dy = s.edge_dx[k][l] * step * q_k;
+      const float weight_q_dx = -t.edge_dy(k, l) * step * q_k;
+      const float weight_q_dy = t.edge_dx(k, l) * step * q_k;
       sum_q += weight_q;
       dq_dx += weight_q_dx;
       dq_dy += weight_q_dy;
-      sx += weight_q * s.ox[k][l];
-      sy += weight_q * s.oy[k][l];
-      sz += weight_q * s.oz[k][l];
-      dx_x += weight_q_dx * s.ox[k][l];
-      dx_y += weight_q_dx * s.oy[k][l];
-      dx_z += weight_q_dx * s.oz[k][l];
-      dy_x += weight_q_dy * s.ox[k][l];
-      dy_y += weight_q_dy * s.oy[k][l];
-      dy_z += weight_q_dy * s.oz[k][l];
-      mx += weight_q * s.nx[k][l];
-      my += weight_q * s.ny[k][l];
-      mz += weight_q * s.nz[k][l];
+      sx += weight_q * t.ox(k, l);
+      sy += weight_q * t.oy(k, l);
+      sz += weight_q * t.oz(k, l);
+      dx_x += weight_q_dx * t.ox(k, l);
+      dx_y += weight_q_dx * t.oy(k, l);
+      dx_z += weight_q_dx * t.oz(k, l);
+      dy_x += weight_q_dy * t.ox(k, l);
+      dy_y += weight_q_dy * t.oy(k, l);
+      dy_z += weight_q_dy * t.oz(k, l);
+      mx += weight_q * t.nx(k, l);
+      my += weight_q * t.ny(k, l);
+      mz += weight_q * t.nz(k, l);
     }
     const bool has_q = (sum_q > 0.0f) & finite(sum_q);
     const float inv_q = 1.0f / sum_q;
@@ -137,7 +170,7 @@ void interpolate_surfaces_target(SurfaceLanes& s, std::size_t count) {
     // The unit normal: sum b q N normalised, or the first vertex's normal where that has no
     // length, or +z.
     const float length = std::sqrt((mx * mx + my * my) + mz * mz);
-    const float fx = s.nx[0][l], fy = s.ny[0][l], fz = s.nz[0][l];
+    const float fx = t.nx(0, l), fy = t.ny(0, l), fz = t.nz(0, l);
     const float fallback_length = std::sqrt((fx * fx + fy * fy) + fz * fz);
     const bool has_sum = (length > 0.0f) & finite(length);
     const bool has_fallback = fallback_length > 0.0f;
@@ -150,6 +183,125 @@ void interpolate_surfaces_target(SurfaceLanes& s, std::size_t count) {
   }
 }
 
+// One triangle's terms in every lane (a run).
+struct RunTerms {
+  const TriangleTerms& t;
+  float area(std::size_t) const { return t.area; }
+  float q(std::size_t k, std::size_t) const { return t.q[k]; }
+  float ox(std::size_t k, std::size_t) const { return t.ox[k]; }
+  float oy(std::size_t k, std::size_t) const { return t.oy[k]; }
+  float oz(std::size_t k, std::size_t) const { return t.oz[k]; }
+  float nx(std::size_t k, std::size_t) const { return t.nx[k]; }
+  float ny(std::size_t k, std::size_t) const { return t.ny[k]; }
+  float nz(std::size_t k, std::size_t) const { return t.nz[k]; }
+  float edge_dy(std::size_t k, std::size_t) const { return t.edge_dy[k]; }
+  float edge_dx(std::size_t k, std::size_t) const { return t.edge_dx[k]; }
+};
+
+// Each lane's own triangle's terms, gathered into SurfaceLanes (pixels of short runs).
+struct GatheredTerms {
+  const SurfaceLanes& s;
+  float area(std::size_t l) const { return s.area[l]; }
+  float q(std::size_t k, std::size_t l) const { return s.q[k][l]; }
+  float ox(std::size_t k, std::size_t l) const { return s.ox[k][l]; }
+  float oy(std::size_t k, std::size_t l) const { return s.oy[k][l]; }
+  float oz(std::size_t k, std::size_t l) const { return s.oz[k][l]; }
+  float nx(std::size_t k, std::size_t l) const { return s.nx[k][l]; }
+  float ny(std::size_t k, std::size_t l) const { return s.ny[k][l]; }
+  float nz(std::size_t k, std::size_t l) const { return s.nz[k][l]; }
+  float edge_dy(std::size_t k, std::size_t l) const { return s.edge_dy[k][l]; }
+  float edge_dx(std::size_t k, std::size_t l) const { return s.edge_dx[k][l]; }
+};
+
+TriangleTerms triangle_terms(const ScreenTriangle& t) {
+  TriangleTerms terms;
+  terms.area = static_cast<float>(t.double_area);
+  for (std::size_t k = 0; k < 3; ++k) {
+    // Edge k runs from vertex k + 1 to vertex k + 2 (as drawing takes it).
+    const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+    terms.edge_dy[k] = static_cast<float>(int64_t{t.y[b]} - int64_t{t.y[a]});
+    terms.edge_dx[k] = static_cast<float>(int64_t{t.x[b]} - int64_t{t.x[a]});
+    terms.q[k] = t.inv_w[k];
+    terms.ox[k] = t.texture_offset[k].x;
+    terms.oy[k] = t.texture_offset[k].y;
+    terms.oz[k] = t.texture_offset[k].z;
+    terms.nx[k] = t.normal[k].x;
+    terms.ny[k] = t.normal[k].y;
+    terms.nz[k] = t.normal[k].z;
+  }
+  return terms;
+}
+
+// Vertex k's barycentric numerator, the edge function opposite it, at pixel (x, y)'s centre:
+// an exact integer.
+std::array<int64_t, 3> edge_numerators(const ScreenTriangle& t, int x, int y) {
+  const int64_t px = int64_t{x} * kSubpixelScale + kSubpixelScale / 2;
+  const int64_t py = int64_t{y} * kSubpixelScale + kSubpixelScale / 2;
+  std::array<int64_t, 3> e{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+    e[k] = edge_function(t.x[a], t.y[a], t.x[b], t.y[b], px, py);
+  }
+  return e;
+}
+
+// Lanes computed for whole blocks (the lanes past `count` are never written out): a vector
+// loop's remainder would otherwise run a lane at a time.
+std::size_t whole_blocks(std::size_t count) {
+  return (count + SurfaceChunk::kBlock - 1) / SurfaceChunk::kBlock * SurfaceChunk::kBlock;
+}
+
+// A run of pixels: the triangle's terms taken once, the pixels across the
+// lanes, written plane by plane.
+void resolve_long_run(const SurfaceRun& run, SurfaceChunk& chunk, const GBufferPlanes& target) {
+  const ScreenTriangle& t = *run.triangle;
+  const TriangleTerms terms = triangle_terms(t);
+  // Per pixel to the right, edge k's function steps by an exact integer, so each pixel's
+  // numerator is the one its own centre gives.
+  const std::array<int64_t, 3> first = edge_numerators(t, run.x, run.y);
+  const auto n = static_cast<std::size_t>(run.count);
+  const std::size_t lanes = whole_blocks(n);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+    const int64_t e = first[k], de = -(int64_t{t.y[b]} - int64_t{t.y[a]}) * kSubpixelScale;
+    for (std::size_t l = 0; l < lanes; ++l) {
+      chunk.edge[k][l] = static_cast<float>(e + de * static_cast<int64_t>(l));
+    }
+  }
+  interpolate(RunTerms{terms}, chunk, lanes);
+  // Plane by plane, through pointers of their own: a store through the flags' uint8_t* would
+  // otherwise make every other pointer be reloaded after it.
+  const std::size_t i = run.target;
+  float* __restrict depth = target.depth + i;
+  uint8_t* __restrict flags = target.flags + i;
+  uint32_t* __restrict object_id = target.object_id + i;
+  float* __restrict footprint = target.footprint + i;
+  glm::vec3* __restrict normal = target.normal + i;
+  for (std::size_t l = 0; l < n; ++l) {
+    depth[l] = run.depth[l];
+    flags[l] = run.flags;
+    object_id[l] = run.object_id;
+    footprint[l] = chunk.footprint[l];
+    normal[l] = glm::vec3(chunk.normal_x[l], chunk.normal_y[l], chunk.normal_z[l]);
+  }
+  glm::dvec3* __restrict position = target.texture_position + i;
+  const glm::dvec3 origin = t.texture_origin;
+  for (std::size_t l = 0; l < n; ++l) {
+    position[l] =
+        origin + glm::dvec3(glm::vec3(chunk.offset_x[l], chunk.offset_y[l], chunk.offset_z[l]));
+  }
+}
+
+void resolve_surface_runs_target(const SurfaceRun* runs, std::size_t run_count,
+                                 const GBufferPlanes& target) {
+  SurfaceChunk chunk;
+  for (std::size_t r = 0; r < run_count; ++r) resolve_long_run(runs[r], chunk, target);
+}
+
+void interpolate_surfaces_target(SurfaceLanes& lanes, std::size_t count) {
+  interpolate(GatheredTerms{lanes}, lanes, count);
+}
+
 }  // namespace soltex::raster_internal::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -157,6 +309,7 @@ HWY_AFTER_NAMESPACE();
 namespace soltex::raster_internal {
 
 HWY_EXPORT(draw_unclipped_target);
+HWY_EXPORT(resolve_surface_runs_target);
 HWY_EXPORT(interpolate_surfaces_target);
 
 void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
@@ -166,6 +319,10 @@ void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
 
 void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count) {
   HWY_DYNAMIC_DISPATCH(interpolate_surfaces_target)(lanes, count);
+}
+
+void resolve_surface_runs(std::span<const SurfaceRun> runs, const GBufferPlanes& target) {
+  HWY_DYNAMIC_DISPATCH(resolve_surface_runs_target)(runs.data(), runs.size(), target);
 }
 
 }  // namespace soltex::raster_internal

@@ -3,8 +3,11 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <glm/vec3.hpp>
+#include <span>
 
 #include "screen_triangle.h"
+#include "soltex/raster/gbuffer.h"
 #include "soltex/raster/raster_stats.h"
 
 // The per-pixel loops of drawing and resolving a tile, dispatched at run time to the widest
@@ -26,9 +29,28 @@ struct SpanDraw {
 void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
                     const ScreenTriangle** winner, RasterStats& stats);
 
-// The winners' attributes at up to kCapacity pixels, perspective-correct (see
-// SurfaceBatch::write in tile_rasterizer.cpp): the lanes' inputs, gathered from each pixel's
-// triangle, and their results.
+// The G-buffer's planes as raw pointers, taken once per tile: a store through uint8_t* (the
+// flags) may alias anything, so through the vectors every store would reload every data pointer.
+struct GBufferPlanes {
+  explicit GBufferPlanes(GBuffer& g)
+      : depth(g.depth.data()),
+        flags(g.flags.data()),
+        object_id(g.object_id.data()),
+        texture_position(g.texture_position.data()),
+        normal(g.normal.data()),
+        footprint(g.footprint.data()) {}
+
+  float* depth;
+  uint8_t* flags;
+  uint32_t* object_id;
+  glm::dvec3* texture_position;
+  glm::vec3* normal;
+  float* footprint;
+};
+
+// The attributes of up to kCapacity pixels each of its own triangle (the pixels of short
+// runs), perspective-correct as resolve_surface_runs() computes them: the lanes' inputs,
+// gathered from each pixel's triangle, and their results.
 struct SurfaceLanes {
   static constexpr int kCapacity = 64;
   template <typename T>
@@ -43,5 +65,23 @@ struct SurfaceLanes {
   alignas(64) Lanes<float> offset_x, offset_y, offset_z, footprint, normal_x, normal_y, normal_z;
 };
 void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count);
+
+// Pixels of one row of a tile that all see the same triangle (no cap): resolved together, so
+// that the triangle's data is read once per run rather than once per pixel, and the
+// arithmetic runs across the run's pixels in vector lanes.
+struct SurfaceRun {
+  const ScreenTriangle* triangle;
+  int x, y;            // the first pixel, in the frame
+  int count;           // pixels, at most kTileSize
+  std::size_t target;  // the first pixel's index in the target planes
+  const float* depth;  // the run's window depths, as drawn
+  uint32_t object_id;  // GBuffer::object_id
+  uint8_t flags;       // GBuffer::flags
+};
+
+// Writes each run's pixels to `target`: depth, flags and object as given, and the triangle's
+// attributes perspective-correct at each pixel centre (see resolve_surface_runs_target in
+// tile_kernels.cpp).
+void resolve_surface_runs(std::span<const SurfaceRun> runs, const GBufferPlanes& target);
 
 }  // namespace soltex::raster_internal

@@ -33,25 +33,6 @@ int64_t pixel_centre(int pixel) {
   return static_cast<int64_t>(pixel) * kSubpixelScale + kSubpixelScale / 2;
 }
 
-// The G-buffer's planes as raw pointers, taken once per tile: a store through uint8_t* (the
-// flags) may alias anything, so through the vectors every store would reload every data pointer.
-struct GBufferPlanes {
-  explicit GBufferPlanes(GBuffer& g)
-      : depth(g.depth.data()),
-        flags(g.flags.data()),
-        object_id(g.object_id.data()),
-        texture_position(g.texture_position.data()),
-        normal(g.normal.data()),
-        footprint(g.footprint.data()) {}
-
-  float* depth;
-  uint8_t* flags;
-  uint32_t* object_id;
-  glm::dvec3* texture_position;
-  glm::vec3* normal;
-  float* footprint;
-};
-
 // Pixels [i, i + count) of one row: nothing drawn.
 void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) {
   std::fill_n(target.depth + i, count, std::numeric_limits<float>::infinity());
@@ -62,16 +43,9 @@ void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) 
   std::fill_n(target.footprint + i, count, 0.0f);
 }
 
-// The winners' attributes at up to kCapacity pixels, perspective-correct: with barycentric
-// weights b (from the exact integer edge functions) and q = 1/w, P = sum(b q P) / sum(b q).
-// Its derivative per pixel step is analytic: dP/dx = (d(sum b q P)/dx - P d(sum b q)/dx) /
-// sum(b q), the weights' derivatives being constant over the triangle. Float suffices: P is an
-// offset from the triangle's double origin, so float's error is relative to the triangle's
-// size.
-//
-// The pixels' triangle data is gathered into arrays first, so that the arithmetic runs as one
-// loop across the pixels (vector lanes); every lane does the same IEEE operations in the same
-// order as a pixel-at-a-time loop would, selects standing in for its branches.
+// Pixels of short runs (a fine mesh's), each with its own triangle, resolved together in
+// lanes (interpolate_surfaces()): one short run's arithmetic alone would wait on its own
+// divisions. Each lane's triangle data is gathered into arrays first.
 struct SurfaceBatch {
   static constexpr int kCapacity = SurfaceLanes::kCapacity;
   template <typename T>
@@ -139,6 +113,39 @@ struct SurfaceBatch {
       target.normal[i] = glm::vec3(lanes.normal_x[l], lanes.normal_y[l], lanes.normal_z[l]);
       target.footprint[i] = lanes.footprint[l];
     }
+    count = 0;
+  }
+};
+
+// Runs shorter than this go pixel by pixel into SurfaceBatch: below it, a run's own set-up
+// costs more than its pixels' share of a batch's gather.
+constexpr int kLongRun = 4;
+
+// Runs of pixels waiting to be resolved together (resolve_surface_runs(), dispatched once per
+// batch rather than per run).
+struct SurfaceRuns {
+  static constexpr std::size_t kCapacity = 64;
+  std::size_t count = 0;
+  uint64_t back_faces = 0;  // pixels written, seen from behind
+  std::array<SurfaceRun, kCapacity> runs;
+
+  void add(const TileFrame& frame, const ScreenTriangle* t, int x, int y, int pixels, std::size_t i,
+           const float* depth, const GBufferPlanes& target) {
+    // Resolving reads all three of the triangle's lines; drawing's one may have left the cache.
+    __builtin_prefetch(t);
+    __builtin_prefetch(reinterpret_cast<const char*>(t) + 64);
+    __builtin_prefetch(reinterpret_cast<const char*>(t) + 128);
+    const auto flags =
+        static_cast<uint8_t>(GBuffer::kCovered | (t->back_face ? GBuffer::kBackFace : 0));
+    back_faces += t->back_face ? static_cast<uint64_t>(pixels) : 0;
+    runs[count++] =
+        SurfaceRun{t, x, y, pixels, i, depth, frame.objects[t->object].source->object_id, flags};
+    if (count == kCapacity) write(target);
+  }
+
+  void write(const GBufferPlanes& target) {
+    if (count == 0) return;
+    resolve_surface_runs({runs.data(), count}, target);
     count = 0;
   }
 };
@@ -238,17 +245,20 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
   const GBufferPlanes target(gbuffer);
   const auto width = static_cast<std::ptrdiff_t>(gbuffer.width);
   uint64_t covered = 0, cap_rays = 0, caps = 0;
-  SurfaceBatch surfaces;
+  SurfaceRuns surfaces;  // runs of kLongRun pixels or more
+  SurfaceBatch pixels;   // the pixels of shorter runs
   static_assert(CapRayRows::kColumns >= kTileSize + 1);
   CapRayRows rays;
+  CapRayLanes ray_lanes;    // scratch of trace_run(), uninitialised
+  CapPixelLanes cap_lanes;  // likewise
   if (frame.caps != nullptr) rays.begin(x0_, y0_);
   for (int y = y0_; y < y1_; ++y) {
     if (frame.caps != nullptr && y > y0_) rays.next_row();
     // Where pixel (0, y) would be in the target: x is added below (x >= origin_x).
     const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(y - origin_y) * width - origin_x;
     const ScreenTriangle* const* winners = winner_.data() + (y - y0_) * kTileSize;  // from x0_
+    const float* winners_depth = depth_.data() + (y - y0_) * kTileSize;
     for (int x = x0_; x < x1_; ++x) {
-      const auto local = static_cast<std::size_t>((y - y0_) * kTileSize + (x - x0_));
       const auto i = static_cast<std::size_t>(row + x);
       const ScreenTriangle* winner = winners[x - x0_];
       if (winner == nullptr) {
@@ -259,32 +269,62 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
         x = end - 1;
         continue;
       }
-      ++covered;
+      // The run of pixels that see the same triangle.
+      int end = x + 1;
+      while (end < x1_ && winners[end - x0_] == winner) ++end;
       // Only a frame with caps reads the winner here: its object and facing are on the
-      // triangle's second cache line, which drawing did not load, and which add() prefetches.
+      // triangle's second cache line, which drawing did not load.
       const ObjectFrame* object = frame.caps != nullptr ? &frame.objects[winner->object] : nullptr;
-      if (object != nullptr && winner->back_face && object->source->closed) {
-        ++cap_rays;
-        CapSample cap;
-        if (frame.caps->trace(x, y, object->texture_from_world, object->source->clip_plane_mask,
-                              rays, cap)) {
-          ++caps;
-          target.depth[i] = cap.depth;
-          target.flags[i] = GBuffer::kCovered | GBuffer::kCap;
-          target.object_id[i] = object->source->object_id;
-          target.texture_position[i] = cap.texture_position;
-          target.normal[i] = cap.normal;
-          target.footprint[i] = cap.footprint;
+      if (object == nullptr || !winner->back_face || !object->source->closed) {
+        covered += static_cast<uint64_t>(end - x);
+        if (end - x >= kLongRun) {
+          surfaces.add(frame, winner, x, y, end - x, i, winners_depth + (x - x0_), target);
+          x = end - 1;
           continue;
         }
+        for (; x < end; ++x) {
+          pixels.add(winner, x, y, static_cast<std::size_t>(row + x), winners_depth[x - x0_]);
+          if (pixels.count == SurfaceBatch::kCapacity) pixels.write(frame, target);
+        }
+        x = end - 1;
+        continue;
       }
-      surfaces.add(winner, x, y, i, depth_[local]);
-      if (surfaces.count == SurfaceBatch::kCapacity) surfaces.write(frame, target);
+      // The back of a cut solid: each pixel sees a cap, or (its ray entering no kept region in
+      // front of the camera) the back face. A cap depends on the object alone, so the run
+      // goes on over the object's other back faces and is traced in lanes.
+      for (const ScreenTriangle* next = nullptr;
+           end < x1_ && (next = winners[end - x0_]) != nullptr && next->back_face &&
+           next->object == winner->object;) {
+        ++end;
+      }
+      covered += static_cast<uint64_t>(end - x);
+      frame.caps->trace_run(x, end, y, object->texture_from_world, object->source->clip_plane_mask,
+                            rays, ray_lanes, cap_lanes);
+      cap_rays += static_cast<uint64_t>(end - x);
+      for (std::size_t k = 0; x < end; ++x, ++k) {
+        const auto at = static_cast<std::size_t>(row + x);
+        const CapPixelLanes& cap = cap_lanes;
+        if (cap.hit[k] == 0) {
+          pixels.add(winners[x - x0_], x, y, at, winners_depth[x - x0_]);
+          if (pixels.count == SurfaceBatch::kCapacity) pixels.write(frame, target);
+          continue;
+        }
+        ++caps;
+        target.depth[at] = cap.depth[k];
+        target.flags[at] = GBuffer::kCovered | GBuffer::kCap;
+        target.object_id[at] = object->source->object_id;
+        target.texture_position[at] =
+            glm::dvec3(cap.texture_x[k], cap.texture_y[k], cap.texture_z[k]);
+        target.normal[at] = glm::vec3(cap.normal_x[k], cap.normal_y[k], cap.normal_z[k]);
+        target.footprint[at] = cap.footprint[k];
+      }
+      x = end - 1;
     }
   }
-  surfaces.write(frame, target);
+  surfaces.write(target);
+  pixels.write(frame, target);
   stats.pixels_covered += covered;
-  stats.back_face_pixels += surfaces.back_faces;
+  stats.back_face_pixels += surfaces.back_faces + pixels.back_faces;
   stats.cap_rays += cap_rays;
   stats.cap_pixels += caps;
 }

@@ -13,6 +13,8 @@
 #include <hwy/highway.h>
 
 // After Highway: lit_pixels.h reaches the sampler's per-target kernels (-inl.h).
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <glm/mat4x4.hpp>
@@ -32,10 +34,13 @@ void unproject_target(const SurfaceUnprojection& u, const GBuffer& g, LitPixels&
   ShadeBatch& b = lit.batch;
   const auto count = static_cast<std::size_t>(b.count);
   // Gathered first, so that the arithmetic below runs over plain arrays.
+  alignas(64) ShadeBatch::Lanes<double> ndc_x, ndc_y;
   alignas(64) ShadeBatch::Lanes<float> depth, nx, ny, nz;
   alignas(64) ShadeBatch::Lanes<uint8_t> back;
   for (std::size_t l = 0; l < count; ++l) {
     const std::size_t i = lit.index[l];
+    ndc_x[l] = u.ndc_x[static_cast<std::size_t>(lit.x[l])];
+    ndc_y[l] = u.ndc_y[static_cast<std::size_t>(lit.y[l])];
     depth[l] = g.depth[i];
     nx[l] = g.normal[i].x;
     ny[l] = g.normal[i].y;
@@ -44,16 +49,13 @@ void unproject_target(const SurfaceUnprojection& u, const GBuffer& g, LitPixels&
   }
   const glm::dmat4& m = u.inverse_vp;
   const glm::dvec3& eye = u.eye;
-  const double w = u.width, h = u.height;
   for (std::size_t l = 0; l < count; ++l) {
-    const double ndc_x = (lit.x[l] + 0.5) / w * 2.0 - 1.0;
-    const double ndc_y = 1.0 - (lit.y[l] + 0.5) / h * 2.0;
     const double ndc_z = static_cast<double>(depth[l]) * 2.0 - 1.0;
     // glm's matrix-vector product: (m0 x + m1 y) + (m2 z + m3 w), with w = 1.
-    const double hx = (m[0].x * ndc_x + m[1].x * ndc_y) + (m[2].x * ndc_z + m[3].x * 1.0);
-    const double hy = (m[0].y * ndc_x + m[1].y * ndc_y) + (m[2].y * ndc_z + m[3].y * 1.0);
-    const double hz = (m[0].z * ndc_x + m[1].z * ndc_y) + (m[2].z * ndc_z + m[3].z * 1.0);
-    const double hw = (m[0].w * ndc_x + m[1].w * ndc_y) + (m[2].w * ndc_z + m[3].w * 1.0);
+    const double hx = (m[0].x * ndc_x[l] + m[1].x * ndc_y[l]) + (m[2].x * ndc_z + m[3].x * 1.0);
+    const double hy = (m[0].y * ndc_x[l] + m[1].y * ndc_y[l]) + (m[2].y * ndc_z + m[3].y * 1.0);
+    const double hz = (m[0].z * ndc_x[l] + m[1].z * ndc_y[l]) + (m[2].z * ndc_z + m[3].z * 1.0);
+    const double hw = (m[0].w * ndc_x[l] + m[1].w * ndc_y[l]) + (m[2].w * ndc_z + m[3].w * 1.0);
     const double rx = hx / hw, ry = hy / hw, rz = hz / hw;
     b.position_x[l] = eye.x + rx;
     b.position_y[l] = eye.y + ry;
@@ -167,6 +169,35 @@ void shade_batch_target(const PreparedLights& lights, ShadeBatch& b) {
   }
 }
 
+// LitPixels::write()'s bytes: per lane what set_pixel() gives (over_background(), then
+// Image's rounding), with selects for its branches. bytes[3 l + c]: lane l's channel c.
+void colour_bytes_target(const LitPixels& lit, uint8_t* bytes) {
+  const ShadeBatch& b = lit.batch;
+  const auto count = static_cast<std::size_t>(b.count);
+  alignas(64) ShadeBatch::Lanes<uint8_t> red, green, blue;
+  const glm::vec3 background = render::kBackground;
+  const auto to_byte = [](float v) {
+    const float rounded = (v > 1.0f ? 1.0f : v) * 255.0f + 0.5f;  // std::min(v, 1.0f)
+    const auto byte = static_cast<uint8_t>(static_cast<int32_t>(v > 0.0f ? rounded : 0.0f));
+    return byte;
+  };
+  for (std::size_t l = 0; l < count; ++l) {
+    const float opacity = lit.opacity[l];
+    const bool blend = opacity < 1.0f;
+    const float r = background.r + opacity * (b.colour_r[l] - background.r);
+    const float g = background.g + opacity * (b.colour_g[l] - background.g);
+    const float bl = background.b + opacity * (b.colour_b[l] - background.b);
+    red[l] = to_byte(blend ? r : b.colour_r[l]);
+    green[l] = to_byte(blend ? g : b.colour_g[l]);
+    blue[l] = to_byte(blend ? bl : b.colour_b[l]);
+  }
+  for (std::size_t l = 0; l < count; ++l) {
+    bytes[3 * l] = red[l];
+    bytes[3 * l + 1] = green[l];
+    bytes[3 * l + 2] = blue[l];
+  }
+}
+
 }  // namespace soltex::render_internal::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -176,6 +207,7 @@ namespace render_internal {
 
 HWY_EXPORT(unproject_target);
 HWY_EXPORT(shade_batch_target);
+HWY_EXPORT(colour_bytes_target);
 
 // Dispatched from this namespace, where the kernels' per-target namespaces are: a build with
 // one target only (-march=native) calls that target's kernel directly by the same name.
@@ -191,6 +223,32 @@ void shade_lanes(const PreparedLights& lights, ShadeBatch& batch) {
 
 }  // namespace
 }  // namespace render_internal
+
+render::SurfaceUnprojection::SurfaceUnprojection(const glm::dmat4& inverse_vp_in,
+                                                 const glm::dvec3& eye_in, int width_in,
+                                                 int height_in)
+    : inverse_vp(inverse_vp_in), eye(eye_in), width(width_in), height(height_in) {
+  const double w = width, h = height;
+  ndc_x.resize(static_cast<std::size_t>(std::max(width, 0)));
+  ndc_y.resize(static_cast<std::size_t>(std::max(height, 0)));
+  for (std::size_t x = 0; x < ndc_x.size(); ++x) {
+    ndc_x[x] = (static_cast<int>(x) + 0.5) / w * 2.0 - 1.0;
+  }
+  for (std::size_t y = 0; y < ndc_y.size(); ++y) {
+    ndc_y[y] = 1.0 - (static_cast<int>(y) + 0.5) / h * 2.0;
+  }
+}
+
+void render::LitPixels::write(Image& image) const {
+  alignas(64) std::array<uint8_t, 3 * ShadeBatch::kCapacity> bytes;
+  HWY_DYNAMIC_DISPATCH(render_internal::colour_bytes_target)(*this, bytes.data());
+  for (std::size_t l = 0; l < static_cast<std::size_t>(batch.count); ++l) {
+    uint8_t* pixel = image.pixel(x[l], y[l]);
+    pixel[0] = bytes[3 * l];
+    pixel[1] = bytes[3 * l + 1];
+    pixel[2] = bytes[3 * l + 2];
+  }
+}
 
 void render::SurfaceUnprojection::fill(const GBuffer& g, LitPixels& lit) const {
   render_internal::unproject(*this, g, lit);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "material_inputs.h"
 #include "soltex/common/texture_sampler.h"
@@ -47,22 +48,24 @@ struct LitPixels {
     batch.shininess[l] = shininess;
   }
 
-  void write(Image& image) const {
-    for (std::size_t l = 0; l < static_cast<std::size_t>(batch.count); ++l) {
-      set_pixel(image, x[l], y[l], {batch.colour_r[l], batch.colour_g[l], batch.colour_b[l]},
-                opacity[l]);
-    }
-  }
+  // Writes the batch's colours, seen through their opacity, to their pixels of `image`, as
+  // set_pixel() writes them (lighting_kernels.cpp: the bytes made in vector lanes).
+  void write(Image& image) const;
 };
 
 // The lighting inputs of a batch's pixels: the world position unprojected from depth (relative
 // to the eye through `inverse_vp`, the eye added back in double), the direction to the viewer,
 // and the unit normal turned to face the viewer (seen from inside: flipped).
 struct SurfaceUnprojection {
+  SurfaceUnprojection(const glm::dmat4& inverse_vp, const glm::dvec3& eye, int width, int height);
+
   glm::dmat4 inverse_vp;
   glm::dvec3 eye;
   int width;
   int height;
+  // Each column's and row's pixel centre in normalised device coordinates, made once per
+  // frame: the same two double divisions every pixel of a column or row would otherwise make.
+  std::vector<double> ndc_x, ndc_y;
 
   // Writes the batch's position, to_viewer and normal lanes from the G-buffer's depth and
   // normal at the pixels `lit` holds (lighting_kernels.cpp: runtime-dispatched, every target

@@ -44,6 +44,8 @@ class TextureSurface {
     return length > 0.0 ? n / length : glm::dvec3(0.0);
   }
 
+  const glm::dmat3& normal_from_world() const { return normal_from_world_; }
+
  private:
   glm::dmat3 normal_from_world_{1.0};
 };

@@ -47,11 +47,51 @@ inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
   const auto l = static_cast<std::size_t>(level);
   SOLTEX_DCHECK(l < CachedPixels::kLevels);
   CachedPixels::Group& group = cached_.groups[l];
-  group.pixels[group.count] = pixel;
-  group.points[group.count] = p;
-  ++group.count;
+  // The count read once: a store of the pixel's size_t index may alias it, and would make the
+  // compiler read it back from memory.
+  const std::size_t count = group.count;
+  group.pixels[count] = pixel;
+  group.points[count] = p;
+  group.count = count + 1;
   cached_.pending |= 1u << l;
-  if (group.count == CachedPixels::kCapacity) look_up(level, image);
+  if (count + 1 == CachedPixels::kCapacity) look_up(level, image);
+}
+
+// The fast path's pixels [x_begin, x_end) of row y, all of `object`, pixel x_begin at `first`
+// in the G-buffer: add_cached() for each, the object settled once and the group of the level
+// in hand kept (with its count) while the level stays the same, as it mostly does from one
+// pixel to the next.
+void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y, std::size_t first,
+                                const ObjectShading& object, TextureSampler& sampler,
+                                Image& image) {
+  if (cached_.pending != 0 && cached_.object != &object) look_up_all(image);
+  cached_.object = &object;
+  cached_.sampler = &sampler;
+  const NearestLevelTable& table = object.level_table;
+  CachedPixels::Group* group = nullptr;
+  int level = -1;
+  std::size_t count = 0;
+  for (int x = x_begin; x < x_end; ++x) {
+    const std::size_t i = first + static_cast<std::size_t>(x - x_begin);
+    const int l = table.level(g.footprint[i]);
+    if (l != level) {
+      if (group != nullptr) group->count = count;
+      level = l;
+      SOLTEX_DCHECK(static_cast<std::size_t>(l) < CachedPixels::kLevels);
+      group = &cached_.groups[static_cast<std::size_t>(l)];
+      count = group->count;
+      cached_.pending |= 1u << l;
+    }
+    group->pixels[count] = Pixel{x, y, i};
+    group->points[count] = g.texture_position[i];
+    if (++count == CachedPixels::kCapacity) {
+      group->count = count;
+      look_up(level, image);
+      group = nullptr;
+      level = -1;
+    }
+  }
+  if (group != nullptr) group->count = count;
 }
 
 void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
@@ -60,29 +100,44 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
   gbuffer_ = &g;
   const auto& background = background_row();
   const std::size_t object_count = frame_.objects.size();
+  // Counted in a register and added once: an increment in memory per pixel chains each pixel
+  // to the one before through a store and a load.
+  std::size_t covered = 0;
   for (int y = y0; y < y1; ++y) {
     std::copy_n(background.begin(), 3 * (x1 - x0),
                 image.rgb.begin() + 3 * (static_cast<std::ptrdiff_t>(y) * image.width + x0));
-    for (int x = x0; x < x1; ++x) {
-      const Pixel pixel{x, y, g.index(x - origin_x, y - origin_y)};
-      if (!g.covered(pixel.index)) continue;  // the background is there already
-      const uint32_t id = g.object_id[pixel.index];
-      if (id >= object_count) continue;
-      ++counts_.covered;
+    const std::size_t row = g.index(x0 - origin_x, y - origin_y);  // pixel (x0, y)
+    for (int x = x0; x < x1;) {
+      const std::size_t i = row + static_cast<std::size_t>(x - x0);
+      const uint32_t id = g.object_id[i];
+      // An uncovered pixel keeps the background that is there already.
+      if (!g.covered(i) || id >= object_count) {
+        ++x;
+        continue;
+      }
+      // The run of pixels that see the same object, taken together.
+      int end = x + 1;
+      for (std::size_t j = i + 1; end < x1 && g.covered(j) && g.object_id[j] == id; ++j) ++end;
+      covered += static_cast<std::size_t>(end - x);
       const ObjectShading& object = frame_.objects[id];
-      if (object.evaluator != nullptr) {
-        shade_evaluated(g, pixel, object, image);
-      } else if (object.rgb_fast_path && object.cached_inset == 0.0) {
+      if (object.evaluator == nullptr && object.rgb_fast_path && object.cached_inset == 0.0) {
         // shade_cached()'s fast path without its calls: the level from the table (the fast
         // path has one), the point where the surface was drawn.
-        add_cached(pixel, g.texture_position[pixel.index],
-                   object.level_table.level(g.footprint[pixel.index]), object, *samplers_[id],
-                   image);
-      } else {
-        shade_cached(g, pixel, object, *samplers_[id], image);
+        add_cached_run(g, x, end, y, i, object, *samplers_[id], image);
+        x = end;
+        continue;
+      }
+      for (; x < end; ++x) {
+        const Pixel pixel{x, y, row + static_cast<std::size_t>(x - x0)};
+        if (object.evaluator != nullptr) {
+          shade_evaluated(g, pixel, object, image);
+        } else {
+          shade_cached(g, pixel, object, *samplers_[id], image);
+        }
       }
     }
   }
+  counts_.covered += covered;
   if (cached_.pending != 0) look_up_all(image);
   if (evaluated_.count > 0) evaluate(image);
   if (lit_.batch.count > 0) flush(image);
@@ -116,20 +171,29 @@ void TileShader::shade_evaluated(const GBuffer& g, Pixel pixel, const ObjectShad
     return;
   }
   if (evaluated_.count > 0 && evaluated_.object != &object) evaluate(image);
-  const glm::dvec3 n = object.surface.normal(g.normal[pixel.index]);
-  const double footprint = g.footprint[pixel.index];
   const std::size_t i = evaluated_.count++;
   evaluated_.object = &object;
   evaluated_.pixels[i] = pixel;
-  evaluated_.points[i] = inset(g.texture_position[pixel.index], n, kEvaluatedInset * footprint);
-  evaluated_.footprints[i] = surface_footprint(footprint, n);
+  // The point and box are made for the whole batch at once (evaluated_inputs()).
+  EvaluatedLanes& e = evaluated_.lanes;
+  const glm::dvec3& p = g.texture_position[pixel.index];
+  const glm::vec3& n = g.normal[pixel.index];
+  e.position_x[i] = p.x;
+  e.position_y[i] = p.y;
+  e.position_z[i] = p.z;
+  e.normal_x[i] = n.x;
+  e.normal_y[i] = n.y;
+  e.normal_z[i] = n.z;
+  e.footprint[i] = g.footprint[pixel.index];
   if (evaluated_.count == EvaluatedPixels::kCapacity) evaluate(image);
 }
 
 void TileShader::evaluate(Image& image) {
   const std::size_t n = evaluated_.count;
   const ObjectShading& object = *evaluated_.object;
-  object.evaluator->sample({evaluated_.points.data(), n}, {evaluated_.footprints.data(), n},
+  EvaluatedLanes& e = evaluated_.lanes;
+  evaluated_inputs(object.surface.normal_from_world(), e, n);
+  object.evaluator->sample({e.points.data(), n}, {e.footprints.data(), n},
                            {evaluated_.texels.data(), n});
   evaluated_.count = 0;
   const TextureSpec& spec = object.evaluator->spec();
@@ -179,19 +243,33 @@ void TileShader::look_up(int level, Image& image) {
   const SampleFilter filter = frame_.options.filter;
   sampler.sample({group.points.data(), n}, static_cast<double>(level), filter,
                  {cached_.results.data(), n});
+  // shade_values() for each pixel, inline: the fast path's material is lit, so every pixel
+  // joins the lit batch; the batch's count stays in a register (a store of a pixel's int lane
+  // may alias it in memory) and is written back before a flush reads it.
+  const MaterialInputs& m = object.material;
+  SOLTEX_DCHECK(!m.unlit);
+  int lit = lit_.batch.count;
   for (std::size_t i = 0; i < n; ++i) {
-    const SampleResult& result = cached_.results[i];
-    if (result.complete) {
-      shade_values(group.pixels[i], object.material, result.values.data(), image);
-      continue;
+    const SampleResult* result = &cached_.results[i];
+    SampleResult again;
+    if (!result->complete) {
+      // A miss (rare once warm): the single lookup again, for the bricks it names.
+      again = sampler.sample_after_miss(group.points[i], level, filter, &missed_);
+      for (const BrickKey& key : missed_.view()) misses_.add(key);
+      if (!again.complete) ++counts_.fallback;
+      if (again.level < 0) ++counts_.empty;
+      result = &again;
     }
-    // A miss (rare once warm): the single lookup again, for the bricks it names.
-    const SampleResult again = sampler.sample_after_miss(group.points[i], level, filter, &missed_);
-    for (const BrickKey& key : missed_.view()) misses_.add(key);
-    if (!again.complete) ++counts_.fallback;
-    if (again.level < 0) ++counts_.empty;
-    shade_values(group.pixels[i], object.material, again.values.data(), image);
+    const Pixel pixel = group.pixels[i];
+    lit_.add(lit, pixel.x, pixel.y, pixel.index, m.read(result->values.data()), m.shininess);
+    if (++lit == ShadeBatch::kCapacity) {
+      lit_.batch.count = lit;
+      flush(image);
+      lit = 0;
+    }
   }
+  lit_.batch.count = lit;
+  counts_.shaded += n;
 }
 
 void TileShader::look_up_all(Image& image) {

@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "evaluated_inputs.h"
 #include "lit_pixels.h"
 #include "material_inputs.h"
 #include "miss_tally.h"
@@ -88,12 +89,11 @@ class TileShader {
   // Evaluated pixels wait here (one object at a time) and are evaluated together: the pattern
   // is dispatched once per batch, not per pixel.
   struct EvaluatedPixels {
-    static constexpr std::size_t kCapacity = 64;
+    static constexpr std::size_t kCapacity = EvaluatedLanes::kCapacity;
     std::size_t count = 0;
     const ObjectShading* object = nullptr;
     std::array<Pixel, kCapacity> pixels;
-    std::array<glm::dvec3, kCapacity> points;
-    std::array<SampleFootprint, kCapacity> footprints;
+    EvaluatedLanes lanes;  // the G-buffer's inputs, and the points and boxes made of them
     std::array<Texel, kCapacity> texels;
   };
   // Cached pixels of one object on the fast path wait here, grouped by level, and each
@@ -116,6 +116,8 @@ class TileShader {
   void shade_evaluated(const GBuffer& g, Pixel pixel, const ObjectShading& object, Image& image);
   void add_cached(Pixel pixel, const glm::dvec3& p, int level, const ObjectShading& object,
                   TextureSampler& sampler, Image& image);
+  void add_cached_run(const GBuffer& g, int x_begin, int x_end, int y, std::size_t first,
+                      const ObjectShading& object, TextureSampler& sampler, Image& image);
   void look_up(int level, Image& image);
   void look_up_all(Image& image);
   void evaluate(Image& image);
@@ -131,7 +133,7 @@ class TileShader {
   TileCounts counts_;
   const GBuffer* gbuffer_ = nullptr;  // the tile being shaded
   LitPixels lit_;                     // about 40 KB, uninitialised but for the count
-  EvaluatedPixels evaluated_;         // about 6 KB, likewise
+  EvaluatedPixels evaluated_;         // about 10 KB, likewise
   CachedPixels cached_;               // about 40 KB, likewise
 };
 
