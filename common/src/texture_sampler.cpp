@@ -154,11 +154,14 @@ void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int le
                       chunk.cell[2][i] >> brick_shift_);
   };
   const std::array<std::byte, 16> tail = result_tail(level);
+  // In locals: the row stores below could alias the members, which would be read again per
+  // point.
+  const std::ptrdiff_t y_stride = y_stride_, z_stride = z_stride_;
   // Each result is started in the loop that reads its rows, while its line is being written.
   const auto start = [&](std::size_t i, const uint8_t* corner) {
     std::memcpy(reinterpret_cast<std::byte*>(&results[i]) + kResultTailOffset, tail.data(), 16);
     if (corner != nullptr) {
-      rows.read(i, corner, y_stride_, z_stride_);
+      rows.read(i, corner, y_stride, z_stride);
     } else {
       missed |= uint64_t{1} << i;
       for (auto& row : rows.row) row[i] = 0;
