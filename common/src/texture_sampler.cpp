@@ -4,7 +4,9 @@
 #include <bit>
 #include <climits>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -115,34 +117,61 @@ void TextureSampler::sample(std::span<const glm::dvec3> points, double lod, Samp
   }
 }
 
+namespace {
+
+// What the trilinear kernel leaves to the batch: the fifth value, the level, completeness. They
+// and values[3] (which the kernel writes after, as 0) end the result, so one 16-byte store
+// starts it.
+constexpr std::size_t kResultTailOffset = offsetof(SampleResult, values) + 3 * sizeof(float);
+static_assert(offsetof(SampleResult, level) > kResultTailOffset &&
+              offsetof(SampleResult, complete) > kResultTailOffset &&
+              sizeof(SampleResult) == kResultTailOffset + 16);
+
+std::array<std::byte, 16> result_tail(int level) {
+  SampleResult result{};
+  result.level = level;
+  result.complete = true;
+  std::array<std::byte, 16> tail;
+  std::memcpy(tail.data(), reinterpret_cast<const std::byte*>(&result) + kResultTailOffset, 16);
+  return tail;
+}
+
+}  // namespace
+
 void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int level,
                                       std::span<SampleResult> results) {
   const auto l = static_cast<std::size_t>(level);
   CellChunk chunk;
   split_cells(points, min_, finest_spacing_, level_scale_[l], cells_[l], chunk);
-  std::array<const uint8_t*, kSampleChunk> corners;
-  bool missed = false;
+  CellRows rows;
+  static_assert(kSampleChunk <= 64);
+  uint64_t missed = 0;  // bit i: point i's brick is not resident
   const auto n = points.size();
   const int bricks = layout_.bricks_per_axis(level);
-  // Neighbouring points mostly share a brick: a run in one brick asks resident() once.
-  const uint8_t* run_samples = nullptr;
   uint64_t run_hits = 0, run_misses = 0;  // lookups a run answered, counted as resident() would
   const auto brick_of = [&](std::size_t i) {
     return glm::ivec3(chunk.cell[0][i] >> brick_shift_, chunk.cell[1][i] >> brick_shift_,
                       chunk.cell[2][i] >> brick_shift_);
   };
-  // What the trilinear kernel leaves to its caller: the fifth value, the level, completeness.
-  const auto start_result = [level](SampleResult& result) {
-    result.values[4] = 0.0f;
-    result.level = level;
-    result.complete = true;
+  const std::array<std::byte, 16> tail = result_tail(level);
+  // In locals: the row stores below could alias the members, which would be read again per
+  // point.
+  const std::ptrdiff_t y_stride = y_stride_, z_stride = z_stride_;
+  // Each result is started in the loop that reads its rows, while its line is being written.
+  const auto start = [&](std::size_t i, const uint8_t* corner) {
+    std::memcpy(reinterpret_cast<std::byte*>(&results[i]) + kResultTailOffset, tail.data(), 16);
+    if (corner != nullptr) {
+      rows.read(i, corner, y_stride, z_stride);
+    } else {
+      missed |= uint64_t{1} << i;
+      for (auto& row : rows.row) row[i] = 0;
+    }
   };
   if (static_cast<int64_t>(bricks) * bricks * bricks <= INT32_MAX) {
-    // The flat brick index in one int32 compares a run in one instruction; each result is
-    // started in the loop that fills its corner, while its line is being written anyway.
+    // The flat brick index in one int32 compares a run in one instruction.
     locate_cells(chunk, n, {brick_shift_, brick_mask_, bricks, 3, y_stride_, z_stride_});
-    // Run by run: find where the brick changes, ask for the brick once, then fill the run's
-    // corners in a loop with nothing else in it.
+    // Run by run: find where the brick changes, ask for the brick once, then read the run's
+    // rows in a loop with nothing else in it.
     for (std::size_t first = 0; first < n;) {
       const int32_t run_brick = chunk.brick[first];
       std::size_t end = first + 1;
@@ -150,23 +179,18 @@ void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int le
       const Current* found = resident(level, brick_of(first));
       const auto repeats = static_cast<uint64_t>(end - first - 1);
       if (found == nullptr) {
-        std::fill(corners.begin() + static_cast<std::ptrdiff_t>(first),
-                  corners.begin() + static_cast<std::ptrdiff_t>(end), nullptr);
-        for (std::size_t i = first; i < end; ++i) start_result(results[i]);
+        for (std::size_t i = first; i < end; ++i) start(i, nullptr);
         run_misses += repeats;
-        missed = true;
       } else {
         const uint8_t* samples = found->samples;
-        for (std::size_t i = first; i < end; ++i) {
-          corners[i] = samples + chunk.offset[i];
-          start_result(results[i]);
-        }
+        for (std::size_t i = first; i < end; ++i) start(i, samples + chunk.offset[i]);
         run_hits += repeats;
       }
       first = end;
     }
   } else {
     glm::ivec3 run_brick(-1);
+    const uint8_t* run_samples = nullptr;
     for (std::size_t i = 0; i < n; ++i) {
       const glm::ivec3 brick = brick_of(i);
       if (brick == run_brick) {
@@ -178,25 +202,20 @@ void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int le
       }
       const glm::ivec3 local(chunk.cell[0][i] & brick_mask_, chunk.cell[1][i] & brick_mask_,
                              chunk.cell[2][i] & brick_mask_);
-      corners[i] = run_samples == nullptr
-                       ? nullptr
-                       : run_samples + local.z * z_stride_ + local.y * y_stride_ + local.x * 3;
-      missed |= run_samples == nullptr;
-      start_result(results[i]);
+      start(i, run_samples == nullptr
+                   ? nullptr
+                   : run_samples + local.z * z_stride_ + local.y * y_stride_ + local.x * 3);
     }
   }
   accessor_.count_microcache_hit(run_hits);
   accessor_.count_miss(run_misses);
   static_assert(sizeof(SampleResult) % sizeof(float) == 0);
-  soltex::trilinear_rgb(std::span<const uint8_t* const>(corners.data(), points.size()), chunk,
-                        y_stride_, z_stride_, results[0].values.data(),
-                        sizeof(SampleResult) / sizeof(float));
-  if (!missed) return;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (corners[i] == nullptr) {
-      sample_general(points[i], static_cast<double>(level), SampleFilter::trilinear, nullptr,
-                     results[i]);
-    }
+  trilinear_rgb_rows(rows, chunk, n, results[0].values.data(),
+                     sizeof(SampleResult) / sizeof(float));
+  for (; missed != 0; missed &= missed - 1) {
+    const auto i = static_cast<std::size_t>(std::countr_zero(missed));
+    sample_general(points[i], static_cast<double>(level), SampleFilter::trilinear, nullptr,
+                   results[i]);
   }
 }
 

@@ -6,9 +6,11 @@
 #include <gtest/gtest.h>
 #include <hwy/targets.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -175,6 +177,49 @@ TEST(SamplingKernels, TrilinearRgbOnEveryTargetEqualsScalar) {
         for (int c = 0; c < 3; ++c) ASSERT_EQ(bits(got[c]), bits(want[c])) << i;
         ASSERT_EQ(bits(got[3]), 0u) << i;
         ASSERT_EQ(bits(got[4]), bits(sentinel)) << i;
+      }
+    }
+  });
+}
+
+// The rows form over arbitrary row bytes (every byte value, the two padding bytes included),
+// for every count up to a chunk: each of the first n outputs equals the scalar kernel over the
+// same four rows, the fourth float is +0, and nothing past n is written, whatever the chunk's
+// fractions past n hold (NaN here).
+TEST(SamplingKernels, TrilinearRgbRowsOnEveryTargetEqualsScalar) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<float> frac(0.0f, 1.0f);
+  CellRows rows;
+  CellChunk chunk;
+  for (std::size_t i = 0; i < kSampleChunk; ++i) {
+    for (auto& row : rows.row) row[i] = rng();
+    for (std::size_t a = 0; a < 3; ++a) chunk.frac[a][i] = i % 11 == 3 ? 1.0f : frac(rng);
+  }
+  rows.row[0][0] = ~uint64_t{0};
+  const float sentinel = -7.0f;
+  on_every_target([&] {
+    for (std::size_t n = 1; n <= kSampleChunk; ++n) {
+      CellChunk garbled = chunk;
+      for (auto& axis : garbled.frac) {
+        std::fill(axis.begin() + static_cast<std::ptrdiff_t>(n), axis.end(),
+                  std::numeric_limits<float>::quiet_NaN());
+      }
+      std::vector<float> out(kSampleChunk * 5, sentinel);
+      trilinear_rgb_rows(rows, garbled, n, out.data(), 5);
+      for (std::size_t i = 0; i < kSampleChunk; ++i) {
+        const float* got = &out[i * 5];
+        if (i >= n) {
+          for (int c = 0; c < 5; ++c) ASSERT_EQ(bits(got[c]), bits(sentinel)) << n << " " << i;
+          continue;
+        }
+        uint8_t cell[32];
+        for (std::size_t r = 0; r < 4; ++r) std::memcpy(cell + 8 * r, &rows.row[r][i], 8);
+        float want[3];
+        trilinear_detail::scalar<3>(cell, 8, 16, chunk.frac[0][i], chunk.frac[1][i],
+                                    chunk.frac[2][i], want);
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(bits(got[c]), bits(want[c])) << n << " " << i;
+        ASSERT_EQ(bits(got[3]), 0u) << n << " " << i;
+        ASSERT_EQ(bits(got[4]), bits(sentinel)) << n << " " << i;
       }
     }
   });

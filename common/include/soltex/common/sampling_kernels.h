@@ -3,6 +3,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <glm/vec3.hpp>
 #include <span>
 
@@ -43,6 +44,29 @@ void split_cells(std::span<const glm::dvec3> points, const glm::dvec3& origin,
 // chunk.brick[i] and chunk.offset[i] from chunk.cell[*][i] for i < n (n <= kSampleChunk):
 // the brick's flat index and the byte offset of the cell's first sample in it.
 void locate_cells(CellChunk& chunk, std::size_t n, const BrickGeometry& geometry);
+
+// The four sample rows of up to kSampleChunk cells of a 3-channel lattice, as the batch RGB
+// kernel reads them: row[r][i] holds the 8 bytes from cell i's corner sample in row r (0: at
+// y and z, 1: y + 1, 2: z + 1, 3: both), samples x and x + 1 and two bytes of the padding
+// (kTrilinearLoadPadding), in memory order (little-endian). Read once per cell, so that the
+// kernel can turn each channel of each corner into one vector of points.
+struct CellRows {
+  alignas(64) std::array<std::array<uint64_t, kSampleChunk>, 4> row;
+
+  void read(std::size_t i, const uint8_t* corner, std::ptrdiff_t y_stride,
+            std::ptrdiff_t z_stride) {
+    std::memcpy(&row[0][i], corner, sizeof(uint64_t));
+    std::memcpy(&row[1][i], corner + y_stride, sizeof(uint64_t));
+    std::memcpy(&row[2][i], corner + z_stride, sizeof(uint64_t));
+    std::memcpy(&row[3][i], corner + y_stride + z_stride, sizeof(uint64_t));
+  }
+};
+
+// For each i < n: the RGB trilinear lookup of trilinear_u8<3> over rows.row[*][i] and fractions
+// chunk.frac[*][i], written as four floats (R, G, B, 0) at out + i * out_stride. n <=
+// kSampleChunk.
+void trilinear_rgb_rows(const CellRows& rows, const CellChunk& chunk, std::size_t n, float* out,
+                        std::size_t out_stride);
 
 // For each i with corners[i] != nullptr: the RGB trilinear lookup of trilinear_u8<3> at corner
 // sample corners[i] and fractions chunk.frac[*][i], written as four floats (R, G, B, 0) at
