@@ -41,6 +41,11 @@ class StartupTimeline {
   std::vector<Mark> marks_;
 };
 
+// `timeline`'s mark, where there is a timeline (null: nothing is being timed).
+inline void mark_on(StartupTimeline* timeline, std::string what) {
+  if (timeline != nullptr) timeline->mark(std::move(what));
+}
+
 // A BrickFetcher's events (FetcherOptions::on_event) as marks on `timeline`: the stream
 // opening, each request written, each batch received with the count so far.
 std::function<void(net::FetchEvent, std::size_t)> fetch_marks(StartupTimeline& timeline);

@@ -221,6 +221,10 @@ void shade_lanes(const PreparedLights& lights, ShadeBatch& batch) {
   HWY_DYNAMIC_DISPATCH(shade_batch_target)(lights, batch);
 }
 
+void colour_bytes(const render::LitPixels& lit, uint8_t* bytes) {
+  HWY_DYNAMIC_DISPATCH(colour_bytes_target)(lit, bytes);
+}
+
 }  // namespace
 }  // namespace render_internal
 
@@ -241,7 +245,7 @@ render::SurfaceUnprojection::SurfaceUnprojection(const glm::dmat4& inverse_vp_in
 
 void render::LitPixels::write(Image& image) const {
   alignas(64) std::array<uint8_t, 3 * ShadeBatch::kCapacity> bytes;
-  HWY_DYNAMIC_DISPATCH(render_internal::colour_bytes_target)(*this, bytes.data());
+  render_internal::colour_bytes(*this, bytes.data());
   for (std::size_t l = 0; l < static_cast<std::size_t>(batch.count); ++l) {
     uint8_t* pixel = image.pixel(x[l], y[l]);
     pixel[0] = bytes[3 * l];
