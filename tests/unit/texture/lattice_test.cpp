@@ -55,10 +55,11 @@ TEST(SplitLattice, LargeCoordinatesReduceExactly) {
 }
 
 TEST(SplitLattice, NonFiniteBehavesAsZero) {
-  for (double t : {kNaN, kInf, -kInf}) {
-    const LatticeSplit s = split_lattice(t);
-    EXPECT_EQ(s.cell, 0);
-    EXPECT_EQ(s.frac, 0.0f);
+  for (double t : {kNaN, kInf, -kInf, 0x1p62, -0x1p62, 1e300}) {
+    for (const LatticeSplit s : {split_lattice(t), split_lattice_in_kernel(t)}) {
+      EXPECT_EQ(s.cell, 0);
+      EXPECT_EQ(std::bit_cast<uint32_t>(s.frac), 0u);
+    }
   }
 }
 

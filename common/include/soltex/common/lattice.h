@@ -42,23 +42,33 @@ inline LatticeSplit split_lattice_by_truncation(double t) noexcept {
           static_cast<float>(below ? fraction + 1.0 : fraction + 0.0)};
 }
 
+// Every double of magnitude 2^62 or more is a multiple of 1024: cell 0, fraction 0, which is
+// also what non-finite t gets. One select (NaN compares false) keeps the rest exact: the
+// 64-bit conversion of floor(t) is in range, floor(t) mod 256 is the low byte of that integer
+// in two's complement (also for negative t), and t - floor(t), in [0, 1), is exact in double
+// before its one rounding to float. Branch-free where the target allows (a select, not a
+// jump) so that loops over many coordinates vectorise.
+inline double lattice_coordinate(double t) noexcept {
+  return std::fabs(t) < 0x1p62 ? t : 0.0;
+}
+
 // Non-finite t (NaN, +-Inf) is treated as 0: a defined value, never an out-of-range index.
-// Branch-free where the target allows (a select, not a jump) so that loops over many
-// coordinates vectorise.
+// For code compiled for the build's static target. Where floor is one instruction (SSE4.1's
+// roundsd, every other architecture's own), the definition is the shorter code; only a
+// baseline x86-64 build takes the truncation.
 inline LatticeSplit split_lattice(double t) noexcept {
-  // Every double of magnitude 2^62 or more is a multiple of 1024: cell 0, fraction 0, which is
-  // also what non-finite t gets. One select (NaN compares false) keeps the rest exact: the
-  // 64-bit conversion of floor(t) is in range, floor(t) mod 256 is the low byte of that
-  // integer in two's complement (also for negative t), and t - floor(t), in [0, 1), is exact
-  // in double before its one rounding to float.
-  t = std::fabs(t) < 0x1p62 ? t : 0.0;
-  // Where floor is one instruction (SSE4.1's roundsd, every other architecture's own), the
-  // definition is the shorter code; only baseline x86-64 takes the truncation.
 #if defined(__x86_64__) && !defined(__SSE4_1__)
-  return split_lattice_by_truncation(t);
+  return split_lattice_by_truncation(lattice_coordinate(t));
 #else
-  return split_lattice_by_floor(t);
+  return split_lattice_by_floor(lattice_coordinate(t));
 #endif
+}
+
+// The same split through floor() for code inlined into the runtime-dispatched kernels
+// (compiled once per Highway target): the targets chosen on SSE4.1 and AVX machines round in
+// one instruction there, which the static target's choice above would not know.
+inline LatticeSplit split_lattice_in_kernel(double t) noexcept {
+  return split_lattice_by_floor(lattice_coordinate(t));
 }
 
 // fract(u) = u - floor(u), exact for finite u; non-finite u gives 0.
