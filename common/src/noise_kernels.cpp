@@ -180,8 +180,8 @@ void AddOctave(const OctavePlan& plan, const Octave& octave, const OctaveColumns
                std::size_t n, double y, double z, float* HWY_RESTRICT acc,
                float* HWY_RESTRICT face_a, float* HWY_RESTRICT face_b) {
   const NoiseTables& tables = noise_tables();
-  const LatticeSplit sy = split_lattice(y * octave.frequency);
-  const LatticeSplit sz = split_lattice(z * octave.frequency);
+  const LatticeSplit sy = split_lattice_in_kernel(y * octave.frequency);
+  const LatticeSplit sz = split_lattice_in_kernel(z * octave.frequency);
   const float weight = octave.noise_weight, mean = octave.mean_term;
   if (plan.basis == NoiseBasis::value) {
     const RowHashes hashes = row_hashes(tables, sy.cell, sz.cell);

@@ -94,7 +94,8 @@ inline float wood(const WoodParams& w, const WoodFrame& frame, const WoodRotatio
   const double y2 = sz * x1 + cz * p.y;
   const NoiseTables& tables = noise_tables();
   const double jitter =
-      w.jitter * (value_noise(tables, glm::dvec3(x2, y2, z1) * w.jitter_scale) - tables.value_mean);
+      w.jitter *
+      (value_noise_in_kernel(tables, glm::dvec3(x2, y2, z1) * w.jitter_scale) - tables.value_mean);
   const double radius = std::hypot(x2, y2);
   const double ring = radius / w.ring_spacing + jitter;
   // The ring's width over the box: the gradient of the radius in the trunk's frame, turned back

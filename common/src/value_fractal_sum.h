@@ -21,7 +21,7 @@ inline float value_fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noex
       sum += octave.mean_term;
       continue;
     }
-    float noise = value_noise(tables, p * octave.frequency);
+    float noise = value_noise_in_kernel(tables, p * octave.frequency);
     if constexpr (kAbsolute) noise = std::fabs(noise);
     sum += octave.noise_weight * noise + octave.mean_term;
   }

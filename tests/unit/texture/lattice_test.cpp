@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <random>
+#include <vector>
 
 namespace soltex {
 namespace {
@@ -51,10 +55,11 @@ TEST(SplitLattice, LargeCoordinatesReduceExactly) {
 }
 
 TEST(SplitLattice, NonFiniteBehavesAsZero) {
-  for (double t : {kNaN, kInf, -kInf}) {
-    const LatticeSplit s = split_lattice(t);
-    EXPECT_EQ(s.cell, 0);
-    EXPECT_EQ(s.frac, 0.0f);
+  for (double t : {kNaN, kInf, -kInf, 0x1p62, -0x1p62, 1e300}) {
+    for (const LatticeSplit s : {split_lattice(t), split_lattice_in_kernel(t)}) {
+      EXPECT_EQ(s.cell, 0);
+      EXPECT_EQ(std::bit_cast<uint32_t>(s.frac), 0u);
+    }
   }
 }
 
@@ -70,6 +75,65 @@ TEST(SplitLattice, CellAlwaysInTableRange) {
   const LatticeSplit tiny = split_lattice(-1e-20);
   EXPECT_EQ(tiny.cell, 255);
   EXPECT_EQ(tiny.frac, 1.0f);
+}
+
+// The split's two forms agree bit for bit (cell, and the fraction's bits including the sign
+// of zero) on every input the split hands them: |t| < 2^62, no NaN.
+void expect_forms_agree(double t) {
+  const LatticeSplit floor_form = split_lattice_by_floor(t);
+  const LatticeSplit truncation_form = split_lattice_by_truncation(t);
+  ASSERT_EQ(truncation_form.cell, floor_form.cell) << std::hexfloat << t;
+  ASSERT_EQ(std::bit_cast<uint32_t>(truncation_form.frac), std::bit_cast<uint32_t>(floor_form.frac))
+      << std::hexfloat << t;
+}
+
+TEST(SplitLattice, TruncationFormEqualsFloorOnEveryFloatInAStride) {
+  // One float bit pattern in 251 over all 2^32, both signs, every exponent: zeros,
+  // denormals, fractions, integers, past 2^23, 2^31 and 2^52. Patterns beyond the split's
+  // range (|t| >= 2^62, Inf, NaN) never reach the forms.
+  for (uint64_t bits = 0; bits <= UINT32_MAX; bits += 251) {
+    const double t = std::bit_cast<float>(static_cast<uint32_t>(bits));
+    if (std::fabs(t) < 0x1p62) expect_forms_agree(t);
+  }
+}
+
+TEST(SplitLattice, TruncationFormEqualsFloorAroundBoundaries) {
+  // 2048 doubles either side of each boundary where the conversion, the fraction or the
+  // floor changes behaviour, both signs.
+  const double boundaries[] = {0.0,    0x1p-1074, 0x1p-1022, 0x1p-53, 0.5,    1.0,
+                               2.0,    255.0,     256.0,     257.0,   0x1p23, 0x1p24,
+                               0x1p31, 0x1p32,    0x1p52,    0x1p53,  0x1p61, 0x1p62};
+  for (const double boundary : boundaries) {
+    for (const double sign : {1.0, -1.0}) {
+      double up = sign * boundary, down = sign * boundary;
+      for (int step = 0; step < 2048; ++step) {
+        if (std::fabs(up) < 0x1p62) expect_forms_agree(up);
+        if (std::fabs(down) < 0x1p62) expect_forms_agree(down);
+        up = std::nextafter(up, kInf);
+        down = std::nextafter(down, -kInf);
+      }
+    }
+  }
+  expect_forms_agree(-0.0);
+  expect_forms_agree(std::nextafter(0x1p62, 0.0));
+  expect_forms_agree(-std::nextafter(0x1p62, 0.0));
+}
+
+TEST(SplitLattice, TruncationFormEqualsFloorOnRandomDoubles) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> near(-1000.0, 1000.0);
+  for (int n = 0; n < 2'000'000; ++n) {
+    expect_forms_agree(near(rng));
+    const double any = std::bit_cast<double>(rng());  // every exponent, denormals included
+    if (std::fabs(any) < 0x1p62) expect_forms_agree(any);
+  }
+}
+
+TEST(SplitLattice, NegativeZeroHasPositiveZeroFraction) {
+  EXPECT_FALSE(std::signbit(split_lattice(-0.0).frac));
+  EXPECT_FALSE(std::signbit(split_lattice_by_truncation(-0.0).frac));
+  EXPECT_EQ(split_lattice_by_truncation(-0x1p-1074).cell, 255);
+  EXPECT_EQ(split_lattice_by_truncation(-0x1p-1074).frac, 1.0f);
 }
 
 TEST(FloorParity, FlooredModuloOfNegatives) {

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -125,6 +127,21 @@ TEST(ValueNoise, LargeAndNonFiniteInputsAreDefined) {
   // Documented: a non-finite coordinate is treated as 0.
   EXPECT_EQ(value_noise(glm::dvec3(nan, 0.5, 0.25)), value_noise(glm::dvec3(0.0, 0.5, 0.25)));
   EXPECT_EQ(value_noise(glm::dvec3(0.5, inf, -inf)), value_noise(glm::dvec3(0.5, 0.0, 0.0)));
+}
+
+// The kernels' form (floor through split_lattice_in_kernel) gives the static form's bits.
+TEST(ValueNoise, KernelFormEqualsStaticForm) {
+  std::mt19937_64 rng(21);
+  std::uniform_real_distribution<double> coordinate(-600.0, 600.0);
+  for (int n = 0; n < 20000; ++n) {
+    const glm::dvec3 t(coordinate(rng), coordinate(rng), coordinate(rng));
+    ASSERT_EQ(std::bit_cast<uint32_t>(value_noise_in_kernel(noise_tables(), t)),
+              std::bit_cast<uint32_t>(value_noise(noise_tables(), t)))
+        << t.x << " " << t.y << " " << t.z;
+  }
+  const glm::dvec3 odd(-0.0, -1e-300, -3.0);
+  EXPECT_EQ(std::bit_cast<uint32_t>(value_noise_in_kernel(noise_tables(), odd)),
+            std::bit_cast<uint32_t>(value_noise(noise_tables(), odd)));
 }
 
 }  // namespace

@@ -38,14 +38,23 @@ inline float value_cell_finish(float e0, float e1, float fx) noexcept {
   return e0 + fx * (e1 - e0);
 }
 
-// Value noise at `t`, given in lattice units (already scaled by the frequency).
-inline float value_noise(const NoiseTables& tables, const glm::dvec3& t) noexcept {
-  const LatticeSplit x = split_lattice(t.x);
-  const LatticeSplit y = split_lattice(t.y);
-  const LatticeSplit z = split_lattice(t.z);
+// Value noise at the point the three axes' splits describe.
+inline float value_noise_at(const NoiseTables& tables, const LatticeSplit& x, const LatticeSplit& y,
+                            const LatticeSplit& z) noexcept {
   const ValueCellEdges edges = value_cell_edges(tables.value_at.data(), x.cell,
                                                 row_hashes(tables, y.cell, z.cell), y.frac, z.frac);
   return value_cell_finish(edges.e0, edges.e1, x.frac);
+}
+
+// Value noise at `t`, given in lattice units (already scaled by the frequency).
+inline float value_noise(const NoiseTables& tables, const glm::dvec3& t) noexcept {
+  return value_noise_at(tables, split_lattice(t.x), split_lattice(t.y), split_lattice(t.z));
+}
+
+// The same for code inlined into the runtime-dispatched kernels (split_lattice_in_kernel).
+inline float value_noise_in_kernel(const NoiseTables& tables, const glm::dvec3& t) noexcept {
+  return value_noise_at(tables, split_lattice_in_kernel(t.x), split_lattice_in_kernel(t.y),
+                        split_lattice_in_kernel(t.z));
 }
 
 inline float value_noise(const glm::dvec3& t) noexcept {
