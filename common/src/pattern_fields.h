@@ -31,15 +31,27 @@ inline float stripes(const StripesParams& s, const glm::dvec3& p, const glm::dve
       waves::filtered_parity(s.offset + p[axis] / s.width, box[axis] / s.width));
 }
 
+// One axis's +-1 square wave of checker(), averaged over the box's width along that axis.
+inline double checker_factor(const CheckerParams& c, int axis, double coordinate, double width) {
+  return 1.0 -
+         2.0 * waves::filtered_parity(c.offset + coordinate / c.size[axis], width / c.size[axis]);
+}
+
+// checker() from its axes' factors, multiplied in the same order. A grid's points share their
+// factors along rows and columns, so a brick needs a few dozen factors, not one per point per
+// axis.
+inline float checker_of_factors(const CheckerParams& c, double fx, double fy, double fz) {
+  double sign = 1.0 * fx;
+  sign *= fy;
+  if (c.three_d) sign *= fz;
+  return static_cast<float>(0.5 * (1.0 - sign));
+}
+
 // Parity of the cell sum as a product of +-1 square waves, (1 - prod(1 - 2 f_i)) / 2: the box
 // average of a product of functions of one axis each is the product of their averages.
 inline float checker(const CheckerParams& c, const glm::dvec3& p, const glm::dvec3& box) {
-  const int axes = c.three_d ? 3 : 2;
-  double sign = 1.0;
-  for (int a = 0; a < axes; ++a) {
-    sign *= 1.0 - 2.0 * waves::filtered_parity(c.offset + p[a] / c.size[a], box[a] / c.size[a]);
-  }
-  return static_cast<float>(0.5 * (1.0 - sign));
+  return checker_of_factors(c, checker_factor(c, 0, p.x, box.x), checker_factor(c, 1, p.y, box.y),
+                            c.three_d ? checker_factor(c, 2, p.z, box.z) : 1.0);
 }
 
 // The width along the gradient g of a box of per-axis widths `box`: how far a linear function
@@ -49,11 +61,15 @@ inline double width_along(const glm::dvec3& g, const glm::dvec3& box) {
 }
 
 // 1 - |2 fract(u) - 1| per axis: a triangle wave, 0 at integers and 1 halfway.
+// Each channel depends on one axis alone, so a grid's rows share their red values.
+inline float colour_cube_channel(const ColourCubeParams& c, double coordinate, double width) {
+  return static_cast<float>(waves::filtered_triangle(coordinate / c.period, width / c.period));
+}
+
 inline glm::vec3 colour_cube(const ColourCubeParams& c, const glm::dvec3& p,
                              const glm::dvec3& box) {
-  return {static_cast<float>(waves::filtered_triangle(p.x / c.period, box.x / c.period)),
-          static_cast<float>(waves::filtered_triangle(p.y / c.period, box.y / c.period)),
-          static_cast<float>(waves::filtered_triangle(p.z / c.period, box.z / c.period))};
+  return {colour_cube_channel(c, p.x, box.x), colour_cube_channel(c, p.y, box.y),
+          colour_cube_channel(c, p.z, box.z)};
 }
 
 // Filtered along the radius; the two ring values are clamped before they are blended, so the

@@ -115,11 +115,15 @@ HWY_FLATTEN void SamplePointsKernel(const PatternSource& source, std::span<const
   }
 }
 
-// Per row: the x coordinates (the same in every row), the field, and the colour cube's colours.
+// Per row: the x coordinates (the same in every row), the field, and the colour cube's colours;
+// per grid, what a separable pattern's points share along x (the checker's x factors, the
+// colour cube's red).
 struct RowScratch {
   std::vector<double> x;
   std::vector<float> field;
   std::vector<glm::vec3> colour;
+  std::vector<double> checker_x;
+  std::vector<float> cube_red;
 };
 
 // One row's field (and the colour cube's colours) at (xs[i], y, z).
@@ -132,6 +136,8 @@ struct RowFields {
   std::span<const double> xs;
   float* field;
   glm::vec3* colour;
+  const double* checker_x;  // fields::checker_factor along x at xs, for a checker
+  const float* cube_red;    // fields::colour_cube_channel along x at xs, for a colour cube
 
   void operator()(double y, double z) const {
     const std::size_t nx = xs.size();
@@ -147,11 +153,17 @@ struct RowFields {
                      each_point([&](const glm::dvec3& p) { return fields::stripes(s, p, box); });
                    },
                    [&](const CheckerParams& c) {
-                     each_point([&](const glm::dvec3& p) { return fields::checker(c, p, box); });
+                     const double fy = fields::checker_factor(c, 1, y, box.y);
+                     const double fz = c.three_d ? fields::checker_factor(c, 2, z, box.z) : 1.0;
+                     for (std::size_t i = 0; i < nx; ++i) {
+                       field[i] = fields::checker_of_factors(c, checker_x[i], fy, fz);
+                     }
                    },
                    [&](const ColourCubeParams& c) {
+                     const float green = fields::colour_cube_channel(c, y, box.y);
+                     const float blue = fields::colour_cube_channel(c, z, box.z);
                      for (std::size_t i = 0; i < nx; ++i) {
-                       colour[i] = fields::colour_cube(c, glm::dvec3(xs[i], y, z), box);
+                       colour[i] = glm::vec3(cube_red[i], green, blue);
                        field[i] = cube_field(colour[i]);
                      }
                    },
@@ -179,6 +191,22 @@ struct RowFields {
   }
 };
 
+// The x tables of the separable patterns (RowScratch::checker_x, cube_red), once per grid.
+void fill_separable_x(const Pattern& pattern, std::span<const double> xs, const glm::dvec3& box,
+                      RowScratch& scratch) {
+  if (const auto* c = std::get_if<CheckerParams>(&pattern)) {
+    scratch.checker_x.resize(xs.size());
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      scratch.checker_x[i] = fields::checker_factor(*c, 0, xs[i], box.x);
+    }
+  } else if (const auto* cube = std::get_if<ColourCubeParams>(&pattern)) {
+    scratch.cube_red.resize(xs.size());
+    for (std::size_t i = 0; i < xs.size(); ++i) {
+      scratch.cube_red[i] = fields::colour_cube_channel(*cube, xs[i], box.x);
+    }
+  }
+}
+
 HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& grid,
                                     const OctavePlan& plan, const glm::dvec3& box,
                                     std::span<float> out) {
@@ -192,13 +220,21 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
   scratch.colour.resize(nx);
   for (std::size_t i = 0; i < nx; ++i) scratch.x[i] = grid.point(static_cast<int>(i), 0, 0).x;
   const std::span<const double> xs(scratch.x.data(), nx);
+  fill_separable_x(spec.pattern, xs, box, scratch);
   float* field = scratch.field.data();
   glm::vec3* colour = scratch.colour.data();
   std::optional<FractalRows> fractal_rows;
   if (plan.count > 0) fractal_rows.emplace(plan, xs);
-  const RowFields row_field{
-      spec.pattern, plan,  {source.wood_cos_tilt_z, source.wood_sin_tilt_z}, box, fractal_rows, xs,
-      field,        colour};
+  const RowFields row_field{spec.pattern,
+                            plan,
+                            {source.wood_cos_tilt_z, source.wood_sin_tilt_z},
+                            box,
+                            fractal_rows,
+                            xs,
+                            field,
+                            colour,
+                            scratch.checker_x.data(),
+                            scratch.cube_red.data()};
 
   const ChannelSet& wanted = spec.channels;
   std::size_t row_start = 0;
