@@ -1,17 +1,16 @@
 #pragma once
 
-#include <time.h>
-
 #include <chrono>
+
+#include "soltex/common/process_cpu_time.h"
 
 namespace soltex::bench {
 
 // Wall and CPU time of one piece of work, in milliseconds.
 struct Elapsed {
   double wall_ms = 0.0;
-  // CPU time of the whole process, every thread included (a frame's render threads too):
-  // what the work cost in cores. On a shared machine it hardly moves with the other load,
-  // where the wall time grows by every time slice the work waited for.
+  // CPU time of the whole process, every thread included (a frame's render threads too;
+  // soltex::process_cpu_ms).
   double cpu_ms = 0.0;
 };
 
@@ -27,12 +26,6 @@ class Stopwatch {
   }
 
  private:
-  static double process_cpu_ms() {
-    timespec now{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-    return static_cast<double>(now.tv_sec) * 1e3 + static_cast<double>(now.tv_nsec) / 1e6;
-  }
-
   std::chrono::steady_clock::time_point wall_start_;
   double cpu_start_;
 };

@@ -4,18 +4,14 @@
 
 #include <algorithm>
 #include <climits>
-#include <ctime>
 
 #include "level_cap.h"
+#include "soltex/common/process_cpu_time.h"
 
 namespace soltex::view {
 namespace {
 
-double process_cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) / 1e6;
-}
+using Clock = std::chrono::steady_clock;
 
 // While a frame is drawn: hands each raster tile's misses to `source` as the cap (if any)
 // lets them be fetched, and holds the bricks that arrive meanwhile out of the cache until the
@@ -50,10 +46,8 @@ class EarlyRequests {
 // for its misses.
 Frame draw(FrameRenderer& renderer, const PreparedScene& scene, const Camera& camera, int width,
            int height, bool for_misses, HeadlessResult& result, StartupTimeline* timeline) {
-  if (timeline != nullptr) {
-    timeline->mark(fmt::format("frame {} starts{}", result.frames + 1,
-                               for_misses ? " (for its misses, false colour)" : ""));
-  }
+  mark_on(timeline, fmt::format("frame {} starts{}", result.frames + 1,
+                                for_misses ? " (for its misses, false colour)" : ""));
   const auto start = std::chrono::steady_clock::now();
   if (for_misses) renderer.set_false_colour_levels(true);
   Frame frame = renderer.render(scene, camera, width, height);
@@ -63,30 +57,61 @@ Frame draw(FrameRenderer& renderer, const PreparedScene& scene, const Camera& ca
   ++result.frames;
   result.last_frame_ms = frame.stats.raster_ms + frame.stats.shade_ms;
   result.last_stats = frame.stats;
-  if (timeline != nullptr) {
-    timeline->mark(fmt::format("frame {} ends: {} misses, {} pixels from a coarser level",
-                               result.frames, frame.misses.size(), frame.stats.fallback_pixels));
-  }
+  mark_on(timeline, fmt::format("frame {} ends: {} misses, {} pixels from a coarser level",
+                                result.frames, frame.misses.size(), frame.stats.fallback_pixels));
   return frame;
+}
+
+// The cap a run starts under, null where nothing is capped; the levels go into `result`.
+LevelCap* start_cap(LevelCap& levels, const HeadlessOptions& options, HeadlessResult& result) {
+  result.refined_level_log2 = levels.finest_log2();
+  levels.set_cap_log2(options.start_level_log2);
+  LevelCap* cap = options.start_level_log2 > 0 && options.cache != nullptr && levels.active()
+                      ? &levels
+                      : nullptr;
+  result.start_level_log2 = cap != nullptr ? cap->cap_log2() : result.refined_level_log2;
+  return cap;
+}
+
+// Idle at `cap` with nothing missing: lifts it as far as the cache holds what the finer levels
+// need (to null once nothing is capped). False where the budget keeps it where it is: the run
+// has converged as it is.
+bool lift_cap(LevelCap*& cap, const Frame& frame, const BrickCache& cache, HeadlessResult& result) {
+  const int next = next_cap(*cap, frame.misses, cache, INT_MAX);
+  if (next == cap->cap_log2()) {
+    result.refined_level_log2 = next;
+    return false;
+  }
+  cap->set_cap_log2(next);
+  if (!cap->active()) cap = nullptr;
+  return true;
+}
+
+// Waits until nothing is pending or `deadline` passes. The output is the converged image, so a
+// headless run draws again only when everything asked for is in (or the time is up): frames in
+// between only take CPU from decoding and, where soltexd shares the machine, from evaluation.
+// The interactive viewer draws every frame.
+void wait_for_bricks(net::BrickSource& source, Clock::time_point deadline, HeadlessResult& result,
+                     StartupTimeline* timeline) {
+  const auto wait_start = Clock::now();
+  const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - wait_start);
+  mark_on(timeline, "waits for bricks");
+  source.wait_idle(std::max(left, std::chrono::milliseconds(1)));
+  mark_on(timeline, "nothing pending any more");
+  result.waiting_ms += std::chrono::duration<double, std::milli>(Clock::now() - wait_start).count();
 }
 
 HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, const Camera& camera,
                         int width, int height, net::BrickSource& source,
                         const HeadlessOptions& options) {
-  using Clock = std::chrono::steady_clock;
   const auto start = Clock::now();
   const auto elapsed_ms = [&] {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
   };
   HeadlessResult result;
   LevelCap levels(scene);
-  result.refined_level_log2 = levels.finest_log2();
-  levels.set_cap_log2(options.start_level_log2);
   // Null once nothing is capped: from then on the run is a run without a start level.
-  LevelCap* cap = options.start_level_log2 > 0 && options.cache != nullptr && levels.active()
-                      ? &levels
-                      : nullptr;
-  result.start_level_log2 = cap != nullptr ? cap->cap_log2() : result.refined_level_log2;
+  LevelCap* cap = start_cap(levels, options, result);
   uint64_t received = source.stats().received;
   int stalled = 0;  // frames in a row that missed bricks while nothing was on its way
   // A frame drawn in false colour only to find its misses (about 3/4 of a shaded frame's CPU
@@ -118,16 +143,11 @@ HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, con
         if (result.start_converged_ms < 0.0) result.start_converged_ms = result.converged_ms;
         return result;
       }
-      // Idle at the cap: lift it as far as the cache holds what the finer levels need.
       if (result.start_converged_ms < 0.0) result.start_converged_ms = elapsed_ms();
-      const int next = next_cap(*cap, frame.misses, *options.cache, INT_MAX);
-      if (next == cap->cap_log2()) {
-        result.refined_level_log2 = next;  // the budget stops it here: converged as it is
+      if (!lift_cap(cap, frame, *options.cache, result)) {
         result.converged_ms = elapsed_ms();
         return result;
       }
-      cap->set_cap_log2(next);
-      if (!cap->active()) cap = nullptr;
       received = source.stats().received;
       stalled = 0;
       continue;  // draw at once: the new cap's misses go out with the next frame
@@ -151,17 +171,7 @@ HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, con
       result.bricks_failed = true;
       return result;
     }
-    // The output is the converged image, so draw again only when everything asked for is in
-    // (or the time is up): frames in between only take CPU from decoding and, where soltexd
-    // shares the machine, from evaluation. The interactive viewer draws every frame.
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-        start + options.max_time - Clock::now());
-    const auto wait_start = Clock::now();
-    if (options.timeline != nullptr) options.timeline->mark("waits for bricks");
-    source.wait_idle(std::max(left, std::chrono::milliseconds(1)));
-    if (options.timeline != nullptr) options.timeline->mark("nothing pending any more");
-    result.waiting_ms +=
-        std::chrono::duration<double, std::milli>(Clock::now() - wait_start).count();
+    wait_for_bricks(source, start + options.max_time, result, options.timeline);
   }
 }
 

@@ -3,19 +3,11 @@
 #include <spdlog/fmt/fmt.h>
 
 #include <atomic>
-#include <ctime>
 #include <memory>
 
+#include "soltex/common/process_cpu_time.h"
+
 namespace soltex::view {
-namespace {
-
-double process_cpu_ms() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) / 1e6;
-}
-
-}  // namespace
 
 StartupTimeline::StartupTimeline(Clock::time_point origin)
     : origin_(origin), origin_cpu_ms_(process_cpu_ms()) {}

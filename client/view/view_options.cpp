@@ -12,9 +12,9 @@ void add_source_options(CLI::App& app, ViewOptions& o) {
   app.add_option("--capability", o.capability_text,
                  "simulate a weaker machine: cpu=FACTOR,mem=MB,bandwidth=MBPS");
   app.add_option("--codec", o.codec_name,
-                 "how bricks travel: auto takes whichever of zstd and raw brought the link "
-                 "probe's bricks faster (raw where encoding costs more than the bytes, as over "
-                 "loopback); zstd, lz4 or raw force one")
+                 "how bricks travel: auto probes the link and takes raw where zstd's coding "
+                 "costs more time than the bytes it saves, else zstd (a loopback server gets "
+                 "raw without a probe); zstd, lz4 or raw force one")
       ->check(CLI::IsMember({"auto", "zstd", "lz4", "raw"}))
       ->capture_default_str();
   app.add_option("--record", o.record_path,

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -186,6 +187,47 @@ TEST(BrickFetcher, EarlyWantsWhileArrivalsAreHeld) {
   EXPECT_EQ(stats.received, frame.size());
   EXPECT_EQ(stats.cancelled, 0u);
   expect_cached_brick_is_local(cache, id, 1, {2, 1, 3});
+}
+
+// Held bricks released into the cache stay pending until they count as received: whoever
+// looks meanwhile (another thread) sees every brick either pending or received, and never an
+// idle fetcher that has not counted them all.
+TEST(BrickFetcher, ReleasedBricksArePendingUntilCounted) {
+  FetcherAgainstServer setup;
+  auto& [server, cache, fetcher, id] = setup;
+  const std::vector<net::BrickWant> frame = level(id, 0, 8);
+  const std::size_t raw_brick_bytes = 9 * 9 * 9 * 3 + 28;  // every sample and the header
+  fetcher.set_codec(Codec::raw);  // so the bytes received tell when every brick has arrived
+  fetcher.hold_arrivals(true);
+  fetcher.want(frame);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (fetcher.stats().bytes < frame.size() * raw_brick_bytes) {
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "the bricks did not arrive";
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_EQ(fetcher.stats().in_flight, frame.size());
+
+  std::atomic<bool> released = false;
+  std::atomic<std::size_t> looks = 0;
+  std::size_t uncounted = 0;   // looks that saw bricks neither pending nor received
+  std::size_t idle_early = 0;  // looks that saw an idle fetcher short of bricks received
+  std::thread observer([&] {
+    while (!released) {
+      const net::SourceStats s = fetcher.stats();
+      if (s.waiting + s.in_flight + s.received != frame.size()) ++uncounted;
+      if (fetcher.idle() && fetcher.stats().received != frame.size()) ++idle_early;
+      ++looks;
+    }
+  });
+  while (looks == 0) std::this_thread::yield();
+  fetcher.hold_arrivals(false);
+  released = true;
+  observer.join();
+  EXPECT_EQ(uncounted, 0u) << "of " << looks.load() << " looks";
+  EXPECT_EQ(idle_early, 0u) << "of " << looks.load() << " looks";
+  EXPECT_TRUE(fetcher.idle());
+  EXPECT_EQ(fetcher.stats().received, frame.size());
+  expect_cached_brick_is_local(cache, id, 0, {7, 2, 5});
 }
 
 TEST(BrickFetcher, RefusedKeysAreReportedAndNotAskedAgain) {

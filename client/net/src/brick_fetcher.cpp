@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "soltex/common/brick_codec.h"
+#include "soltex/common/check.h"
 #include "soltex/common/texture_id.h"
 #include "soltex/spec_proto/brick_proto.h"
 #include "soltex/spec_proto/spec_from_proto.h"
@@ -112,28 +113,7 @@ void BrickFetcher::supervise() {
       while (stream->call->Read(&batch)) {
         received_any = true;
         backoff = options_.initial_backoff;
-        std::vector<std::pair<BrickKey, std::string>> payloads;
-        payloads.reserve(static_cast<std::size_t>(batch.bricks_size()));
-        for (auto& brick : *batch.mutable_bricks()) {
-          payloads.emplace_back(from_proto(brick.key()), std::move(*brick.mutable_payload()));
-        }
-        receive(payloads);
-        if (options_.on_event) options_.on_event(FetchEvent::batch_received, payloads.size());
-        if (batch.errors_size() > 0 || batch.request_errors_size() > 0) {
-          std::lock_guard lock(mutex_);
-          for (const auto& error : batch.errors()) {
-            const BrickKey key = from_proto(error.key());
-            in_flight_.erase(key);
-            failed_.insert(key);
-            ++stats_.errors;
-            spdlog::warn("brick refused: {}", error.message());
-          }
-          for (const auto& error : batch.request_errors()) {
-            ++stats_.errors;
-            spdlog::warn("request refused: {}", error.message());
-          }
-        }
-        changed_.notify_all();
+        on_batch(batch);
       }
       {
         std::lock_guard writes(mutex_);
@@ -165,6 +145,31 @@ void BrickFetcher::supervise() {
     changed_.wait_for(lock, backoff, [this] { return stopping_; });
     backoff = std::min(backoff * 2, options_.max_backoff);
   }
+}
+
+void BrickFetcher::on_batch(v1::BrickBatch& batch) {
+  std::vector<std::pair<BrickKey, std::string>> payloads;
+  payloads.reserve(static_cast<std::size_t>(batch.bricks_size()));
+  for (auto& brick : *batch.mutable_bricks()) {
+    payloads.emplace_back(from_proto(brick.key()), std::move(*brick.mutable_payload()));
+  }
+  receive(payloads);
+  if (options_.on_event) options_.on_event(FetchEvent::batch_received, payloads.size());
+  if (batch.errors_size() > 0 || batch.request_errors_size() > 0) {
+    std::lock_guard lock(mutex_);
+    for (const auto& error : batch.errors()) {
+      const BrickKey key = from_proto(error.key());
+      in_flight_.erase(key);
+      failed_.insert(key);
+      ++stats_.errors;
+      spdlog::warn("brick refused: {}", error.message());
+    }
+    for (const auto& error : batch.request_errors()) {
+      ++stats_.errors;
+      spdlog::warn("request refused: {}", error.message());
+    }
+  }
+  changed_.notify_all();
 }
 
 void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& payloads) {
@@ -211,9 +216,10 @@ void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& 
       ++stats_.received;
       refetches_.erase(key);
     } else if (++refetches_[key] <= options_.max_refetches) {
-      // Damaged on the way: ask again, first in line.
+      // Damaged on the way: ask again, first in line (unless a frame asked for it again
+      // meanwhile and it waits already).
       ++stats_.corrupt;
-      waiting_.insert(waiting_.begin(), BrickWant{key, ~0u});
+      if (waiting_keys_.insert(key).second) waiting_.insert(waiting_.begin(), BrickWant{key, ~0u});
     } else {
       failed_.insert(key);
       ++stats_.errors;
@@ -230,6 +236,8 @@ void BrickFetcher::hold_arrivals(bool hold) {
     held.swap(held_);
   }
   if (held.empty()) return;
+  // Inserted outside the lock; the keys stay in held_keys_ meanwhile, so these bricks count
+  // as pending until they count as received.
   for (auto& [key, brick] : held) cache_.insert(key, std::move(brick));
   {
     std::lock_guard lock(mutex_);
@@ -263,12 +271,13 @@ void BrickFetcher::want(std::vector<BrickWant> wants) {
       }
     }
     waiting_.clear();
+    waiting_keys_.clear();
     for (const BrickWant& w : fresh) {
       if (in_flight_.contains(w.key) || held_keys_.contains(w.key) || failed_.contains(w.key) ||
           cache_.contains(w.key)) {
         continue;
       }
-      waiting_.push_back(w);
+      add_waiting(w);  // fresh holds each key once
     }
   }
   changed_.notify_all();
@@ -284,16 +293,17 @@ void BrickFetcher::want_early(std::vector<BrickWant> wants) {
           cache_.contains(w.key)) {
         continue;
       }
-      // A key another render thread found first is waiting already (a short list: the frame
-      // sends as it goes).
-      const bool waiting = std::any_of(waiting_.begin(), waiting_.end(),
-                                       [&](const BrickWant& o) { return o.key == w.key; });
-      if (waiting) continue;
-      waiting_.push_back(w);
-      added = true;
+      // A key another render thread found first is waiting already.
+      if (add_waiting(w)) added = true;
     }
   }
   if (added) changed_.notify_all();
+}
+
+bool BrickFetcher::add_waiting(const BrickWant& want) {
+  if (!waiting_keys_.insert(want.key).second) return false;
+  waiting_.push_back(want);
+  return true;
 }
 
 void BrickFetcher::write_loop() {
@@ -329,6 +339,7 @@ void BrickFetcher::write_loop() {
     std::size_t taken = 0;
     while (taken < waiting_.size() && in_flight_.size() < options_.max_in_flight) {
       const BrickWant& w = waiting_[taken++];
+      waiting_keys_.erase(w.key);
       if (cache_.contains(w.key) || in_flight_.contains(w.key) || held_keys_.contains(w.key)) {
         continue;
       }
@@ -339,6 +350,7 @@ void BrickFetcher::write_loop() {
       ++stats_.requested;
     }
     waiting_.erase(waiting_.begin(), waiting_.begin() + static_cast<std::ptrdiff_t>(taken));
+    SOLTEX_DCHECK(waiting_keys_.size() == waiting_.size());
     // Write outside the lock: it may wait for flow control.
     lock.unlock();
     bool ok;
@@ -367,21 +379,24 @@ void BrickFetcher::set_codec(Codec codec) {
   changed_.notify_all();
 }
 
+bool BrickFetcher::nothing_pending() const {
+  return waiting_.empty() && in_flight_.empty() && held_keys_.empty();
+}
+
 bool BrickFetcher::idle() const {
   std::lock_guard lock(mutex_);
-  return waiting_.empty() && in_flight_.empty() && held_.empty();
+  return nothing_pending();
 }
 
 bool BrickFetcher::wait_idle(std::chrono::milliseconds timeout) {
   std::unique_lock lock(mutex_);
-  return changed_.wait_for(
-      lock, timeout, [this] { return waiting_.empty() && in_flight_.empty() && held_.empty(); });
+  return changed_.wait_for(lock, timeout, [this] { return nothing_pending(); });
 }
 
 SourceStats BrickFetcher::stats() const {
   std::lock_guard lock(mutex_);
   SourceStats s = stats_;
-  s.in_flight = in_flight_.size() + held_.size();
+  s.in_flight = in_flight_.size() + held_keys_.size();
   s.waiting = waiting_.size();
   return s;
 }

@@ -22,11 +22,16 @@
 #include "soltex/net/brick_source.h"
 #include "soltex/net/channel_security.h"
 
+namespace soltex::v1 {
+class BrickBatch;
+}  // namespace soltex::v1
+
 namespace soltex::net {
 
 // What the fetcher's threads report as it happens, for a start-up timeline: the stream opened,
-// a request written (its number of wanted keys), a batch received (its number of bricks, once
-// they are in the cache).
+// a request written (its number of wanted keys), a batch received (its number of bricks,
+// corrupt ones included; once its bricks are in the cache, or held out of it while
+// hold_arrivals(true)).
 enum class FetchEvent { stream_opened, request_written, batch_received };
 
 struct FetcherOptions {
@@ -90,7 +95,11 @@ class BrickFetcher final : public BrickSource {
 
   void supervise();   // connect, re-register, read until the stream breaks, back off, repeat
   void write_loop();  // sends wants and cancellations as they come
+  void on_batch(v1::BrickBatch& batch);  // its bricks decoded and cached, its errors recorded
   void receive(const std::vector<std::pair<BrickKey, std::string>>& payloads);
+  // Appends to waiting_ unless the key waits already; true if it was added.
+  bool add_waiting(const BrickWant& want);
+  bool nothing_pending() const;  // idle(), with mutex_ held
 
   const std::string address_;
   BrickCache& cache_;
@@ -103,6 +112,7 @@ class BrickFetcher final : public BrickSource {
   std::unordered_map<uint64_t, std::string> registrations_;  // id -> serialized request
   std::vector<uint64_t> unsent_registrations_;               // registered since the stream opened
   std::vector<BrickWant> waiting_;                           // best first, not yet sent
+  std::unordered_set<BrickKey, BrickKeyHash> waiting_keys_;  // waiting_'s keys
   std::unordered_set<BrickKey, BrickKeyHash> in_flight_;
   std::unordered_set<BrickKey, BrickKeyHash> failed_;  // refused by the server: not asked again
   std::unordered_map<BrickKey, int, BrickKeyHash> refetches_;  // corrupt arrivals per key
@@ -111,8 +121,10 @@ class BrickFetcher final : public BrickSource {
   Codec codec_;
   bool codec_changed_ = false;  // codec_ goes out with the next request
   bool holding_ = false;        // hold_arrivals(true): arrivals wait in held_
-  std::vector<std::pair<BrickKey, CachedBrick>> held_;    // arrived, not yet in the cache
-  std::unordered_set<BrickKey, BrickKeyHash> held_keys_;  // held_'s keys
+  std::vector<std::pair<BrickKey, CachedBrick>> held_;  // arrived, not yet in the cache
+  // held_'s keys, and those being released: each leaves only as it is counted received, so a
+  // brick is pending until then (idle(), stats()).
+  std::unordered_set<BrickKey, BrickKeyHash> held_keys_;
   SourceStats stats_;
   bool stopping_ = false;
   std::thread supervisor_;
