@@ -43,6 +43,15 @@ void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) 
   std::fill_n(target.footprint + i, count, 0.0f);
 }
 
+// GBuffer::flags of a pixel that sees the triangle's surface.
+uint8_t surface_flags(const ScreenTriangle& t) {
+  return static_cast<uint8_t>(GBuffer::kCovered | (t.back_face ? GBuffer::kBackFace : 0));
+}
+
+uint32_t object_id_of(const TileFrame& frame, const ScreenTriangle& t) {
+  return frame.objects[t.object].source->object_id;
+}
+
 // Pixels of short runs (a fine mesh's), each with its own triangle, resolved together in
 // lanes (interpolate_surfaces()): one short run's arithmetic alone would wait on its own
 // divisions. Each lane's triangle data is gathered into arrays first.
@@ -75,38 +84,18 @@ struct SurfaceBatch {
     const auto n = static_cast<std::size_t>(count);
     if (n == 0) return;
     // Per lane: vertex k's barycentric numerator (the edge function opposite it at the pixel
-    // centre) and edge k's steps, already in float, so that the loop below is float arithmetic
+    // centre) and edge k's steps, already in float, so that interpolating is float arithmetic
     // alone (no 64-bit products or conversions) and runs in vector lanes; then vertex k's 1/w,
     // texture offset and normal.
-    SurfaceLanes& s = lanes;
-    for (std::size_t l = 0; l < n; ++l) {
-      const ScreenTriangle& t = *triangle[l];
-      const int64_t px = pixel_centre(x[l]), py = pixel_centre(y[l]);
-      for (std::size_t k = 0; k < 3; ++k) {
-        // Edge k runs from vertex k + 1 to vertex k + 2 (edges_of()).
-        const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
-        const int64_t ax = t.x[a], ay = t.y[a], bx = t.x[b], by = t.y[b];
-        s.edge[k][l] = static_cast<float>(edge_function(ax, ay, bx, by, px, py));
-        s.edge_dy[k][l] = static_cast<float>(by - ay);
-        s.edge_dx[k][l] = static_cast<float>(bx - ax);
-        s.q[k][l] = t.inv_w[k];
-        s.ox[k][l] = t.texture_offset[k].x;
-        s.oy[k][l] = t.texture_offset[k].y;
-        s.oz[k][l] = t.texture_offset[k].z;
-        s.nx[k][l] = t.normal[k].x;
-        s.ny[k][l] = t.normal[k].y;
-        s.nz[k][l] = t.normal[k].z;
-      }
-      s.area[l] = static_cast<float>(t.double_area);
-    }
+    for (std::size_t l = 0; l < n; ++l) lanes.set_lane(l, *triangle[l], x[l], y[l]);
     interpolate_surfaces(lanes, n);
     for (std::size_t l = 0; l < n; ++l) {
       const ScreenTriangle& t = *triangle[l];
       const std::size_t i = index[l];
       target.depth[i] = depth[l];
-      target.flags[i] = GBuffer::kCovered | (t.back_face ? GBuffer::kBackFace : 0);
+      target.flags[i] = surface_flags(t);
       back_faces += t.back_face ? 1 : 0;
-      target.object_id[i] = frame.objects[t.object].source->object_id;
+      target.object_id[i] = object_id_of(frame, t);
       target.texture_position[i] =
           t.texture_origin +
           glm::dvec3(glm::vec3(lanes.offset_x[l], lanes.offset_y[l], lanes.offset_z[l]));
@@ -135,11 +124,9 @@ struct SurfaceRuns {
     __builtin_prefetch(t);
     __builtin_prefetch(reinterpret_cast<const char*>(t) + 64);
     __builtin_prefetch(reinterpret_cast<const char*>(t) + 128);
-    const auto flags =
-        static_cast<uint8_t>(GBuffer::kCovered | (t->back_face ? GBuffer::kBackFace : 0));
     back_faces += t->back_face ? static_cast<uint64_t>(pixels) : 0;
     runs[count++] =
-        SurfaceRun{t, x, y, pixels, i, depth, frame.objects[t->object].source->object_id, flags};
+        SurfaceRun{t, x, y, pixels, i, depth, object_id_of(frame, *t), surface_flags(*t)};
     if (count == kCapacity) write(target);
   }
 
