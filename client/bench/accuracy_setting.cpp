@@ -13,7 +13,8 @@ CodecOptions CodecChoice::options() const {
   CodecOptions options;
   options.codec = codec;
   options.zstd_level = zstd_level;
-  options.filter = true;
+  // As soltexd encodes: the predictor only helps a compressor, and raw has none.
+  options.filter = codec != Codec::raw;
   return options;
 }
 

@@ -11,7 +11,8 @@
 namespace soltex::bench {
 
 // A brick codec as soltexd can be configured: the codec and, for zstd, its level. The 3D
-// predictor is always on, as soltexd runs it. The default is soltexd's (its --zstd-level).
+// predictor is on for the compressing codecs and off for raw, as soltexd runs it. The default
+// is soltexd's (its --zstd-level).
 struct CodecChoice {
   Codec codec = Codec::zstd;
   int zstd_level = 1;

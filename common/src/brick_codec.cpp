@@ -116,7 +116,8 @@ bool mostly_runs(std::span<const uint8_t> input) {
 std::size_t compress_zstd(int zstd_level, std::span<const uint8_t> input, uint8_t* out,
                           std::size_t capacity) {
   ZSTD_CCtx* context = thread_compressor();
-  // ZSTD_compressSequences leaves the session open; parameters are set only between frames.
+  // ZSTD_compressSequences leaves the context past the start of a frame, and some parameters
+  // are set only there: the session is reset first, which keeps the frame parameters.
   ZSTD_CCtx_reset(context, ZSTD_reset_session_only);
   // Literals are always entropy coded: after the predictor a brick is mostly literals, and
   // their Huffman coding is most of what zstd gains over lz4 (docs/PERFORMANCE.md, "Brick

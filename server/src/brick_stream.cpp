@@ -241,7 +241,6 @@ bool BrickStream::answer_from_cache(const BrickKey& key,
 }
 
 std::function<void()> BrickStream::take() {
-  const auto now = std::chrono::steady_clock::now();
   // More streams wait than there are workers (the same test as hold_back()'s): this stream's
   // next turn is far off, so this turn makes a run of its bricks, to share one message.
   const bool crowded =
@@ -252,13 +251,16 @@ std::function<void()> BrickStream::take() {
     std::optional<WorkItem> item = queue_.pop();
     if (!item) break;
     count_queued(-1);
-    context_.metrics.record(BrickStage::queue_wait, now - item->enqueued);
     items.push_back(std::move(*item));
   }
   if (items.empty()) return {};
   return [self = shared_from_this(), items = std::move(items)] {
     for (const WorkItem& item : items) {
       if (self->let_go_if_gone()) continue;  // cancelled mid-run: none of the rest is wanted
+      // Measured here, not when the run was taken: a run's later bricks wait on this worker
+      // behind its earlier ones, and that wait belongs to no other stage.
+      self->context_.metrics.record(BrickStage::queue_wait,
+                                    std::chrono::steady_clock::now() - item.enqueued);
       self->context_.producer.produce(
           item, [self, item](const EncodedBrickPtr& brick) { self->deliver(item, brick); });
     }

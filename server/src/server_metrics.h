@@ -19,7 +19,7 @@ namespace soltex::server {
 
 // Where a brick's time goes inside soltexd, stage by stage (soltex_brick_stage_seconds).
 enum class BrickStage : std::size_t {
-  queue_wait,   // from entering its stream's queue to a worker taking it
+  queue_wait,   // from entering its stream's queue to a worker starting to make it
   evaluate,     // evaluating the texture function over the brick's samples
   encode,       // quantizing, the predictor, zstd or lz4, and the checksum
   outbox_wait,  // from made (or found in the cache) to its message being handed to gRPC

@@ -17,7 +17,9 @@ namespace soltex::raster_internal {
 
 // Rays through pixel centres (px, py), as CapTracer::ray_through() makes them.
 struct CapRayLanes {
-  static constexpr std::size_t kCapacity = 136;  // two rows of 65, in whole blocks of 8
+  // A run's rays: at most 65 of its own row and 64 of the row below (CapTracer::trace_run()),
+  // 129 rounded up to whole blocks of 8.
+  static constexpr std::size_t kCapacity = 136;
   template <typename T>
   using Lanes = std::array<T, kCapacity>;
 

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "saturating_cast.h"
+#include "whole_blocks.h"
 
 namespace soltex::raster_internal {
 
@@ -31,10 +32,7 @@ std::optional<glm::dvec3> intersect(const glm::dvec3& origin, const glm::dvec3& 
 }
 
 // Lanes are traced in blocks of 8: a multiple of every target's vector width in doubles.
-std::size_t round_up_to_block(std::size_t lanes) {
-  constexpr std::size_t kBlock = 8;
-  return (lanes + kBlock - 1) / kBlock * kBlock;
-}
+constexpr std::size_t kLaneBlock = 8;
 
 }  // namespace
 
@@ -155,7 +153,7 @@ void CapTracer::trace_run(int x_begin, int x_end, int y, const glm::dmat4& textu
   want(x_begin, y + 1, x_end - 1);
   // Whole blocks of lanes, the last ray repeated (and not kept): a run's few rays would
   // otherwise fall to the vector loop's remainder, a lane at a time.
-  const std::size_t ray_lanes = std::min(round_up_to_block(count), CapRayLanes::kCapacity);
+  const std::size_t ray_lanes = std::min(whole_blocks(count, kLaneBlock), CapRayLanes::kCapacity);
   for (std::size_t k = count; k < ray_lanes && count > 0; ++k) {
     rays.px[k] = rays.px[count - 1];
     rays.py[k] = rays.py[count - 1];
@@ -176,7 +174,7 @@ void CapTracer::trace_run(int x_begin, int x_end, int y, const glm::dmat4& textu
     to.direction_z[k] = ray.direction.z;
   };
   const auto n = static_cast<std::size_t>(x_end - x_begin);
-  const std::size_t pixel_lanes = round_up_to_block(n);
+  const std::size_t pixel_lanes = whole_blocks(n, kLaneBlock);
   for (std::size_t k = 0; k < pixel_lanes; ++k) {
     // Past the run: its last pixel again, not read back.
     const int x = x_begin + static_cast<int>(std::min(k, n - 1));

@@ -19,6 +19,7 @@
 #include <limits>
 
 #include "tile_rasterizer.h"
+#include "whole_blocks.h"
 
 #ifndef SOLTEX_TILE_KERNELS_SHARED
 #define SOLTEX_TILE_KERNELS_SHARED
@@ -84,14 +85,6 @@ void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float*
   stats.fragments_rasterized += rasterized;
   stats.fragments_depth_passed += depth_passed;
 }
-
-// One triangle's data for interpolating its attributes, in float (see
-// resolve_surface_runs_target): the double area; per vertex k, 1/w, the texture offset and
-// the normal; per edge k (opposite vertex k), its steps.
-struct TriangleTerms {
-  float area;
-  std::array<float, 3> q, ox, oy, oz, nx, ny, nz, edge_dy, edge_dx;
-};
 
 // Perspective-correct attributes at `count` pixel centres of one triangle, whose vertex k's
 // barycentric numerators (edge functions) are edge[k]: with barycentric weights b and
@@ -213,44 +206,6 @@ struct GatheredTerms {
   float edge_dx(std::size_t k, std::size_t l) const { return s.edge_dx[k][l]; }
 };
 
-TriangleTerms triangle_terms(const ScreenTriangle& t) {
-  TriangleTerms terms;
-  terms.area = static_cast<float>(t.double_area);
-  for (std::size_t k = 0; k < 3; ++k) {
-    // Edge k runs from vertex k + 1 to vertex k + 2 (as drawing takes it).
-    const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
-    terms.edge_dy[k] = static_cast<float>(int64_t{t.y[b]} - int64_t{t.y[a]});
-    terms.edge_dx[k] = static_cast<float>(int64_t{t.x[b]} - int64_t{t.x[a]});
-    terms.q[k] = t.inv_w[k];
-    terms.ox[k] = t.texture_offset[k].x;
-    terms.oy[k] = t.texture_offset[k].y;
-    terms.oz[k] = t.texture_offset[k].z;
-    terms.nx[k] = t.normal[k].x;
-    terms.ny[k] = t.normal[k].y;
-    terms.nz[k] = t.normal[k].z;
-  }
-  return terms;
-}
-
-// Vertex k's barycentric numerator, the edge function opposite it, at pixel (x, y)'s centre:
-// an exact integer.
-std::array<int64_t, 3> edge_numerators(const ScreenTriangle& t, int x, int y) {
-  const int64_t px = int64_t{x} * kSubpixelScale + kSubpixelScale / 2;
-  const int64_t py = int64_t{y} * kSubpixelScale + kSubpixelScale / 2;
-  std::array<int64_t, 3> e{};
-  for (std::size_t k = 0; k < 3; ++k) {
-    const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
-    e[k] = edge_function(t.x[a], t.y[a], t.x[b], t.y[b], px, py);
-  }
-  return e;
-}
-
-// Lanes computed for whole blocks (the lanes past `count` are never written out): a vector
-// loop's remainder would otherwise run a lane at a time.
-std::size_t whole_blocks(std::size_t count) {
-  return (count + SurfaceChunk::kBlock - 1) / SurfaceChunk::kBlock * SurfaceChunk::kBlock;
-}
-
 // A run of pixels: the triangle's terms taken once, the pixels across the
 // lanes, written plane by plane.
 void resolve_long_run(const SurfaceRun& run, SurfaceChunk& chunk, const GBufferPlanes& target) {
@@ -260,7 +215,9 @@ void resolve_long_run(const SurfaceRun& run, SurfaceChunk& chunk, const GBufferP
   // numerator is the one its own centre gives.
   const std::array<int64_t, 3> first = edge_numerators(t, run.x, run.y);
   const auto n = static_cast<std::size_t>(run.count);
-  const std::size_t lanes = whole_blocks(n);
+  // Lanes computed for whole blocks (the lanes past `count` are never written out): a vector
+  // loop's remainder would otherwise run a lane at a time.
+  const std::size_t lanes = whole_blocks(n, SurfaceChunk::kBlock);
   for (std::size_t k = 0; k < 3; ++k) {
     const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
     const int64_t e = first[k], de = -(int64_t{t.y[b]} - int64_t{t.y[a]}) * kSubpixelScale;

@@ -48,6 +48,46 @@ struct GBufferPlanes {
   float* footprint;
 };
 
+// One triangle's data for interpolating its attributes, in float (see
+// resolve_surface_runs_target in tile_kernels.cpp): the double area; per vertex k, 1/w, the
+// texture offset and the normal; per edge k (opposite vertex k), its steps.
+struct TriangleTerms {
+  float area;
+  std::array<float, 3> q, ox, oy, oz, nx, ny, nz, edge_dy, edge_dx;
+};
+
+inline TriangleTerms triangle_terms(const ScreenTriangle& t) {
+  TriangleTerms terms;
+  terms.area = static_cast<float>(t.double_area);
+  for (std::size_t k = 0; k < 3; ++k) {
+    // Edge k runs from vertex k + 1 to vertex k + 2 (as drawing takes it).
+    const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+    terms.edge_dy[k] = static_cast<float>(int64_t{t.y[b]} - int64_t{t.y[a]});
+    terms.edge_dx[k] = static_cast<float>(int64_t{t.x[b]} - int64_t{t.x[a]});
+    terms.q[k] = t.inv_w[k];
+    terms.ox[k] = t.texture_offset[k].x;
+    terms.oy[k] = t.texture_offset[k].y;
+    terms.oz[k] = t.texture_offset[k].z;
+    terms.nx[k] = t.normal[k].x;
+    terms.ny[k] = t.normal[k].y;
+    terms.nz[k] = t.normal[k].z;
+  }
+  return terms;
+}
+
+// Vertex k's barycentric numerator, the edge function opposite it, at pixel (x, y)'s centre:
+// an exact integer.
+inline std::array<int64_t, 3> edge_numerators(const ScreenTriangle& t, int x, int y) {
+  const int64_t px = int64_t{x} * kSubpixelScale + kSubpixelScale / 2;
+  const int64_t py = int64_t{y} * kSubpixelScale + kSubpixelScale / 2;
+  std::array<int64_t, 3> e{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+    e[k] = edge_function(t.x[a], t.y[a], t.x[b], t.y[b], px, py);
+  }
+  return e;
+}
+
 // The attributes of up to kCapacity pixels each of its own triangle (the pixels of short
 // runs), perspective-correct as resolve_surface_runs() computes them: the lanes' inputs,
 // gathered from each pixel's triangle, and their results.
@@ -63,6 +103,25 @@ struct SurfaceLanes {
   alignas(64) std::array<Lanes<float>, 3> q, ox, oy, oz, nx, ny, nz;
   // Out: the texture offset from the triangle's origin, the footprint, the unit normal.
   alignas(64) Lanes<float> offset_x, offset_y, offset_z, footprint, normal_x, normal_y, normal_z;
+
+  // Lane l's inputs: pixel (x, y) of triangle t.
+  void set_lane(std::size_t l, const ScreenTriangle& t, int x, int y) {
+    const TriangleTerms terms = triangle_terms(t);
+    const std::array<int64_t, 3> numerators = edge_numerators(t, x, y);
+    for (std::size_t k = 0; k < 3; ++k) {
+      edge[k][l] = static_cast<float>(numerators[k]);
+      edge_dy[k][l] = terms.edge_dy[k];
+      edge_dx[k][l] = terms.edge_dx[k];
+      q[k][l] = terms.q[k];
+      ox[k][l] = terms.ox[k];
+      oy[k][l] = terms.oy[k];
+      oz[k][l] = terms.oz[k];
+      nx[k][l] = terms.nx[k];
+      ny[k][l] = terms.ny[k];
+      nz[k][l] = terms.nz[k];
+    }
+    area[l] = terms.area;
+  }
 };
 void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count);
 

@@ -43,6 +43,15 @@ void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) 
   std::fill_n(target.footprint + i, count, 0.0f);
 }
 
+// GBuffer::flags of a pixel that sees the triangle's surface.
+uint8_t surface_flags(const ScreenTriangle& t) {
+  return static_cast<uint8_t>(GBuffer::kCovered | (t.back_face ? GBuffer::kBackFace : 0));
+}
+
+uint32_t object_id_of(const TileFrame& frame, const ScreenTriangle& t) {
+  return frame.objects[t.object].source->object_id;
+}
+
 // Pixels of short runs (a fine mesh's), each with its own triangle, resolved together in
 // lanes (interpolate_surfaces()): one short run's arithmetic alone would wait on its own
 // divisions. Each lane's triangle data is gathered into arrays first.
@@ -75,38 +84,18 @@ struct SurfaceBatch {
     const auto n = static_cast<std::size_t>(count);
     if (n == 0) return;
     // Per lane: vertex k's barycentric numerator (the edge function opposite it at the pixel
-    // centre) and edge k's steps, already in float, so that the loop below is float arithmetic
+    // centre) and edge k's steps, already in float, so that interpolating is float arithmetic
     // alone (no 64-bit products or conversions) and runs in vector lanes; then vertex k's 1/w,
     // texture offset and normal.
-    SurfaceLanes& s = lanes;
-    for (std::size_t l = 0; l < n; ++l) {
-      const ScreenTriangle& t = *triangle[l];
-      const int64_t px = pixel_centre(x[l]), py = pixel_centre(y[l]);
-      for (std::size_t k = 0; k < 3; ++k) {
-        // Edge k runs from vertex k + 1 to vertex k + 2 (edges_of()).
-        const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
-        const int64_t ax = t.x[a], ay = t.y[a], bx = t.x[b], by = t.y[b];
-        s.edge[k][l] = static_cast<float>(edge_function(ax, ay, bx, by, px, py));
-        s.edge_dy[k][l] = static_cast<float>(by - ay);
-        s.edge_dx[k][l] = static_cast<float>(bx - ax);
-        s.q[k][l] = t.inv_w[k];
-        s.ox[k][l] = t.texture_offset[k].x;
-        s.oy[k][l] = t.texture_offset[k].y;
-        s.oz[k][l] = t.texture_offset[k].z;
-        s.nx[k][l] = t.normal[k].x;
-        s.ny[k][l] = t.normal[k].y;
-        s.nz[k][l] = t.normal[k].z;
-      }
-      s.area[l] = static_cast<float>(t.double_area);
-    }
+    for (std::size_t l = 0; l < n; ++l) lanes.set_lane(l, *triangle[l], x[l], y[l]);
     interpolate_surfaces(lanes, n);
     for (std::size_t l = 0; l < n; ++l) {
       const ScreenTriangle& t = *triangle[l];
       const std::size_t i = index[l];
       target.depth[i] = depth[l];
-      target.flags[i] = GBuffer::kCovered | (t.back_face ? GBuffer::kBackFace : 0);
+      target.flags[i] = surface_flags(t);
       back_faces += t.back_face ? 1 : 0;
-      target.object_id[i] = frame.objects[t.object].source->object_id;
+      target.object_id[i] = object_id_of(frame, t);
       target.texture_position[i] =
           t.texture_origin +
           glm::dvec3(glm::vec3(lanes.offset_x[l], lanes.offset_y[l], lanes.offset_z[l]));
@@ -135,11 +124,9 @@ struct SurfaceRuns {
     __builtin_prefetch(t);
     __builtin_prefetch(reinterpret_cast<const char*>(t) + 64);
     __builtin_prefetch(reinterpret_cast<const char*>(t) + 128);
-    const auto flags =
-        static_cast<uint8_t>(GBuffer::kCovered | (t->back_face ? GBuffer::kBackFace : 0));
     back_faces += t->back_face ? static_cast<uint64_t>(pixels) : 0;
     runs[count++] =
-        SurfaceRun{t, x, y, pixels, i, depth, frame.objects[t->object].source->object_id, flags};
+        SurfaceRun{t, x, y, pixels, i, depth, object_id_of(frame, *t), surface_flags(*t)};
     if (count == kCapacity) write(target);
   }
 
@@ -148,6 +135,126 @@ struct SurfaceRuns {
     resolve_surface_runs({runs.data(), count}, target);
     count = 0;
   }
+};
+
+// One row of the drawn tile, from its first column.
+struct TileRow {
+  int y;
+  std::ptrdiff_t start;  // where pixel (0, y) would be in the target
+  const ScreenTriangle* const* winners;
+  const float* depth;
+};
+
+// Resolving one tile, row by row: what its rows share (the batches of pixels waiting to be
+// resolved, the cap rays of the current rows, the tracer's scratch) and its counts.
+class TileResolve {
+ public:
+  // The tile's columns [x0, x1), from row y0 down. Not an aggregate: the batches and scratch
+  // below stay uninitialised.
+  TileResolve(const TileFrame& frame, GBuffer& gbuffer, int x0, int x1, int y0)
+      : frame_(frame), target_(gbuffer), x0_(x0), x1_(x1), y0_(y0) {
+    if (frame.caps != nullptr) rays_.begin(x0, y0);
+  }
+
+  // Rows in order, from y0 on.
+  void resolve_row(const TileRow& row) {
+    if (frame_.caps != nullptr && row.y > y0_) rays_.next_row();
+    for (int x = x0_; x < x1_;) {
+      // The run of pixels that see the same triangle, or none.
+      const ScreenTriangle* winner = row.winners[x - x0_];
+      int end = x + 1;
+      while (end < x1_ && row.winners[end - x0_] == winner) ++end;
+      if (winner == nullptr) {
+        // A run of empty pixels is written plane by plane (memset-like stores).
+        write_empty(target_, static_cast<std::size_t>(row.start + x),
+                    static_cast<std::size_t>(end - x));
+        x = end;
+        continue;
+      }
+      // Only a frame with caps reads the winner here: its object and facing are on the
+      // triangle's second cache line, which drawing did not load.
+      const ObjectFrame* object =
+          frame_.caps != nullptr ? &frame_.objects[winner->object] : nullptr;
+      if (object == nullptr || !winner->back_face || !object->source->closed) {
+        resolve_surface_run(row, winner, x, end);
+        x = end;
+      } else {
+        x = resolve_cap_run(row, *object, winner, x, end);
+      }
+    }
+  }
+
+  // Resolves what is still batched and adds the tile's counts to `stats`.
+  void finish(RasterStats& stats) {
+    surfaces_.write(target_);
+    pixels_.write(frame_, target_);
+    stats.pixels_covered += covered_;
+    stats.back_face_pixels += surfaces_.back_faces + pixels_.back_faces;
+    stats.cap_rays += cap_rays_;
+    stats.cap_pixels += caps_;
+  }
+
+ private:
+  // Pixels [x, end) of the row, which see `winner`'s surface.
+  void resolve_surface_run(const TileRow& row, const ScreenTriangle* winner, int x, int end) {
+    covered_ += static_cast<uint64_t>(end - x);
+    if (end - x >= kLongRun) {
+      surfaces_.add(frame_, winner, x, row.y, end - x, static_cast<std::size_t>(row.start + x),
+                    row.depth + (x - x0_), target_);
+      return;
+    }
+    for (; x < end; ++x) add_pixel(row, x);
+  }
+
+  void add_pixel(const TileRow& row, int x) {
+    pixels_.add(row.winners[x - x0_], x, row.y, static_cast<std::size_t>(row.start + x),
+                row.depth[x - x0_]);
+    if (pixels_.count == SurfaceBatch::kCapacity) pixels_.write(frame_, target_);
+  }
+
+  // The back of a cut solid from pixel x on, whose winner is `winner`, a back face of
+  // `object` (the same up to `end`): each pixel sees a cap, or (its ray entering no kept
+  // region in front of the camera) the back face. A cap depends on the object alone, so the
+  // run goes on over the object's other back faces and is traced in lanes. Returns its end.
+  int resolve_cap_run(const TileRow& row, const ObjectFrame& object, const ScreenTriangle* winner,
+                      int x, int end) {
+    for (const ScreenTriangle* next = nullptr; end < x1_ &&
+                                               (next = row.winners[end - x0_]) != nullptr &&
+                                               next->back_face && next->object == winner->object;) {
+      ++end;
+    }
+    covered_ += static_cast<uint64_t>(end - x);
+    frame_.caps->trace_run(x, end, row.y, object.texture_from_world, object.source->clip_plane_mask,
+                           rays_, ray_lanes_, cap_lanes_);
+    cap_rays_ += static_cast<uint64_t>(end - x);
+    const CapPixelLanes& cap = cap_lanes_;
+    for (std::size_t k = 0; x < end; ++x, ++k) {
+      if (cap.hit[k] == 0) {
+        add_pixel(row, x);
+        continue;
+      }
+      ++caps_;
+      const auto at = static_cast<std::size_t>(row.start + x);
+      target_.depth[at] = cap.depth[k];
+      target_.flags[at] = GBuffer::kCovered | GBuffer::kCap;
+      target_.object_id[at] = object.source->object_id;
+      target_.texture_position[at] =
+          glm::dvec3(cap.texture_x[k], cap.texture_y[k], cap.texture_z[k]);
+      target_.normal[at] = glm::vec3(cap.normal_x[k], cap.normal_y[k], cap.normal_z[k]);
+      target_.footprint[at] = cap.footprint[k];
+    }
+    return end;
+  }
+
+  const TileFrame& frame_;
+  const GBufferPlanes target_;
+  const int x0_, x1_, y0_;
+  uint64_t covered_ = 0, cap_rays_ = 0, caps_ = 0;
+  CapRayRows rays_;          // of the current row and the next
+  SurfaceRuns surfaces_;     // runs of kLongRun pixels or more
+  SurfaceBatch pixels_;      // the pixels of shorter runs
+  CapRayLanes ray_lanes_;    // scratch of trace_run(), uninitialised
+  CapPixelLanes cap_lanes_;  // likewise
 };
 
 }  // namespace
@@ -242,91 +349,16 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
 
 void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origin_x, int origin_y,
                              RasterStats& stats) const {
-  const GBufferPlanes target(gbuffer);
   const auto width = static_cast<std::ptrdiff_t>(gbuffer.width);
-  uint64_t covered = 0, cap_rays = 0, caps = 0;
-  SurfaceRuns surfaces;  // runs of kLongRun pixels or more
-  SurfaceBatch pixels;   // the pixels of shorter runs
   static_assert(CapRayRows::kColumns >= kTileSize + 1);
-  CapRayRows rays;
-  CapRayLanes ray_lanes;    // scratch of trace_run(), uninitialised
-  CapPixelLanes cap_lanes;  // likewise
-  if (frame.caps != nullptr) rays.begin(x0_, y0_);
+  TileResolve tile(frame, gbuffer, x0_, x1_, y0_);
   for (int y = y0_; y < y1_; ++y) {
-    if (frame.caps != nullptr && y > y0_) rays.next_row();
-    // Where pixel (0, y) would be in the target: x is added below (x >= origin_x).
-    const std::ptrdiff_t row = static_cast<std::ptrdiff_t>(y - origin_y) * width - origin_x;
-    const ScreenTriangle* const* winners = winner_.data() + (y - y0_) * kTileSize;  // from x0_
-    const float* winners_depth = depth_.data() + (y - y0_) * kTileSize;
-    for (int x = x0_; x < x1_; ++x) {
-      const auto i = static_cast<std::size_t>(row + x);
-      const ScreenTriangle* winner = winners[x - x0_];
-      if (winner == nullptr) {
-        // A run of empty pixels is written plane by plane (memset-like stores).
-        int end = x + 1;
-        while (end < x1_ && winners[end - x0_] == nullptr) ++end;
-        write_empty(target, i, static_cast<std::size_t>(end - x));
-        x = end - 1;
-        continue;
-      }
-      // The run of pixels that see the same triangle.
-      int end = x + 1;
-      while (end < x1_ && winners[end - x0_] == winner) ++end;
-      // Only a frame with caps reads the winner here: its object and facing are on the
-      // triangle's second cache line, which drawing did not load.
-      const ObjectFrame* object = frame.caps != nullptr ? &frame.objects[winner->object] : nullptr;
-      if (object == nullptr || !winner->back_face || !object->source->closed) {
-        covered += static_cast<uint64_t>(end - x);
-        if (end - x >= kLongRun) {
-          surfaces.add(frame, winner, x, y, end - x, i, winners_depth + (x - x0_), target);
-          x = end - 1;
-          continue;
-        }
-        for (; x < end; ++x) {
-          pixels.add(winner, x, y, static_cast<std::size_t>(row + x), winners_depth[x - x0_]);
-          if (pixels.count == SurfaceBatch::kCapacity) pixels.write(frame, target);
-        }
-        x = end - 1;
-        continue;
-      }
-      // The back of a cut solid: each pixel sees a cap, or (its ray entering no kept region in
-      // front of the camera) the back face. A cap depends on the object alone, so the run
-      // goes on over the object's other back faces and is traced in lanes.
-      for (const ScreenTriangle* next = nullptr;
-           end < x1_ && (next = winners[end - x0_]) != nullptr && next->back_face &&
-           next->object == winner->object;) {
-        ++end;
-      }
-      covered += static_cast<uint64_t>(end - x);
-      frame.caps->trace_run(x, end, y, object->texture_from_world, object->source->clip_plane_mask,
-                            rays, ray_lanes, cap_lanes);
-      cap_rays += static_cast<uint64_t>(end - x);
-      for (std::size_t k = 0; x < end; ++x, ++k) {
-        const auto at = static_cast<std::size_t>(row + x);
-        const CapPixelLanes& cap = cap_lanes;
-        if (cap.hit[k] == 0) {
-          pixels.add(winners[x - x0_], x, y, at, winners_depth[x - x0_]);
-          if (pixels.count == SurfaceBatch::kCapacity) pixels.write(frame, target);
-          continue;
-        }
-        ++caps;
-        target.depth[at] = cap.depth[k];
-        target.flags[at] = GBuffer::kCovered | GBuffer::kCap;
-        target.object_id[at] = object->source->object_id;
-        target.texture_position[at] =
-            glm::dvec3(cap.texture_x[k], cap.texture_y[k], cap.texture_z[k]);
-        target.normal[at] = glm::vec3(cap.normal_x[k], cap.normal_y[k], cap.normal_z[k]);
-        target.footprint[at] = cap.footprint[k];
-      }
-      x = end - 1;
-    }
+    const auto from = static_cast<std::ptrdiff_t>((y - y0_) * kTileSize);  // pixel (x0_, y)
+    // Where pixel (0, y) would be in the target: x is added to it (x >= origin_x).
+    const std::ptrdiff_t start = static_cast<std::ptrdiff_t>(y - origin_y) * width - origin_x;
+    tile.resolve_row(TileRow{y, start, winner_.data() + from, depth_.data() + from});
   }
-  surfaces.write(target);
-  pixels.write(frame, target);
-  stats.pixels_covered += covered;
-  stats.back_face_pixels += surfaces.back_faces + pixels.back_faces;
-  stats.cap_rays += cap_rays;
-  stats.cap_pixels += caps;
+  tile.finish(stats);
 }
 
 }  // namespace soltex::raster_internal

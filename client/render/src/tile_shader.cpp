@@ -37,24 +37,26 @@ const std::array<uint8_t, 3 * TileShader::kTile>& background_row() {
 
 }  // namespace
 
+inline void TileShader::use_cached_object(const ObjectShading& object, TextureSampler& sampler,
+                                          Image& image) {
+  if (cached_.pending != 0 && cached_.object != &object) look_up_all(image);
+  cached_.object = &object;
+  cached_.sampler = &sampler;
+}
+
 // Inline: shade() calls it for most pixels of a frame.
 inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
                                    const ObjectShading& object, TextureSampler& sampler,
                                    Image& image) {
-  if (cached_.pending != 0 && cached_.object != &object) look_up_all(image);
-  cached_.object = &object;
-  cached_.sampler = &sampler;
+  use_cached_object(object, sampler, image);
   const auto l = static_cast<std::size_t>(level);
   SOLTEX_DCHECK(l < CachedPixels::kLevels);
   CachedPixels::Group& group = cached_.groups[l];
-  // The count read once: a store of the pixel's size_t index may alias it, and would make the
-  // compiler read it back from memory.
-  const std::size_t count = group.count;
-  group.pixels[count] = pixel;
-  group.points[count] = p;
-  group.count = count + 1;
+  std::size_t count = group.count;
+  const bool full = group.push(count, pixel, p);
+  group.count = count;
   cached_.pending |= 1u << l;
-  if (count + 1 == CachedPixels::kCapacity) look_up(level, image);
+  if (full) look_up(level, image);
 }
 
 // The fast path's pixels [x_begin, x_end) of row y, all of `object`, pixel x_begin at `first`
@@ -64,9 +66,7 @@ inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
 void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y, std::size_t first,
                                 const ObjectShading& object, TextureSampler& sampler,
                                 Image& image) {
-  if (cached_.pending != 0 && cached_.object != &object) look_up_all(image);
-  cached_.object = &object;
-  cached_.sampler = &sampler;
+  use_cached_object(object, sampler, image);
   const NearestLevelTable& table = object.level_table;
   CachedPixels::Group* group = nullptr;
   int level = -1;
@@ -82,9 +82,7 @@ void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y,
       count = group->count;
       cached_.pending |= 1u << l;
     }
-    group->pixels[count] = Pixel{x, y, i};
-    group->points[count] = g.texture_position[i];
-    if (++count == CachedPixels::kCapacity) {
+    if (group->push(count, Pixel{x, y, i}, g.texture_position[i])) {
       group->count = count;
       look_up(level, image);
       group = nullptr;

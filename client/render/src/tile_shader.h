@@ -106,6 +106,15 @@ class TileShader {
       std::size_t count = 0;
       std::array<Pixel, kCapacity> pixels;
       std::array<glm::dvec3, kCapacity> points;
+
+      // Adds a pixel at `at`, the group's count as the caller holds it (a store of the pixel's
+      // size_t index may alias `count`, which would then be read back from memory), and moves
+      // `at` on; returns whether that filled the group, which is then due for look_up().
+      bool push(std::size_t& at, Pixel pixel, const glm::dvec3& p) {
+        pixels[at] = pixel;
+        points[at] = p;
+        return ++at == kCapacity;
+      }
     };
     const ObjectShading* object = nullptr;
     TextureSampler* sampler = nullptr;
@@ -114,6 +123,8 @@ class TileShader {
     std::array<SampleResult, kCapacity> results;
   };
   void shade_evaluated(const GBuffer& g, Pixel pixel, const ObjectShading& object, Image& image);
+  // The cached pixels that follow are `object`'s: those of another object are looked up first.
+  void use_cached_object(const ObjectShading& object, TextureSampler& sampler, Image& image);
   void add_cached(Pixel pixel, const glm::dvec3& p, int level, const ObjectShading& object,
                   TextureSampler& sampler, Image& image);
   void add_cached_run(const GBuffer& g, int x_begin, int x_end, int y, std::size_t first,
