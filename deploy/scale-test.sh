@@ -149,10 +149,10 @@ check "the two pictures are identical" cmp -s "$work/first.png" "$work/second.pn
 echo "-- 2. one soltexd killed mid-run: clients reconnect through nginx and converge"
 # Supersampled bricks at 2^10 over a 1280x720 frame: a few seconds of work for the cluster.
 phase2=(10 1280 720 --mip supersampled)
-# Kill a replica while it carries clients' main streams. Each client first opens a short
-# stream to probe the link, then its main stream, which stays open until that client has every
-# brick. Once six streams were opened in this phase and three are open, the open ones are the
-# three main streams, each still short of its frame; the victim is the replica with most of them.
+# Kill a replica while it carries clients' main streams. A client of a loopback address (nginx
+# here) probes no link: it opens one stream, which stays open until that client has every
+# brick. Once three streams were opened in this phase and three are open, they are the three
+# clients' streams, each still short of its frame; the victim is the replica with most of them.
 # (A deep queue is no proof: a fast client may already hold what it needs while cancelled wants
 # still sit in the replica's queue.)
 stream_counts() {  # stream_counts R: "OPENED_TOTAL OPEN" for replica R
@@ -173,7 +173,7 @@ for _ in $(seq 1 600); do
     opened_sum=$((opened_sum + opened - opened_before[r])) open_sum=$((open_sum + open))
     if [ "$open" -gt "$busiest" ]; then busiest=$open candidate=$r; fi
   done
-  if [ "$opened_sum" -ge 6 ] && [ "$open_sum" -eq 3 ]; then victim=$candidate victim_streams=$busiest; break; fi
+  if [ "$opened_sum" -ge 3 ] && [ "$open_sum" -eq 3 ]; then victim=$candidate victim_streams=$busiest; break; fi
   sleep 0.005
 done
 if [ -n "$victim" ]; then
