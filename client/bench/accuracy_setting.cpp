@@ -10,12 +10,7 @@ std::string CodecChoice::name() const {
 }
 
 CodecOptions CodecChoice::options() const {
-  CodecOptions options;
-  options.codec = codec;
-  options.zstd_level = zstd_level;
-  // As soltexd encodes: the predictor only helps a compressor, and raw has none.
-  options.filter = codec != Codec::raw;
-  return options;
+  return served_codec_options(codec, zstd_level);  // as soltexd encodes
 }
 
 std::string octaves_name(const std::optional<int>& octave_cap) {

@@ -107,9 +107,8 @@ void print_reference(const ViewOptions& options, const Scene& scene, const ViewS
 int run_headless(const ViewOptions& options, const Scene& scene, ViewSetup& setup,
                  StartupTimeline* timeline) {
   mark_on(timeline, "cache and brick source ready");
-  const TextureResolution resolution{setup.choice.finest_level_log2, options.brick_size,
-                                     MipSettings{options.mip_mode(), 2}};
-  const PreparedScene prepared = prepare_scene(scene, resolution, *setup.source);
+  const PreparedScene prepared = prepare_scene(
+      scene, options.texture_resolution(setup.choice.finest_level_log2), *setup.source);
   mark_on(timeline, "scene prepared, textures registered");
   FrameRenderer renderer(*setup.cache, options.render_options());
 

@@ -111,10 +111,9 @@ int run(const view::ViewOptions& options, const CLI::App& app,
          {"--out", "--exact", "--reference", "--supersample", "--max-time-s", "--timeline"}) {
       if (app.count(option) > 0) spdlog::warn("{} applies to --headless only; ignored", option);
     }
-    const TextureResolution resolution{setup.choice.finest_level_log2, options.brick_size,
-                                       MipSettings{options.mip_mode(), 2}};
-    return run_window(scene, resolution, *setup.cache, *setup.source, options.render_options(),
-                      setup.choice, options.window_frames, options.screenshot);
+    return run_window(scene, options.texture_resolution(setup.choice.finest_level_log2),
+                      *setup.cache, *setup.source, options.render_options(), setup.choice,
+                      options.window_frames, options.screenshot);
   }
 #else
   (void)app;

@@ -95,6 +95,12 @@ void add_picture_options(CLI::App& app, ViewOptions& o) {
       ->check(CLI::Range(0, 16384));
 }
 
+MipMode mip_mode(const std::string& mip_name) {
+  if (mip_name == "point") return MipMode::point;
+  if (mip_name == "supersampled") return MipMode::supersampled;
+  return MipMode::band_limited;
+}
+
 }  // namespace
 
 std::optional<Codec> ViewOptions::forced_codec() const {
@@ -104,10 +110,8 @@ std::optional<Codec> ViewOptions::forced_codec() const {
   return std::nullopt;  // auto: the link's choice
 }
 
-MipMode ViewOptions::mip_mode() const {
-  if (mip_name == "point") return MipMode::point;
-  if (mip_name == "supersampled") return MipMode::supersampled;
-  return MipMode::band_limited;
+TextureResolution ViewOptions::texture_resolution(int finest_level_log2) const {
+  return TextureResolution{finest_level_log2, brick_size, MipSettings{mip_mode(mip_name), 2}};
 }
 
 RenderOptions ViewOptions::render_options() const {

@@ -8,6 +8,7 @@
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/brick_evaluator.h"
 #include "soltex/render/frame_renderer.h"
+#include "soltex/render/prepared_scene.h"
 
 namespace soltex::view {
 
@@ -43,7 +44,9 @@ struct ViewOptions {
 
   // --codec's codec; none for auto (the link's choice).
   std::optional<Codec> forced_codec() const;
-  MipMode mip_mode() const;
+  // The textures' volumes at `finest_level_log2` (the capability's choice, or --finest-level),
+  // in --brick-size bricks with --mip's levels.
+  TextureResolution texture_resolution(int finest_level_log2) const;
   // The renderer's settings named on the command line.
   RenderOptions render_options() const;
 };

@@ -75,8 +75,7 @@ EncodedBrickPtr BrickProducer::evaluate(const WorkItem& item) {
   evaluate_brick(texture.evaluator, texture.layout, item.key.level, item.key.brick, texture.mip,
                  samples);
   const auto evaluated = std::chrono::steady_clock::now();
-  // Raw bricks skip the predictor: it only helps a compressor, and the client would undo it.
-  const CodecOptions options{item.codec, zstd_level_, item.codec != Codec::raw};
+  const CodecOptions options = served_codec_options(item.codec, zstd_level_);
   thread_local std::vector<uint8_t> buffer;
   const std::span<const uint8_t> encoded =
       encode_brick_samples(samples, texture.layout.brick_size(), channels, options, buffer);

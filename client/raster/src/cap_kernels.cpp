@@ -15,13 +15,11 @@
 #include <cstddef>
 #include <limits>
 
+#include "finite_lane.h"
+
 #ifndef SOLTEX_CAP_KERNELS_SHARED
 #define SOLTEX_CAP_KERNELS_SHARED
 namespace soltex::raster_internal::cap_kernels_detail {
-
-inline bool finite(double v) {
-  return std::fabs(v) <= std::numeric_limits<double>::max();  // std::isfinite, as a compare
-}
 
 // glm's mat4 * vec4, component c: (m0 x + m1 y) + (m2 z + m3 w).
 inline double row_product(const glm::dmat4& m, int c, double x, double y, double z, double w) {
@@ -39,7 +37,6 @@ inline double plane_dot(const glm::dvec4& p, double x, double y, double z) {
 HWY_BEFORE_NAMESPACE();
 namespace soltex::raster_internal::HWY_NAMESPACE {
 
-using cap_kernels_detail::finite;
 using cap_kernels_detail::plane_dot;
 using cap_kernels_detail::row_product;
 
@@ -78,7 +75,7 @@ inline double neighbour_distance(const glm::dmat4& t, double a, double b, double
   const double dx = rays.direction_x[l], dy = rays.direction_y[l], dz = rays.direction_z[l];
   const double along = (a * dx + b * dy) + c * dz;
   const double along_t = -(((a * ox + b * oy) + c * oz) + w) / along;
-  const bool meets = (along != 0.0) & finite(along_t);
+  const bool meets = (along != 0.0) & finite_lane(along_t);
   const double vx = (ox + along_t * dx) - point_x;
   const double vy = (oy + along_t * dy) - point_y;
   const double vz = (oz + along_t * dz) - point_z;
@@ -161,7 +158,7 @@ void trace_cap_lanes_target(const CapFrame& f, CapPixelLanes& p, std::size_t cou
   const auto none = static_cast<double>(f.plane_count);
   for (std::size_t l = 0; l < count; ++l) {
     const double entry = entries.entry[l];
-    const bool hit = (entries.missed[l] == 0.0) & (entries.plane[l] != none) & finite(entry);
+    const bool hit = (entries.missed[l] == 0.0) & (entries.plane[l] != none) & finite_lane(entry);
     p.hit[l] = hit ? 1 : 0;
     const double point_x = p.own.origin_x[l] + entry * p.own.direction_x[l];
     const double point_y = p.own.origin_y[l] + entry * p.own.direction_y[l];

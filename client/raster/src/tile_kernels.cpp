@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <limits>
 
+#include "finite_lane.h"
 #include "tile_rasterizer.h"
 #include "whole_blocks.h"
 
@@ -27,17 +28,12 @@ namespace soltex::raster_internal::tile_kernels_detail {
 
 constexpr float kFarDepth = 1.0f;
 
-inline bool finite(float v) {
-  return std::fabs(v) <= std::numeric_limits<float>::max();  // std::isfinite, as a compare
-}
-
 }  // namespace soltex::raster_internal::tile_kernels_detail
 #endif
 
 HWY_BEFORE_NAMESPACE();
 namespace soltex::raster_internal::HWY_NAMESPACE {
 
-using tile_kernels_detail::finite;
 using tile_kernels_detail::kFarDepth;
 
 void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float* depth_plane,
@@ -140,7 +136,7 @@ void interpolate(const Terms& t, Lanes& s, std::size_t count) {
       my += weight_q * t.ny(k, l);
       mz += weight_q * t.nz(k, l);
     }
-    const bool has_q = (sum_q > 0.0f) & finite(sum_q);
+    const bool has_q = (sum_q > 0.0f) & finite_lane(sum_q);
     const float inv_q = 1.0f / sum_q;
     const float cx = sx * inv_q, cy = sy * inv_q, cz = sz * inv_q;
     const float ddx_x = (dx_x - cx * dq_dx) * inv_q;
@@ -153,7 +149,7 @@ void interpolate(const Terms& t, Lanes& s, std::size_t count) {
     const float along_y = (ddy_x * ddy_x + ddy_y * ddy_y) + ddy_z * ddy_z;
     const float size = std::sqrt(along_x < along_y ? along_y : along_x);  // std::max
     // Non-finite offsets only come from absurd inputs: stay at a vertex, never NaN.
-    const bool keep = has_q & finite(cx) & finite(cy) & finite(cz);
+    const bool keep = has_q & finite_lane(cx) & finite_lane(cy) & finite_lane(cz);
     constexpr float kInfinity = std::numeric_limits<float>::infinity();
     s.offset_x[l] = keep ? cx : 0.0f;
     s.offset_y[l] = keep ? cy : 0.0f;
@@ -165,7 +161,7 @@ void interpolate(const Terms& t, Lanes& s, std::size_t count) {
     const float length = std::sqrt((mx * mx + my * my) + mz * mz);
     const float fx = t.nx(0, l), fy = t.ny(0, l), fz = t.nz(0, l);
     const float fallback_length = std::sqrt((fx * fx + fy * fy) + fz * fz);
-    const bool has_sum = (length > 0.0f) & finite(length);
+    const bool has_sum = (length > 0.0f) & finite_lane(length);
     const bool has_fallback = fallback_length > 0.0f;
     const float ux = has_fallback ? fx / fallback_length : 0.0f;
     const float uy = has_fallback ? fy / fallback_length : 0.0f;

@@ -55,6 +55,12 @@ struct CodecOptions {
   bool filter = true;  // apply kBrickCodecFilter before compressing
 };
 
+// The options soltexd encodes `codec` with: the predictor only for a compressor, which it
+// helps; a raw brick without it, which a client would only have to undo.
+inline CodecOptions served_codec_options(Codec codec, int zstd_level) {
+  return CodecOptions{codec, zstd_level, codec != Codec::raw};
+}
+
 // The predictor the codec applies when CodecOptions::filter is set: the 3D Lorenzo predictor
 // compressed real bricks best (docs/PERFORMANCE.md, "Brick codec").
 inline constexpr BrickFilter kBrickCodecFilter = BrickFilter::gradient_3d;
