@@ -255,29 +255,39 @@ std::function<void()> BrickStream::take() {
   }
   if (items.empty()) return {};
   return [self = shared_from_this(), items = std::move(items)] {
+    const bool in_run = items.size() > 1;
+    if (in_run) self->begin_run(items.size());
     for (const WorkItem& item : items) {
-      if (self->let_go_if_gone()) continue;  // cancelled mid-run: none of the rest is wanted
+      if (self->let_go_if_gone(in_run)) continue;  // cancelled mid-run: none of the rest is wanted
       // Measured here, not when the run was taken: a run's later bricks wait on this worker
       // behind its earlier ones, and that wait belongs to no other stage.
       self->context_.metrics.record(BrickStage::queue_wait,
                                     std::chrono::steady_clock::now() - item.enqueued);
-      self->context_.producer.produce(
-          item, [self, item](const EncodedBrickPtr& brick) { self->deliver(item, brick); });
+      self->context_.producer.produce(item, [self, item, in_run](const EncodedBrickPtr& brick) {
+        self->deliver(item, brick, in_run);
+      });
     }
   };
 }
 
-bool BrickStream::let_go_if_gone() {
+void BrickStream::begin_run(std::size_t bricks) {
+  std::lock_guard lock(mutex_);
+  run_unmade_ += bricks;
+}
+
+bool BrickStream::let_go_if_gone(bool in_run) {
   std::lock_guard lock(mutex_);
   if (!cancelled_ && !shutting_down_ && !finished_) return false;
+  if (in_run) --run_unmade_;
   queue_.finished();
   context_.metrics.bricks_cancelled.fetch_add(1, std::memory_order_relaxed);
   pump();
   return true;
 }
 
-void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick) {
+void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick, bool in_run) {
   std::lock_guard lock(mutex_);
+  if (in_run) --run_unmade_;
   queue_.finished();
   if (brick) {
     outbox_.push_back(
@@ -287,6 +297,12 @@ void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick) {
               "evaluating " + describe(to_proto(item.key)) + " failed (see the server log)");
   }
   pump();
+}
+
+bool BrickStream::held_for_run() const {
+  // A run's bricks share one message, however long the run takes on a loaded machine: the run
+  // is bounded (run_bricks), and its last delivery sends the message, so no timer is needed.
+  return run_unmade_ > 0 && outbox_.size() < context_.limits.coalesce_bricks && !shutting_down_;
 }
 
 bool BrickStream::hold_back() const {
@@ -397,8 +413,9 @@ void BrickStream::pump() {
   const StreamLimits& limits = context_.limits;
 
   const bool can_write = !writing_ && !outbox_.empty() && !cancelled_;
-  const bool held = can_write && hold_back();
-  if (held) pump_when_wait_ends();
+  const bool held_by_run = can_write && held_for_run();
+  const bool held = held_by_run || (can_write && hold_back());
+  if (held && !held_by_run) pump_when_wait_ends();
   if (can_write && !held) write_outbox();
 
   // Backpressure: read on only while a whole request would still fit, counting every brick

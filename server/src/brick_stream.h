@@ -38,8 +38,10 @@ struct StreamLimits {
   // While more streams wait for a worker than there are workers, a stream's turn makes up to
   // this many of its bricks, one after the other, instead of one: its turn comes round seldom,
   // and bricks made one a turn would each travel alone, a message costing both ends about as
-  // much CPU as a quarter of a cold brick. Every stream still gets the same share.
-  uint32_t run_bricks = 8;
+  // much CPU as a quarter of a cold brick. Every stream still gets the same share. A run's
+  // bricks go in one message however long the run takes (the coalesce wait does not cut it),
+  // so this also bounds how long a run's first brick waits for its last.
+  uint32_t run_bricks = 16;
 };
 
 // Everything one StreamBricks call needs, shared between the gRPC reactor (gRPC threads) and
@@ -95,10 +97,12 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   void on_done();
 
   // Worker callbacks.
-  void deliver(const WorkItem& item, const EncodedBrickPtr& brick);
+  // in_run: the item is one of a run's (take()), counted in run_unmade_ until delivered.
+  void deliver(const WorkItem& item, const EncodedBrickPtr& brick, bool in_run);
   // Whether the stream sends no more bricks (cancelled, shutting down, finished); if so, lets go
   // of one taken item without making it, counted as cancelled.
-  bool let_go_if_gone();
+  bool let_go_if_gone(bool in_run);
+  void begin_run(std::size_t bricks);  // a worker starts making a run of this many bricks
 
   // All below: mutex_ held.
   std::size_t accept_request();  // returns how many keys were queued
@@ -112,6 +116,7 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   void write_outbox();         // starts the write of the next message from the outbox
   void pump();                 // start the next read, write or finish, whichever is due
   std::size_t owed() const;    // bricks queued, in production or waiting to be written
+  bool held_for_run() const;   // whether the outbox waits for the rest of a run being made
   bool hold_back() const;      // whether the outbox should wait for more bricks (coalescing)
   void pump_when_wait_ends();  // arms coalesce_timer_ for the outbox's oldest brick
 
@@ -148,6 +153,8 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   // Sends a held-back message when its wait ends, should no delivery come first to do it.
   boost::asio::steady_timer coalesce_timer_;
   bool coalesce_timer_armed_ = false;
+  // Bricks of runs being made on workers and not yet delivered (or let go).
+  std::size_t run_unmade_ = 0;
 
   // Totals for the close log line.
   uint64_t batches_sent_ = 0;
