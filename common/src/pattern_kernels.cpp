@@ -31,6 +31,7 @@
 #include <hwy/highway.h>
 
 #include "fractal_point-inl.h"
+#include "grid_row_lanes-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace soltex::pattern_kernels::HWY_NAMESPACE {
@@ -180,6 +181,10 @@ struct RowFields {
                    [&](const TurbulenceParams&) { fractal_field(); },
                    [&](const MarbleParams& m) {
                      fractal_rows->sum(y, z, {field, nx});
+                     if (m.ripple == Ripple::axis) {
+                       MarbleAxisRow(m, xs.data(), y, z, box, field, nx);
+                       return;
+                     }
                      for (std::size_t i = 0; i < nx; ++i) {
                        const glm::dvec3 p(xs[i], y, z);
                        field[i] = fields::marble(m, fields::ripple(m, p), field[i],
@@ -237,13 +242,17 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
                             scratch.cube_red.data()};
 
   const ChannelSet& wanted = spec.channels;
+  const bool ramp_in_lanes = !is_cube && !spec.ramp.keys.empty();
   std::size_t row_start = 0;
   for (int k = 0; k < grid.count.z; ++k) {
     for (int j = 0; j < grid.count.y; ++j, row_start += nx) {
       const glm::dvec3 row_origin = grid.point(0, j, k);
       row_field(row_origin.y, row_origin.z);
       float* plane = out.data() + row_start;
-      if (wanted.colour) {
+      if (wanted.colour && ramp_in_lanes) {
+        RampRow(spec.ramp, field, nx, plane, plane + n, plane + 2 * n);
+        plane += 3 * n;
+      } else if (wanted.colour) {
         for (std::size_t i = 0; i < nx; ++i) {
           const glm::vec3 c = is_cube ? colour[i] : spec.ramp.at(field[i]);
           plane[i] = c.r;
