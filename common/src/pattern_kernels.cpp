@@ -125,6 +125,7 @@ struct RowScratch {
   std::vector<glm::vec3> colour;
   std::vector<double> checker_x;
   std::vector<float> cube_red;
+  std::vector<double> wood;  // WoodRow's scratch, 3 per point of a row
 };
 
 // One row's field (and the colour cube's colours) at (xs[i], y, z).
@@ -139,6 +140,7 @@ struct RowFields {
   glm::vec3* colour;
   const double* checker_x;  // fields::checker_factor along x at xs, for a checker
   const float* cube_red;    // fields::colour_cube_channel along x at xs, for a colour cube
+  double* wood_scratch;     // 3 * xs.size() doubles, for wood
 
   void operator()(double y, double z) const {
     const std::size_t nx = xs.size();
@@ -172,10 +174,8 @@ struct RowFields {
                      each_point([&](const glm::dvec3& p) { return fields::rings(r, p, box); });
                    },
                    [&](const WoodParams& w) {
-                     const fields::WoodRotation rotation = fields::wood_rotation(w, y);
-                     each_point([&](const glm::dvec3& p) {
-                       return fields::wood(w, frame, rotation, p, box);
-                     });
+                     WoodRow(w, frame, fields::wood_rotation(w, y), xs.data(), y, z, box,
+                             wood_scratch, field, nx);
                    },
                    [&](const NoiseParams&) { fractal_field(); },
                    [&](const TurbulenceParams&) { fractal_field(); },
@@ -196,7 +196,8 @@ struct RowFields {
   }
 };
 
-// The x tables of the separable patterns (RowScratch::checker_x, cube_red), once per grid.
+// The x tables of the separable patterns (RowScratch::checker_x, cube_red), once per grid, and
+// wood's scratch.
 void fill_separable_x(const Pattern& pattern, std::span<const double> xs, const glm::dvec3& box,
                       RowScratch& scratch) {
   if (const auto* c = std::get_if<CheckerParams>(&pattern)) {
@@ -209,6 +210,8 @@ void fill_separable_x(const Pattern& pattern, std::span<const double> xs, const 
     for (std::size_t i = 0; i < xs.size(); ++i) {
       scratch.cube_red[i] = fields::colour_cube_channel(*cube, xs[i], box.x);
     }
+  } else if (std::holds_alternative<WoodParams>(pattern)) {
+    scratch.wood.resize(3 * xs.size());
   }
 }
 
@@ -239,7 +242,8 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
                             field,
                             colour,
                             scratch.checker_x.data(),
-                            scratch.cube_red.data()};
+                            scratch.cube_red.data(),
+                            scratch.wood.data()};
 
   const ChannelSet& wanted = spec.channels;
   const bool ramp_in_lanes = !is_cube && !spec.ramp.keys.empty();
