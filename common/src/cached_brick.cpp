@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "channel_interleave.h"
+
 namespace soltex {
 namespace {
 
@@ -42,12 +44,7 @@ CachedBrick::CachedBrick(int brick_size, int channels, std::span<const uint8_t> 
   sample_bytes_ = sample_bytes(brick_size, channels);
   // Value-initialised, so the padding read by the 8-byte row loads is defined.
   samples_ = std::make_unique<uint8_t[]>(sample_bytes_);
-  uint8_t* out = samples_.get();
-  for (std::size_t i = 0; i < plane; ++i) {
-    for (int c = 0; c < channels; ++c) {
-      *out++ = planar[static_cast<std::size_t>(c) * plane + i];
-    }
-  }
+  interleave_channels(planar.data(), plane, channels, samples_.get());
 }
 
 void CachedBrick::trilinear_other(const glm::ivec3& cell, const glm::vec3& frac, float* out) const {

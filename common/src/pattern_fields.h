@@ -170,18 +170,20 @@ inline double ripple_width(const MarbleParams& m, const glm::dvec3& p, const glm
 // period before the multiplication by 2 pi, so far-away points keep their precision. Over a
 // box the ripple spans 2 pi ripple_width radians, and the box average of sin over a span 2h is
 // sin times sin(h) / h: ripples finer than the box fade to the mean, 0.5.
+// The box average's factor on the sine, sin(h) / h over the ripple's half span h. A ripple
+// along an axis has the same width everywhere on a grid, so a grid makes it once.
+inline double marble_fade(double ripple_width) {
+  const double half_span = std::numbers::pi * ripple_width;
+  if (!(half_span < waves::kMeanWidth)) return 0.0;  // also NaN
+  if (half_span > 1e-4) return portable_sin(half_span) / half_span;
+  return 1.0;
+}
+
 inline float marble(const MarbleParams& m, double ripple_value, float turbulence,
                     double ripple_width) {
   const double phase =
       2.0 * std::numbers::pi * fract(ripple_value) + m.amplitude * static_cast<double>(turbulence);
-  const double half_span = std::numbers::pi * ripple_width;
-  double fade = 1.0;
-  if (!(half_span < waves::kMeanWidth)) {
-    fade = 0.0;  // also NaN
-  } else if (half_span > 1e-4) {
-    fade = portable_sin(half_span) / half_span;
-  }
-  return static_cast<float>(0.5 + 0.5 * (portable_sin(phase) * fade));
+  return static_cast<float>(0.5 + 0.5 * (portable_sin(phase) * marble_fade(ripple_width)));
 }
 
 }  // namespace soltex::fields

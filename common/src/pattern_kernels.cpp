@@ -31,6 +31,7 @@
 #include <hwy/highway.h>
 
 #include "fractal_point-inl.h"
+#include "grid_row_lanes-inl.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace soltex::pattern_kernels::HWY_NAMESPACE {
@@ -124,6 +125,8 @@ struct RowScratch {
   std::vector<glm::vec3> colour;
   std::vector<double> checker_x;
   std::vector<float> cube_red;
+  std::vector<double> wood;                          // WoodRow's scratch, 3 per point of a row
+  std::vector<fields::WoodRotation> wood_rotations;  // per y index: wood's rotation about y
 };
 
 // One row's field (and the colour cube's colours) at (xs[i], y, z).
@@ -138,8 +141,11 @@ struct RowFields {
   glm::vec3* colour;
   const double* checker_x;  // fields::checker_factor along x at xs, for a checker
   const float* cube_red;    // fields::colour_cube_channel along x at xs, for a colour cube
+  double* wood_scratch;     // 3 * xs.size() doubles, for wood
+  const fields::WoodRotation* wood_rotations;  // by the row's y index, for wood
 
-  void operator()(double y, double z) const {
+  // The row at y index j: (xs[i], y, z).
+  void operator()(int j, double y, double z) const {
     const std::size_t nx = xs.size();
     const auto each_point = [&](auto&& fn) {
       for (std::size_t i = 0; i < nx; ++i) field[i] = fn(glm::dvec3(xs[i], y, z));
@@ -171,15 +177,17 @@ struct RowFields {
                      each_point([&](const glm::dvec3& p) { return fields::rings(r, p, box); });
                    },
                    [&](const WoodParams& w) {
-                     const fields::WoodRotation rotation = fields::wood_rotation(w, y);
-                     each_point([&](const glm::dvec3& p) {
-                       return fields::wood(w, frame, rotation, p, box);
-                     });
+                     WoodRow(w, frame, wood_rotations[j], xs.data(), y, z, box, wood_scratch, field,
+                             nx);
                    },
                    [&](const NoiseParams&) { fractal_field(); },
                    [&](const TurbulenceParams&) { fractal_field(); },
                    [&](const MarbleParams& m) {
                      fractal_rows->sum(y, z, {field, nx});
+                     if (m.ripple == Ripple::axis) {
+                       MarbleAxisRow(m, xs.data(), y, z, box, field, nx);
+                       return;
+                     }
                      for (std::size_t i = 0; i < nx; ++i) {
                        const glm::dvec3 p(xs[i], y, z);
                        field[i] = fields::marble(m, fields::ripple(m, p), field[i],
@@ -191,7 +199,8 @@ struct RowFields {
   }
 };
 
-// The x tables of the separable patterns (RowScratch::checker_x, cube_red), once per grid.
+// The x tables of the separable patterns (RowScratch::checker_x, cube_red), once per grid, and
+// wood's scratch.
 void fill_separable_x(const Pattern& pattern, std::span<const double> xs, const glm::dvec3& box,
                       RowScratch& scratch) {
   if (const auto* c = std::get_if<CheckerParams>(&pattern)) {
@@ -204,6 +213,8 @@ void fill_separable_x(const Pattern& pattern, std::span<const double> xs, const 
     for (std::size_t i = 0; i < xs.size(); ++i) {
       scratch.cube_red[i] = fields::colour_cube_channel(*cube, xs[i], box.x);
     }
+  } else if (std::holds_alternative<WoodParams>(pattern)) {
+    scratch.wood.resize(3 * xs.size());
   }
 }
 
@@ -221,6 +232,14 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
   for (std::size_t i = 0; i < nx; ++i) scratch.x[i] = grid.point(static_cast<int>(i), 0, 0).x;
   const std::span<const double> xs(scratch.x.data(), nx);
   fill_separable_x(spec.pattern, xs, box, scratch);
+  // Wood's rotation about y depends on y alone: once per y index, not once per row.
+  if (const auto* w = std::get_if<WoodParams>(&spec.pattern)) {
+    scratch.wood_rotations.resize(static_cast<std::size_t>(grid.count.y));
+    for (int j = 0; j < grid.count.y; ++j) {
+      scratch.wood_rotations[static_cast<std::size_t>(j)] =
+          fields::wood_rotation(*w, grid.point(0, j, 0).y);
+    }
+  }
   float* field = scratch.field.data();
   glm::vec3* colour = scratch.colour.data();
   std::optional<FractalRows> fractal_rows;
@@ -234,16 +253,22 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
                             field,
                             colour,
                             scratch.checker_x.data(),
-                            scratch.cube_red.data()};
+                            scratch.cube_red.data(),
+                            scratch.wood.data(),
+                            scratch.wood_rotations.data()};
 
   const ChannelSet& wanted = spec.channels;
+  const bool ramp_in_lanes = !is_cube && !spec.ramp.keys.empty();
   std::size_t row_start = 0;
   for (int k = 0; k < grid.count.z; ++k) {
     for (int j = 0; j < grid.count.y; ++j, row_start += nx) {
       const glm::dvec3 row_origin = grid.point(0, j, k);
-      row_field(row_origin.y, row_origin.z);
+      row_field(j, row_origin.y, row_origin.z);
       float* plane = out.data() + row_start;
-      if (wanted.colour) {
+      if (wanted.colour && ramp_in_lanes) {
+        RampRow(spec.ramp, field, nx, plane, plane + n, plane + 2 * n);
+        plane += 3 * n;
+      } else if (wanted.colour) {
         for (std::size_t i = 0; i < nx; ++i) {
           const glm::vec3 c = is_cube ? colour[i] : spec.ramp.at(field[i]);
           plane[i] = c.r;

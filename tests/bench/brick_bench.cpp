@@ -7,6 +7,8 @@
 
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/brick_evaluator.h"
+#include "soltex/scene/default_scene.h"
+#include "soltex/scene/texture_volume.h"
 
 namespace {
 
@@ -63,6 +65,33 @@ void BrickArguments(benchmark::internal::Benchmark* b) {
 }
 
 BENCHMARK(BM_EvaluateBrick)->Apply(BrickArguments)->ArgNames({"pattern", "level", "mip"});
+
+// The default scene's textures as soltexd evaluates them for soltex-view's cold start: the
+// object's spec and texture volume at the client's finest level 2^8 (soltex-view's choice for
+// the default scene), B = 16, band-limited, level 0 or 1 (nearly all of the start's bricks),
+// the bricks of the level's cube in turn. object: 0 marble sphere, 1 wood torus, 2 checker box,
+// 3 turbulence floor.
+void BM_DefaultSceneBrick(benchmark::State& state) {
+  static const Scene scene = default_scene();
+  const SceneObject& object = scene.objects.at(static_cast<std::size_t>(state.range(0)));
+  const TextureEvaluator texture(object.material.texture);
+  const BrickLayout layout(texture_volume(object, 8), 16);
+  const int level = static_cast<int>(state.range(1));
+  const MipSettings mip{MipMode::band_limited, 2};
+  std::vector<float> out(static_cast<std::size_t>(layout.samples_per_brick()) * 3);
+  const int bricks = layout.bricks_per_axis(level);
+  int next = 0;
+  for (auto _ : state) {
+    const int b = next++ % (bricks * bricks * bricks);
+    evaluate_brick(texture, layout, level,
+                   {b % bricks, (b / bricks) % bricks, b / (bricks * bricks)}, mip, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetLabel(object.name + " level " + std::to_string(level));
+  state.SetItemsProcessed(state.iterations());
+}
+
+BENCHMARK(BM_DefaultSceneBrick)->ArgsProduct({{0, 1, 2, 3}, {0, 1}})->ArgNames({"object", "level"});
 
 // The bricks of soltex-load's cold mix (`--mix uniform --finest-level 10`): 6-octave marble,
 // RGB, B = 16, band-limited, every brick of the L = 10 pyramid equally likely (7 of 8 are at

@@ -96,6 +96,11 @@ std::vector<Pattern> all_patterns() {
   product.ripple = Ripple::product;
   MarbleParams gradient_marble;
   gradient_marble.turbulence.basis = NoiseBasis::gradient;
+  MarbleParams along_y;
+  along_y.axis = Axis::y;
+  MarbleParams along_z;
+  along_z.axis = Axis::z;
+  along_z.frequency = 1e4;  // ripples far finer than the box: the fade is near 0
   return {StripesParams{0.3, 0.1, Axis::y},
           CheckerParams{glm::dvec3(0.2, 0.3, 0.4), 0.5, true},
           CheckerParams{glm::dvec3(0.1), 0.0, false},
@@ -109,7 +114,9 @@ std::vector<Pattern> all_patterns() {
           TurbulenceParams{{3.0, 0, 5, NoiseBasis::gradient, false}},
           MarbleParams{},
           product,
-          gradient_marble};
+          gradient_marble,
+          along_y,
+          along_z};
 }
 
 // Points near the origin and far away, on lattice and period boundaries, and not finite.
@@ -157,6 +164,69 @@ TEST(PatternKernels, EveryTargetSamplesPointsAsTheScalarDefinition) {
               << where << ": " << out[i].field << " != " << expected.field;
           for (int c = 0; c < 3; ++c) {
             ASSERT_TRUE(same(out[i].colour[c], expected.colour[c])) << where << " channel " << c;
+          }
+        }
+      }
+    }
+  }
+}
+
+// Ramps beyond the patterns' defaults: keys inside (0, 1), two at one position, one key
+// alone, and none.
+std::vector<ColourRamp> ramps_to_check() {
+  const glm::vec3 a{0.1f, 0.7f, 0.3f}, b{0.9f, 0.2f, 0.6f}, c{0.33f, 0.33f, 1.0f};
+  return {ColourRamp{{{0.2f, a}, {0.2f, b}, {0.45f, c}, {0.9f, a}}}, ColourRamp{{{0.6f, c}}},
+          ColourRamp{}};
+}
+
+// A grid of `spec`'s texture against the scalar definition, point by point, every plane.
+void expect_grid_as_definition(const TextureEvaluator& evaluator, const Grid& grid, double width,
+                               const std::string& what) {
+  const std::size_t n = grid.size();
+  std::vector<float> out(n * 5);
+  evaluator.evaluate_grid(grid, width, out);
+  std::size_t i = 0;
+  for (int z = 0; z < grid.count.z; ++z) {
+    for (int y = 0; y < grid.count.y; ++y) {
+      for (int x = 0; x < grid.count.x; ++x, ++i) {
+        const glm::dvec3 p = grid.point(x, y, z);
+        const Texel expected = reference(evaluator.spec(), p, SampleFootprint::isotropic(width));
+        const std::string where = what + " " + pattern_name(evaluator.spec().pattern) + " at " +
+                                  describe(p) + " width " + std::to_string(width);
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_TRUE(same(out[static_cast<std::size_t>(c) * n + i], expected.colour[c]))
+              << where << " channel " << c;
+        }
+        ASSERT_TRUE(same(out[3 * n + i], expected.field)) << where << " opacity";
+        ASSERT_TRUE(same(out[4 * n + i], expected.field)) << where << " specular";
+      }
+    }
+  }
+}
+
+TEST(PatternKernels, EveryTargetMapsGridsThroughAnyRampAsTheScalarDefinition) {
+  // A brick's row of 17 and a longer one: whole vectors and a scalar remainder on every target.
+  const Grid grids[] = {
+      {{-1.0, -0.5, 0.25}, {0.037, 0.05, 0.11}, {17, 4, 3}},
+      {{3.0, -2.0, 1e9}, {0.3, 0.013, 0.2}, {41, 2, 2}},
+  };
+  for (const int64_t target : targets_to_run()) {
+    const test::ForcedTarget forced(target);
+    ASSERT_EQ(pattern_kernels::dispatched_target(), target) << hwy::TargetName(target);
+    for (const Pattern& pattern :
+         {Pattern{MarbleParams{}}, Pattern{WoodParams{}},
+          Pattern{TurbulenceParams{{3.0, 0, 7, NoiseBasis::value, true}}}}) {
+      for (const ColourRamp& ramp : ramps_to_check()) {
+        TextureSpec spec;
+        spec.pattern = pattern;
+        spec.ramp = ramp;
+        spec.channels = {true, true, true};
+        const TextureEvaluator evaluator(spec);
+        for (const Grid& grid : grids) {
+          for (double width : {0.0, 0.02}) {
+            expect_grid_as_definition(evaluator, grid, width,
+                                      std::string(hwy::TargetName(target)) + " ramp of " +
+                                          std::to_string(ramp.keys.size()) + " keys,");
           }
         }
       }

@@ -1,0 +1,288 @@
+// The per-point ends of a grid row in vector lanes: the marble field from the row's fractal
+// sums, the wood field (its jitter's value noise gathered per lane), and the colour ramp's
+// lookup into the three colour planes. A brick is 17 x 17 rows of 17 points, and all three
+// ran point by point, the marble's after the row's noise was already in lanes.
+//
+// Highway's "-inl.h" convention (a toggled guard instead of #pragma once): included under
+// hwy/foreach_target.h by pattern_kernels.cpp. Every lane executes the scalar path's
+// operations in its order (pattern_fields.h's marble(), portable_sin() and wood(),
+// value_noise.h, box_filtered_waves.h's filtered_pulse(), ColourRamp::at()), Mul then Add, so
+// every target gives the scalar bits; a row's last points that do not fill a vector take the
+// scalar functions themselves, and std::hypot stays the library's, called per point.
+
+#if defined(SOLTEX_COMMON_GRID_ROW_LANES_INL_H_) == defined(HWY_TARGET_TOGGLE)
+#ifdef SOLTEX_COMMON_GRID_ROW_LANES_INL_H_
+#undef SOLTEX_COMMON_GRID_ROW_LANES_INL_H_
+#else
+#define SOLTEX_COMMON_GRID_ROW_LANES_INL_H_
+#endif
+
+#include <hwy/highway.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <numbers>
+#include <vector>
+
+#include "box_filtered_waves.h"
+#include "pattern_fields.h"
+#include "soltex/common/noise_tables.h"
+#include "soltex/common/texture_spec.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace soltex::pattern_kernels::HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// fields::portable_sin in lanes: the same reduction, selects and Taylor terms.
+template <class D>
+HWY_INLINE hn::Vec<D> PortableSinLanes(D d, hn::Vec<D> x) {
+  constexpr double kPi = 3.141592653589793;
+  constexpr double kTwoPi = 6.283185307179586;
+  constexpr double kHalfPi = 1.5707963267948966;
+  const auto turns = hn::Floor(hn::Add(hn::Mul(x, hn::Set(d, 1.0 / kTwoPi)), hn::Set(d, 0.5)));
+  auto r = hn::Sub(x, hn::Mul(hn::Set(d, kTwoPi), turns));
+  r = hn::IfThenElse(
+      hn::Gt(r, hn::Set(d, kHalfPi)), hn::Sub(hn::Set(d, kPi), r),
+      hn::IfThenElse(hn::Lt(r, hn::Set(d, -kHalfPi)), hn::Sub(hn::Set(d, -kPi), r), r));
+  const auto r2 = hn::Mul(r, r);
+  auto p = hn::Mul(r2, hn::Set(d, 1.0 / 6227020800.0));
+  p = hn::Mul(r2, hn::Add(hn::Set(d, -1.0 / 39916800.0), p));
+  p = hn::Mul(r2, hn::Add(hn::Set(d, 1.0 / 362880.0), p));
+  p = hn::Mul(r2, hn::Add(hn::Set(d, -1.0 / 5040.0), p));
+  p = hn::Mul(r2, hn::Add(hn::Set(d, 1.0 / 120.0), p));
+  p = hn::Mul(r2, hn::Add(hn::Set(d, -1.0 / 6.0), p));
+  return hn::Mul(r, hn::Add(hn::Set(d, 1.0), p));
+}
+
+// fields::marble along a row whose ripple follows one axis (so its width, and the fade, is the
+// grid's): `field` holds the row's fractal sums on entry and the marble field on exit.
+inline void MarbleAxisRow(const MarbleParams& m, const double* xs, double y, double z,
+                          const glm::dvec3& box, float* field, std::size_t nx) {
+  const double ripple_width = fields::ripple_width(m, glm::dvec3(0.0), box);
+  const hn::ScalableTag<double> dd;
+  const hn::Rebind<float, decltype(dd)> df;
+  const std::size_t lanes = hn::Lanes(dd);
+  const auto fade = hn::Set(dd, fields::marble_fade(ripple_width));
+  const auto row_ripple = hn::Set(dd, fields::ripple(m, glm::dvec3(0.0, y, z)));
+  const auto frequency = hn::Set(dd, m.frequency);
+  const auto two_pi = hn::Set(dd, 2.0 * std::numbers::pi);
+  const auto amplitude = hn::Set(dd, m.amplitude);
+  const auto half = hn::Set(dd, 0.5);
+  const bool along_x = m.axis == Axis::x;
+  std::size_t i = 0;
+  for (; i + lanes <= nx; i += lanes) {
+    const auto ripple = along_x ? hn::Mul(frequency, hn::LoadU(dd, xs + i)) : row_ripple;
+    // fract(): u - floor(u), which is NaN exactly where u is not finite; fract gives 0 there.
+    const auto whole = hn::Sub(ripple, hn::Floor(ripple));
+    const auto fraction = hn::IfThenZeroElse(hn::IsNaN(whole), whole);
+    const auto turbulence = hn::PromoteTo(dd, hn::LoadU(df, field + i));
+    const auto phase = hn::Add(hn::Mul(two_pi, fraction), hn::Mul(amplitude, turbulence));
+    const auto value = hn::Add(half, hn::Mul(half, hn::Mul(PortableSinLanes(dd, phase), fade)));
+    hn::StoreU(hn::DemoteTo(df, value), df, field + i);
+  }
+  for (; i < nx; ++i) {
+    const glm::dvec3 p(xs[i], y, z);
+    field[i] = fields::marble(m, fields::ripple(m, p), field[i], ripple_width);
+  }
+}
+
+// split_lattice_in_kernel per lane: the cell as int32 and the fraction as float, in the float
+// lanes that pair with `d`'s doubles. floor(t) mod 256 is computed in double (exact: scaling by
+// 256 and flooring are exact, and the difference is an integer in [0, 255]), which is the low
+// byte of the definition's 64-bit integer.
+template <class D>
+struct LatticeLanes {
+  hn::Vec<hn::Rebind<int32_t, D>> cell;
+  hn::Vec<hn::Rebind<float, D>> frac;
+};
+
+template <class D>
+HWY_INLINE LatticeLanes<D> SplitLatticeLanes(D d, hn::Vec<D> t) {
+  const hn::Rebind<int32_t, D> di;
+  const hn::Rebind<float, D> df;
+  const auto inside = hn::IfThenElseZero(hn::Lt(hn::Abs(t), hn::Set(d, 0x1p62)), t);
+  const auto whole = hn::Floor(inside);
+  const auto periods = hn::Floor(hn::Mul(whole, hn::Set(d, 1.0 / kLatticePeriod)));
+  const auto cell =
+      hn::Sub(whole, hn::Mul(hn::Set(d, static_cast<double>(kLatticePeriod)), periods));
+  return {hn::DemoteTo(di, cell), hn::DemoteTo(df, hn::Sub(inside, whole))};
+}
+
+// value_noise_in_kernel per lane: the row hashes and the eight corners gathered.
+template <class D>
+HWY_INLINE hn::Vec<hn::Rebind<float, D>> ValueNoiseLanes(D d, const NoiseTables& tables,
+                                                         hn::Vec<D> tx, hn::Vec<D> ty,
+                                                         hn::Vec<D> tz) {
+  const hn::Rebind<int32_t, D> di;
+  const hn::Rebind<float, D> df;
+  const LatticeLanes<D> x = SplitLatticeLanes(d, tx);
+  const LatticeLanes<D> y = SplitLatticeLanes(d, ty);
+  const LatticeLanes<D> z = SplitLatticeLanes(d, tz);
+  const int32_t* perm = tables.perm.data();
+  const auto one = hn::Set(di, 1);
+  const auto pz0 = hn::GatherIndex(di, perm, z.cell);
+  const auto pz1 = hn::GatherIndex(di, perm, hn::Add(z.cell, one));
+  const auto y1 = hn::Add(y.cell, one);
+  const auto h00 = hn::GatherIndex(di, perm, hn::Add(y.cell, pz0));
+  const auto h10 = hn::GatherIndex(di, perm, hn::Add(y1, pz0));
+  const auto h01 = hn::GatherIndex(di, perm, hn::Add(y.cell, pz1));
+  const auto h11 = hn::GatherIndex(di, perm, hn::Add(y1, pz1));
+  const float* v = tables.value_at.data();
+  const auto face = [&](hn::Vec<decltype(di)> ix) {
+    const auto c00 = hn::GatherIndex(df, v, hn::Add(ix, h00));
+    const auto c10 = hn::GatherIndex(df, v, hn::Add(ix, h10));
+    const auto c01 = hn::GatherIndex(df, v, hn::Add(ix, h01));
+    const auto c11 = hn::GatherIndex(df, v, hn::Add(ix, h11));
+    const auto a = hn::Add(c00, hn::Mul(y.frac, hn::Sub(c10, c00)));
+    const auto b = hn::Add(c01, hn::Mul(y.frac, hn::Sub(c11, c01)));
+    return hn::Add(a, hn::Mul(z.frac, hn::Sub(b, a)));
+  };
+  const auto e0 = face(x.cell);
+  const auto e1 = face(hn::Add(x.cell, one));
+  return hn::Add(e0, hn::Mul(x.frac, hn::Sub(e1, e0)));
+}
+
+// std::clamp(v, 0, 1) with its comparisons (a NaN stays NaN, whatever the target's Min/Max do).
+template <class D>
+HWY_INLINE hn::Vec<D> ClampUnitLanes(D d, hn::Vec<D> v) {
+  const auto zero = hn::Zero(d);
+  const auto one = hn::Set(d, 1.0);
+  return hn::IfThenElse(hn::Lt(v, zero), zero, hn::IfThenElse(hn::Lt(one, v), one, v));
+}
+
+// waves::pulse_integral per lane; std::min(a, duty) is duty < a ? duty : a.
+template <class D>
+HWY_INLINE hn::Vec<D> PulseIntegralLanes(D d, hn::Vec<D> x, hn::Vec<D> duty) {
+  const auto whole = hn::Floor(x);
+  const auto part = hn::Sub(x, whole);
+  (void)d;
+  return hn::Add(hn::Mul(whole, duty), hn::IfThenElse(hn::Lt(duty, part), duty, part));
+}
+
+// waves::filtered_pulse per lane: every case computed, then chosen in the scalar's order.
+template <class D>
+HWY_INLINE hn::Vec<D> FilteredPulseLanes(D d, hn::Vec<D> u, double duty_value, hn::Vec<D> w) {
+  const auto duty = hn::Set(d, duty_value);
+  const auto zero = hn::Zero(d);
+  const auto one = hn::Set(d, 1.0);
+  const auto finite = hn::IsFinite(u);
+  const auto centre = hn::Sub(u, hn::Floor(u));  // fract(u) where u is finite
+  const auto half = hn::Mul(hn::Set(d, 0.5), w);
+  const auto difference = hn::Sub(PulseIntegralLanes(d, hn::Add(centre, half), duty),
+                                  PulseIntegralLanes(d, hn::Sub(centre, half), duty));
+  auto value = ClampUnitLanes(d, hn::Div(difference, w));
+  value = hn::IfThenElse(hn::Ge(w, hn::Set(d, waves::kMeanWidth)), duty, value);
+  const auto point = hn::IfThenElse(hn::Lt(centre, duty), one, zero);
+  value = hn::IfThenElse(hn::Not(hn::Gt(w, hn::Set(d, waves::kPointWidth))), point, value);
+  return hn::IfThenElse(finite, value, hn::Set(d, 0.0 < duty_value ? 1.0 : 0.0));
+}
+
+// fields::wood along a row: the rotations and the jitter in lanes, then the radius through
+// std::hypot per point, then the ring, its width and the filtered pulse in lanes. `scratch`
+// holds 3 * nx doubles.
+inline void WoodRow(const WoodParams& w, const fields::WoodFrame& frame,
+                    const fields::WoodRotation& rotation, const double* xs, double y, double z,
+                    const glm::dvec3& box, double* scratch, float* field, std::size_t nx) {
+  const hn::ScalableTag<double> dd;
+  const hn::Rebind<float, decltype(dd)> df;
+  const std::size_t lanes = hn::Lanes(dd);
+  const std::size_t whole_vectors = nx / lanes * lanes;
+  double* x2s = scratch;
+  double* y2s = scratch + nx;
+  double* jitters = scratch + 2 * nx;
+  const NoiseTables& tables = noise_tables();
+  const auto cy = hn::Set(dd, rotation.cos_y), sy = hn::Set(dd, rotation.sin_y);
+  const auto minus_sy = hn::Set(dd, -rotation.sin_y);
+  const auto cz = hn::Set(dd, frame.cos_tilt_z), sz = hn::Set(dd, frame.sin_tilt_z);
+  const auto py = hn::Set(dd, y), pz = hn::Set(dd, z);
+  const auto jitter_scale = hn::Set(dd, w.jitter_scale);
+  for (std::size_t i = 0; i < whole_vectors; i += lanes) {
+    const auto px = hn::LoadU(dd, xs + i);
+    const auto x1 = hn::Add(hn::Mul(cy, px), hn::Mul(sy, pz));
+    const auto z1 = hn::Add(hn::Mul(minus_sy, px), hn::Mul(cy, pz));
+    const auto x2 = hn::Sub(hn::Mul(cz, x1), hn::Mul(sz, py));
+    const auto y2 = hn::Add(hn::Mul(sz, x1), hn::Mul(cz, py));
+    const auto noise = ValueNoiseLanes(dd, tables, hn::Mul(x2, jitter_scale),
+                                       hn::Mul(y2, jitter_scale), hn::Mul(z1, jitter_scale));
+    const auto centred = hn::PromoteTo(dd, hn::Sub(noise, hn::Set(df, tables.value_mean)));
+    hn::StoreU(x2, dd, x2s + i);
+    hn::StoreU(y2, dd, y2s + i);
+    hn::StoreU(hn::Mul(hn::Set(dd, w.jitter), centred), dd, jitters + i);
+  }
+  const bool has_box = box != glm::dvec3(0.0);
+  const auto spacing = hn::Set(dd, w.ring_spacing);
+  for (std::size_t i = 0; i < whole_vectors; i += lanes) {
+    // The library's hypot (no overflow for huge coordinates), as the scalar path calls it.
+    HWY_ALIGN double radii[hn::MaxLanes(dd)];
+    for (std::size_t k = 0; k < lanes; ++k) radii[k] = std::hypot(x2s[i + k], y2s[i + k]);
+    const auto radius = hn::LoadU(dd, radii);
+    const auto ring = hn::Add(hn::Div(radius, spacing), hn::LoadU(dd, jitters + i));
+    auto ring_width = hn::Zero(dd);
+    if (has_box) {
+      const auto ux = hn::Div(hn::LoadU(dd, x2s + i), radius);
+      const auto uy = hn::Div(hn::LoadU(dd, y2s + i), radius);
+      const auto across = hn::Add(hn::Mul(ux, cz), hn::Mul(uy, sz));
+      const auto gx = hn::Mul(across, cy);
+      const auto gy = hn::Sub(hn::Mul(uy, cz), hn::Mul(ux, sz));
+      const auto gz = hn::Mul(across, sy);
+      const auto width = hn::Add(hn::Add(hn::Mul(hn::Abs(gx), hn::Set(dd, box.x)),
+                                         hn::Mul(hn::Abs(gy), hn::Set(dd, box.y))),
+                                 hn::Mul(hn::Abs(gz), hn::Set(dd, box.z)));
+      ring_width = hn::IfThenElseZero(hn::Gt(radius, hn::Zero(dd)), hn::Div(width, spacing));
+    }
+    const auto value = FilteredPulseLanes(dd, ring, w.grain_fraction, ring_width);
+    hn::StoreU(hn::DemoteTo(df, value), df, field + i);
+  }
+  for (std::size_t i = whole_vectors; i < nx; ++i) {
+    field[i] = fields::wood(w, frame, rotation, glm::dvec3(xs[i], y, z), box);
+  }
+}
+
+// ColourRamp::at for a row of fields, into three colour planes. The first key at or above t
+// decides in at(); here the keys are visited from the last down, each overriding the lanes it
+// covers, so the lowest such key is the one left. Needs at least one key.
+inline void RampRow(const ColourRamp& ramp, const float* t, std::size_t nx, float* red,
+                    float* green, float* blue) {
+  const std::vector<RampKey>& keys = ramp.keys;
+  const hn::ScalableTag<float> df;
+  const std::size_t lanes = hn::Lanes(df);
+  float* planes[3] = {red, green, blue};
+  std::size_t i = 0;
+  for (; i + lanes <= nx; i += lanes) {
+    const auto tv = hn::LoadU(df, t + i);
+    hn::Vec<decltype(df)> colour[3];
+    for (int c = 0; c < 3; ++c) colour[c] = hn::Set(df, keys.back().colour[c]);
+    for (std::size_t k = keys.size() - 1; k >= 1; --k) {
+      const RampKey& hi = keys[k];
+      const RampKey& lo = keys[k - 1];
+      const auto at_hi = hn::Eq(tv, hn::Set(df, hi.position));
+      const auto covered = hn::Le(tv, hn::Set(df, hi.position));
+      const auto u =
+          hn::Div(hn::Sub(tv, hn::Set(df, lo.position)), hn::Set(df, hi.position - lo.position));
+      for (int c = 0; c < 3; ++c) {
+        const auto mixed = hn::Add(hn::Set(df, lo.colour[c]),
+                                   hn::Mul(u, hn::Set(df, hi.colour[c] - lo.colour[c])));
+        const auto value = hn::IfThenElse(at_hi, hn::Set(df, hi.colour[c]), mixed);
+        colour[c] = hn::IfThenElse(covered, value, colour[c]);
+      }
+    }
+    // !(t > first key): the first key's colour, NaN included.
+    const auto below = hn::Not(hn::Gt(tv, hn::Set(df, keys.front().position)));
+    for (int c = 0; c < 3; ++c) {
+      colour[c] = hn::IfThenElse(below, hn::Set(df, keys.front().colour[c]), colour[c]);
+      hn::StoreU(colour[c], df, planes[c] + i);
+    }
+  }
+  for (; i < nx; ++i) {
+    const glm::vec3 c = ramp.at(t[i]);
+    red[i] = c.r;
+    green[i] = c.g;
+    blue[i] = c.b;
+  }
+}
+
+}  // namespace soltex::pattern_kernels::HWY_NAMESPACE
+HWY_AFTER_NAMESPACE();
+
+#endif  // SOLTEX_COMMON_GRID_ROW_LANES_INL_H_
