@@ -28,27 +28,38 @@ uint32_t frustum_outcode(const glm::vec4& c) {
          (c.y > c.w ? 8u : 0u) | (c.z < -c.w ? 16u : 0u) | (c.z > c.w ? 32u : 0u);
 }
 
-int64_t floor_div(int64_t numerator, int64_t denominator) {
-  const int64_t quotient = numerator / denominator;
-  return (numerator % denominator != 0 && numerator < 0) ? quotient - 1 : quotient;
+// floor(value / kSubpixelScale): an arithmetic shift, the scale being a power of two (no
+// 64-bit division per triangle corner).
+int64_t floor_subpixels(int64_t value) {
+  static_assert(kSubpixelScale == int64_t{1} << kSubpixelBits);
+  return value >> kSubpixelBits;
 }
 
 // The first and last pixel whose centre (at fixed-point k * scale + scale / 2) lies in
 // [low, high].
 std::pair<int64_t, int64_t> pixel_centre_span(int64_t low, int64_t high) {
   constexpr int64_t kHalf = kSubpixelScale / 2;
-  return {-floor_div(-(low - kHalf), kSubpixelScale), floor_div(high - kHalf, kSubpixelScale)};
+  return {-floor_subpixels(-(low - kHalf)), floor_subpixels(high - kHalf)};
+}
+
+// std::nearbyint in the default rounding mode (to nearest, ties to even) for |value| < 2^51,
+// inline: the generic x86-64 target has no rounding instruction, so nearbyint is a library
+// call. Adding 1.5 * 2^52 leaves the sum no fraction bits, so the addition rounds.
+double round_to_even(double value) {
+  constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52
+  return (value + kShift) - kShift;
 }
 
 // The affine form through three values at three fixed-point positions.
 AffineForm affine_form(const std::array<int64_t, 3>& x, const std::array<int64_t, 3>& y,
                        int64_t double_area, const std::array<double, 3>& value) {
-  const double scale = static_cast<double>(kSubpixelScale);
-  const double x1 = static_cast<double>(x[1] - x[0]) / scale;
-  const double y1 = static_cast<double>(y[1] - y[0]) / scale;
-  const double x2 = static_cast<double>(x[2] - x[0]) / scale;
-  const double y2 = static_cast<double>(y[2] - y[0]) / scale;
-  const double area = static_cast<double>(double_area) / (scale * scale);
+  // Multiplying by the inverse of a power of two is exact: the same values as dividing.
+  constexpr double kInverseScale = 1.0 / static_cast<double>(kSubpixelScale);
+  const double x1 = static_cast<double>(x[1] - x[0]) * kInverseScale;
+  const double y1 = static_cast<double>(y[1] - y[0]) * kInverseScale;
+  const double x2 = static_cast<double>(x[2] - x[0]) * kInverseScale;
+  const double y2 = static_cast<double>(y[2] - y[0]) * kInverseScale;
+  const double area = static_cast<double>(double_area) * (kInverseScale * kInverseScale);
   const double d1 = value[1] - value[0];
   const double d2 = value[2] - value[0];
   return {to_float_saturated(value[0]), to_float_saturated((d1 * y2 - d2 * y1) / area),
@@ -88,8 +99,8 @@ TriangleSetup::ProjectedVertex TriangleSetup::project(const glm::vec4& clip) con
   // The guard band bounds these; the clamp only keeps a rounding overshoot defined.
   constexpr double kLimit = double{1 << 24};
   const double scale = static_cast<double>(kSubpixelScale);
-  return {static_cast<int64_t>(std::nearbyint(std::clamp(screen_x * scale, -kLimit, kLimit))),
-          static_cast<int64_t>(std::nearbyint(std::clamp(screen_y * scale, -kLimit, kLimit))),
+  return {static_cast<int64_t>(round_to_even(std::clamp(screen_x * scale, -kLimit, kLimit))),
+          static_cast<int64_t>(round_to_even(std::clamp(screen_y * scale, -kLimit, kLimit))),
           ndc_z * 0.5 + 0.5, static_cast<float>(inv_w)};
 }
 
@@ -247,15 +258,20 @@ void TriangleSetup::emit(
                                                   *std::max_element(x.begin(), x.end()));
   const auto [min_py, max_py] = pixel_centre_span(*std::min_element(y.begin(), y.end()),
                                                   *std::max_element(y.begin(), y.end()));
-  ScreenTriangle triangle;
-  triangle.min_px = static_cast<int32_t>(std::max<int64_t>(min_px, 0));
-  triangle.min_py = static_cast<int32_t>(std::max<int64_t>(min_py, 0));
-  triangle.max_px = static_cast<int32_t>(std::min<int64_t>(max_px, width_ - 1));
-  triangle.max_py = static_cast<int32_t>(std::min<int64_t>(max_py, height_ - 1));
-  if (triangle.min_px > triangle.max_px || triangle.min_py > triangle.max_py) {
+  const auto first_px = static_cast<int32_t>(std::max<int64_t>(min_px, 0));
+  const auto first_py = static_cast<int32_t>(std::max<int64_t>(min_py, 0));
+  const auto last_px = static_cast<int32_t>(std::min<int64_t>(max_px, width_ - 1));
+  const auto last_py = static_cast<int32_t>(std::min<int64_t>(max_py, height_ - 1));
+  if (first_px > last_px || first_py > last_py) {
     ++stats.triangles_culled;  // off screen, or between pixel centres
     return;
   }
+  // Written where it stays (no copy of its three lines from the stack).
+  ScreenTriangle& triangle = triangles.emplace_back();
+  triangle.min_px = first_px;
+  triangle.min_py = first_py;
+  triangle.max_px = last_px;
+  triangle.max_py = last_py;
   for (std::size_t k = 0; k < 3; ++k) {
     triangle.x[k] = static_cast<int32_t>(x[k]);
     triangle.y[k] = static_cast<int32_t>(y[k]);
@@ -300,7 +316,6 @@ void TriangleSetup::emit(
       clip_forms.push_back(affine_form(x, y, double_area, distance_over_w));
     }
   }
-  triangles.push_back(triangle);
   ++stats.triangles_rasterized;
 }
 
