@@ -99,8 +99,8 @@ TriangleSetup::ProjectedVertex TriangleSetup::project(const glm::vec4& clip) con
   // The guard band bounds these; the clamp only keeps a rounding overshoot defined.
   constexpr double kLimit = double{1 << 24};
   const double scale = static_cast<double>(kSubpixelScale);
-  return {static_cast<int64_t>(round_to_even(std::clamp(screen_x * scale, -kLimit, kLimit))),
-          static_cast<int64_t>(round_to_even(std::clamp(screen_y * scale, -kLimit, kLimit))),
+  return {static_cast<int32_t>(round_to_even(std::clamp(screen_x * scale, -kLimit, kLimit))),
+          static_cast<int32_t>(round_to_even(std::clamp(screen_y * scale, -kLimit, kLimit))),
           ndc_z * 0.5 + 0.5, static_cast<float>(inv_w)};
 }
 
@@ -110,10 +110,11 @@ void TriangleSetup::project_vertices(TransformedVertices& vertices, std::size_t 
     TransformedVertex& v = vertices.vertex[i];
     if (v.valid == 0) continue;
     // Once per vertex rather than once per triangle that uses it (about six).
-    v.frustum_outside = static_cast<uint8_t>(frustum_outcode(v.clip));
-    v.clip_outside = static_cast<uint8_t>(clip_planes_.outside(v.clip));
+    const glm::vec4& clip = vertices.clip[i];
+    v.frustum_outside = static_cast<uint8_t>(frustum_outcode(clip));
+    v.clip_outside = static_cast<uint8_t>(clip_planes_.outside(clip));
     // Only where setup() would project the vertex itself: inside the guard band.
-    if (v.clip_outside == 0) v.screen = project(v.clip);
+    if (v.clip_outside == 0) v.set_screen(project(clip));
   }
 }
 
@@ -137,9 +138,6 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
     ++stats.triangles_invalid;
     return;
   }
-  const glm::vec4& a = v0.clip;
-  const glm::vec4& b = v1.clip;
-  const glm::vec4& c = v2.clip;
   if ((v0.frustum_outside & v1.frustum_outside & v2.frustum_outside) != 0) {
     ++stats.triangles_culled;
     return;
@@ -147,10 +145,7 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
   const uint32_t outside = v0.clip_outside | v1.clip_outside | v2.clip_outside;
   if (outside == 0 && object.cull_back_faces) {
     // Projected already: the same orientation emit() would find, before any attribute work.
-    const ScreenVertex& s0 = v0.screen;
-    const ScreenVertex& s1 = v1.screen;
-    const ScreenVertex& s2 = v2.screen;
-    if (edge_function(s0.x, s0.y, s1.x, s1.y, s2.x, s2.y) > 0) {
+    if (edge_function(v0.x, v0.y, v1.x, v1.y, v2.x, v2.y) > 0) {
       ++stats.triangles_back_face_culled;
       return;
     }
@@ -179,14 +174,16 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
 
   ClipPolygon polygon;
   if (outside == 0) {
-    polygon.vertices[0] = {a, {1.0f, 0.0f, 0.0f}};
-    polygon.vertices[1] = {b, {0.0f, 1.0f, 0.0f}};
-    polygon.vertices[2] = {c, {0.0f, 0.0f, 1.0f}};
+    // emit() reads an unclipped corner's weights only.
+    polygon.vertices[0].weights = {1.0f, 0.0f, 0.0f};
+    polygon.vertices[1].weights = {0.0f, 1.0f, 0.0f};
+    polygon.vertices[2].weights = {0.0f, 0.0f, 1.0f};
     polygon.size = 3;
   } else {
     if ((outside & (kClipNear | kClipPositiveW)) != 0) ++stats.triangles_clipped_near;
     if ((outside & ~(kClipNear | kClipPositiveW)) != 0) ++stats.triangles_clipped_guard_band;
-    polygon = clip_triangle(clip_planes_, outside, a, b, c);
+    polygon = clip_triangle(clip_planes_, outside, vertices.clip[at[0]], vertices.clip[at[1]],
+                            vertices.clip[at[2]]);
     if (polygon.size < 3) {
       ++stats.triangles_culled;
       return;
@@ -204,15 +201,18 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
     source.normal.fill(face_normal(object, i0, i1, i2));
   }
 
-  // Pointers, not copies: an unclipped triangle uses its vertices' projections as they are.
+  // An unclipped triangle uses its vertices' projections as they are.
   std::array<const ProjectedVertex*, ClipPolygon::kCapacity> projected;
+  std::array<ProjectedVertex, ClipPolygon::kCapacity> clipped;
   if (outside == 0) {
-    for (std::size_t k = 0; k < 3; ++k) projected[k] = &corner_vertex[k]->screen;
+    for (std::size_t k = 0; k < 3; ++k) {
+      clipped[k] = corner_vertex[k]->screen();
+      projected[k] = &clipped[k];
+    }
     emit(source, polygon, projected, {0, 1, 2}, object.cull_back_faces, triangles, clip_forms,
          stats);
     return;
   }
-  std::array<ProjectedVertex, ClipPolygon::kCapacity> clipped;
   for (int k = 0; k < polygon.size; ++k) {
     const auto index = static_cast<std::size_t>(k);
     clipped[index] = project(polygon.vertices[index].clip);
