@@ -266,42 +266,26 @@ void TriangleSetup::emit(
     ++stats.triangles_culled;  // off screen, or between pixel centres
     return;
   }
-  // Written where it stays (no copy of its three lines from the stack).
-  ScreenTriangle& triangle = triangles.emplace_back();
-  triangle.min_px = first_px;
-  triangle.min_py = first_py;
-  triangle.max_px = last_px;
-  triangle.max_py = last_py;
-  for (std::size_t k = 0; k < 3; ++k) {
-    triangle.x[k] = static_cast<int32_t>(x[k]);
-    triangle.y[k] = static_cast<int32_t>(y[k]);
-  }
-  triangle.double_area = double_area;
-
   std::array<double, 3> depth{};
+  std::array<float, 3> inv_w{};
+  std::array<glm::vec3, 3> texture_offset, normal;
   for (std::size_t k = 0; k < 3; ++k) {
     const int corner = corners[k];
     const ClipVertex& clip_vertex = polygon.vertices[static_cast<std::size_t>(corner)];
     const glm::dvec3 weights(clip_vertex.weights);
     depth[k] = vertex(static_cast<int>(k)).depth;
-    triangle.inv_w[k] = vertex(static_cast<int>(k)).inv_w;  // 1 / clip_vertex.clip.w
+    inv_w[k] = vertex(static_cast<int>(k)).inv_w;  // 1 / clip_vertex.clip.w
     // Offsets from vertex 0's texture position, combined in double, small enough for float.
     const glm::dvec3 offset = weights.y * (source.texture[1] - source.texture[0]) +
                               weights.z * (source.texture[2] - source.texture[0]);
-    triangle.texture_offset[k] = glm::vec3(
-        to_float_saturated(offset.x), to_float_saturated(offset.y), to_float_saturated(offset.z));
-    triangle.normal[k] = clip_vertex.weights.x * source.normal[0] +
-                         clip_vertex.weights.y * source.normal[1] +
-                         clip_vertex.weights.z * source.normal[2];
+    texture_offset[k] = glm::vec3(to_float_saturated(offset.x), to_float_saturated(offset.y),
+                                  to_float_saturated(offset.z));
+    normal[k] = clip_vertex.weights.x * source.normal[0] +
+                clip_vertex.weights.y * source.normal[1] + clip_vertex.weights.z * source.normal[2];
   }
-  triangle.depth = affine_form(x, y, double_area, depth);
-  triangle.texture_origin = source.texture[0];
-  triangle.object = source.object_index;
-  triangle.back_face = back_face;
 
+  const auto first_clip_form = static_cast<uint32_t>(clip_forms.size());
   if (source.straddling_planes != 0) {
-    triangle.clip_mask = source.straddling_planes;
-    triangle.first_clip_form = static_cast<uint32_t>(clip_forms.size());
     for (std::size_t j = 0; j < static_cast<std::size_t>(clip_plane_count_); ++j) {
       // Signed distance / w is affine on screen, and w > 0 here, so its sign is the
       // distance's sign: no division per fragment.
@@ -311,11 +295,31 @@ void TriangleSetup::emit(
         const double distance = static_cast<double>(weights.x) * source.plane_distance[0][j] +
                                 static_cast<double>(weights.y) * source.plane_distance[1][j] +
                                 static_cast<double>(weights.z) * source.plane_distance[2][j];
-        distance_over_w[k] = distance * static_cast<double>(triangle.inv_w[k]);
+        distance_over_w[k] = distance * static_cast<double>(inv_w[k]);
       }
       clip_forms.push_back(affine_form(x, y, double_area, distance_over_w));
     }
   }
+  // Every field given: the triangle is built in registers and stored once, with no zeroing of
+  // its three lines first (a fine mesh writes tens of thousands a frame).
+  triangles.push_back(ScreenTriangle{
+      .x = {static_cast<int32_t>(x[0]), static_cast<int32_t>(x[1]), static_cast<int32_t>(x[2])},
+      .y = {static_cast<int32_t>(y[0]), static_cast<int32_t>(y[1]), static_cast<int32_t>(y[2])},
+      .double_area = double_area,
+      .min_px = first_px,
+      .min_py = first_py,
+      .max_px = last_px,
+      .max_py = last_py,
+      .depth = affine_form(x, y, double_area, depth),
+      .clip_mask = source.straddling_planes,
+      .first_clip_form = source.straddling_planes != 0 ? first_clip_form : 0u,
+      .object = source.object_index,
+      .back_face = back_face,
+      .inv_w = inv_w,
+      .texture_offset = texture_offset,
+      .normal = normal,
+      .texture_origin = source.texture[0],
+  });
   ++stats.triangles_rasterized;
 }
 
