@@ -3,8 +3,9 @@
 // LocalBrickSource, before timing), finest level 2^8 where a material does not set its own
 // (the bunny's marble sets 2^9).
 //   BM_WarmFrame       FrameRenderer::render: raster + brick lookup + shade
-//   BM_Raster          the rasterizer alone on the same view, into tile-sized G-buffers as
-//                      FrameRenderer draws (its raster part, without shading)
+//   BM_Raster          the rasterizer alone on the same view and meshes (mesh_for_view()), into
+//                      tile-sized G-buffers as FrameRenderer draws (its raster part, without
+//                      shading); /1/5 and /1/6 the spheres on one thread
 //   BM_ReferenceFrame  FrameRenderer::render_reference: the texture evaluated per pixel
 //   BM_ColdFrame       FrameRenderer::render with nothing resident (a client's first frame):
 //                      every pixel misses, and the frame lists every brick it wants
@@ -46,6 +47,7 @@
 #include <vector>
 
 #include "converge.h"
+#include "mesh_for_view.h"
 #include "soltex/common/brick_cache.h"
 #include "soltex/common/sampling_kernels.h"
 #include "soltex/common/texture_evaluator.h"
@@ -170,6 +172,7 @@ void BM_Raster(benchmark::State& state) {
   for (const soltex::PreparedObject& o : w.prepared.objects) {
     soltex::RasterObject object = o.raster;
     object.model = glm::mat4(from_world * o.world_from_object);
+    object.mesh = soltex::render::mesh_for_view(o, camera, kHeight);
     objects.push_back(object);
   }
   soltex::RasterView view;
@@ -428,7 +431,8 @@ BENCHMARK(BM_WarmFrame)
     ->Args({2, 6})
     ->Args({2, 7})
     ->Apply(wall_and_process_cpu_ms);
-BENCHMARK(BM_Raster)->Args({1, 0})->Args({2, 0})->Args({2, 1})->Apply(wall_and_process_cpu_ms);
+BENCHMARK(BM_Raster)->Args({1, 0})->Args({2, 0})->Args({2, 1})->Args({1, 5})->Args({1, 6})->Apply(
+    wall_and_process_cpu_ms);
 BENCHMARK(BM_ColdFrame)
     ->Args({2, 0})
     ->Args({2, 1})

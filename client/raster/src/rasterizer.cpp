@@ -55,6 +55,10 @@ struct SetupChunk {
   std::vector<AffineForm> clip_forms;
   std::vector<uint32_t> bin_start;
   std::vector<uint32_t> bin_items;
+  // Scratch of bin_triangles(), kept between frames: each triangle's tile when it lies in one,
+  // and each bin's next free place.
+  std::vector<uint32_t> single_tile;
+  std::vector<uint32_t> bin_fill;
   RasterStats stats;
 };
 
@@ -116,9 +120,13 @@ void validate(const RasterView& view, std::span<const RasterObject> objects) {
   if (objects.size() > UINT32_MAX) throw std::invalid_argument("too many RasterObjects");
 }
 
-// Sorts the chunk's triangles into tile bins (a counting sort, stable: submission order).
+// Sorts the chunk's triangles into tile bins (a counting sort, stable: submission order). A
+// fine mesh's triangles mostly lie in one tile: the first pass notes that tile (or
+// kSeveralTiles) per triangle, so the second writes it without walking the bounds again.
 void bin_triangles(SetupChunk& chunk, const TileGrid& grid) {
+  constexpr uint32_t kSeveralTiles = ~0u;
   chunk.bin_start.assign(static_cast<std::size_t>(grid.count()) + 1, 0);
+  chunk.single_tile.resize(chunk.triangles.size());
   const auto for_each_tile = [&grid](const ScreenTriangle& t, auto&& visit) {
     for (int row = t.min_py / kTileSize; row <= t.max_py / kTileSize; ++row) {
       for (int column = t.min_px / kTileSize; column <= t.max_px / kTileSize; ++column) {
@@ -126,17 +134,32 @@ void bin_triangles(SetupChunk& chunk, const TileGrid& grid) {
       }
     }
   };
-  for (const ScreenTriangle& t : chunk.triangles) {
+  for (std::size_t i = 0; i < chunk.triangles.size(); ++i) {
+    const ScreenTriangle& t = chunk.triangles[i];
+    // Bounds are clamped to the viewport: never negative, so the divisions are shifts.
+    const int column = t.min_px / kTileSize, row = t.min_py / kTileSize;
+    if (column == t.max_px / kTileSize && row == t.max_py / kTileSize) {
+      const auto tile = static_cast<uint32_t>(row * grid.columns + column);
+      chunk.single_tile[i] = tile;
+      ++chunk.bin_start[tile + 1];
+      continue;
+    }
+    chunk.single_tile[i] = kSeveralTiles;
     for_each_tile(t, [&](std::size_t tile) { ++chunk.bin_start[tile + 1]; });
   }
   for (std::size_t tile = 0; tile < static_cast<std::size_t>(grid.count()); ++tile) {
     chunk.bin_start[tile + 1] += chunk.bin_start[tile];
   }
   chunk.bin_items.resize(chunk.bin_start.back());
-  std::vector<uint32_t> fill(chunk.bin_start.begin(), chunk.bin_start.end() - 1);
+  chunk.bin_fill.assign(chunk.bin_start.begin(), chunk.bin_start.end() - 1);
   for (std::size_t i = 0; i < chunk.triangles.size(); ++i) {
-    for_each_tile(chunk.triangles[i], [&](std::size_t tile) {
-      chunk.bin_items[fill[tile]++] = static_cast<uint32_t>(i);
+    const uint32_t tile = chunk.single_tile[i];
+    if (tile != kSeveralTiles) {
+      chunk.bin_items[chunk.bin_fill[tile]++] = static_cast<uint32_t>(i);
+      continue;
+    }
+    for_each_tile(chunk.triangles[i], [&](std::size_t other) {
+      chunk.bin_items[chunk.bin_fill[other]++] = static_cast<uint32_t>(i);
     });
   }
 }

@@ -29,6 +29,7 @@ glm::vec3 unit_or_zero(const glm::vec3& v) {
 void TransformedVertices::resize(std::size_t vertex_count, int planes) {
   plane_count = planes;
   vertex.resize(vertex_count);
+  clip.resize(vertex_count);
   plane_distance.resize(vertex_count * static_cast<std::size_t>(planes));
 }
 
@@ -42,11 +43,12 @@ void transform_vertices(const ObjectFrame& object, std::size_t begin, std::size_
     const glm::vec3 position = mesh.positions[i];
     const glm::dvec4 position_d(glm::dvec3(position), 1.0);
     TransformedVertex& v = out.vertex[at];
-    v.clip = object.clip_from_object * glm::vec4(position, 1.0f);
+    const glm::vec4 clip = object.clip_from_object * glm::vec4(position, 1.0f);
+    out.clip[at] = clip;
     v.texture = glm::dvec3(object.source->texture_from_object * position_d);
     v.normal = has_normals ? unit_or_zero(object.world_normal_from_object * mesh.normals[i])
                            : glm::vec3(0.0f);
-    v.valid = is_finite(v.clip) && is_finite(v.texture) ? 1 : 0;
+    v.valid = is_finite(clip) && is_finite(v.texture) ? 1 : 0;
     for (std::size_t j = 0; j < planes; ++j) {
       out.plane_distance[at * planes + j] =
           to_float_saturated(glm::dot(object.object_planes[j], position_d));

@@ -28,27 +28,38 @@ uint32_t frustum_outcode(const glm::vec4& c) {
          (c.y > c.w ? 8u : 0u) | (c.z < -c.w ? 16u : 0u) | (c.z > c.w ? 32u : 0u);
 }
 
-int64_t floor_div(int64_t numerator, int64_t denominator) {
-  const int64_t quotient = numerator / denominator;
-  return (numerator % denominator != 0 && numerator < 0) ? quotient - 1 : quotient;
+// floor(value / kSubpixelScale): an arithmetic shift, the scale being a power of two (no
+// 64-bit division per triangle corner).
+int64_t floor_subpixels(int64_t value) {
+  static_assert(kSubpixelScale == int64_t{1} << kSubpixelBits);
+  return value >> kSubpixelBits;
 }
 
 // The first and last pixel whose centre (at fixed-point k * scale + scale / 2) lies in
 // [low, high].
 std::pair<int64_t, int64_t> pixel_centre_span(int64_t low, int64_t high) {
   constexpr int64_t kHalf = kSubpixelScale / 2;
-  return {-floor_div(-(low - kHalf), kSubpixelScale), floor_div(high - kHalf, kSubpixelScale)};
+  return {-floor_subpixels(-(low - kHalf)), floor_subpixels(high - kHalf)};
+}
+
+// std::nearbyint in the default rounding mode (to nearest, ties to even) for |value| < 2^51,
+// inline: the generic x86-64 target has no rounding instruction, so nearbyint is a library
+// call. Adding 1.5 * 2^52 leaves the sum no fraction bits, so the addition rounds.
+double round_to_even(double value) {
+  constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52
+  return (value + kShift) - kShift;
 }
 
 // The affine form through three values at three fixed-point positions.
 AffineForm affine_form(const std::array<int64_t, 3>& x, const std::array<int64_t, 3>& y,
                        int64_t double_area, const std::array<double, 3>& value) {
-  const double scale = static_cast<double>(kSubpixelScale);
-  const double x1 = static_cast<double>(x[1] - x[0]) / scale;
-  const double y1 = static_cast<double>(y[1] - y[0]) / scale;
-  const double x2 = static_cast<double>(x[2] - x[0]) / scale;
-  const double y2 = static_cast<double>(y[2] - y[0]) / scale;
-  const double area = static_cast<double>(double_area) / (scale * scale);
+  // Multiplying by the inverse of a power of two is exact: the same values as dividing.
+  constexpr double kInverseScale = 1.0 / static_cast<double>(kSubpixelScale);
+  const double x1 = static_cast<double>(x[1] - x[0]) * kInverseScale;
+  const double y1 = static_cast<double>(y[1] - y[0]) * kInverseScale;
+  const double x2 = static_cast<double>(x[2] - x[0]) * kInverseScale;
+  const double y2 = static_cast<double>(y[2] - y[0]) * kInverseScale;
+  const double area = static_cast<double>(double_area) * (kInverseScale * kInverseScale);
   const double d1 = value[1] - value[0];
   const double d2 = value[2] - value[0];
   return {to_float_saturated(value[0]), to_float_saturated((d1 * y2 - d2 * y1) / area),
@@ -88,8 +99,8 @@ TriangleSetup::ProjectedVertex TriangleSetup::project(const glm::vec4& clip) con
   // The guard band bounds these; the clamp only keeps a rounding overshoot defined.
   constexpr double kLimit = double{1 << 24};
   const double scale = static_cast<double>(kSubpixelScale);
-  return {static_cast<int64_t>(std::nearbyint(std::clamp(screen_x * scale, -kLimit, kLimit))),
-          static_cast<int64_t>(std::nearbyint(std::clamp(screen_y * scale, -kLimit, kLimit))),
+  return {static_cast<int32_t>(round_to_even(std::clamp(screen_x * scale, -kLimit, kLimit))),
+          static_cast<int32_t>(round_to_even(std::clamp(screen_y * scale, -kLimit, kLimit))),
           ndc_z * 0.5 + 0.5, static_cast<float>(inv_w)};
 }
 
@@ -99,10 +110,11 @@ void TriangleSetup::project_vertices(TransformedVertices& vertices, std::size_t 
     TransformedVertex& v = vertices.vertex[i];
     if (v.valid == 0) continue;
     // Once per vertex rather than once per triangle that uses it (about six).
-    v.frustum_outside = static_cast<uint8_t>(frustum_outcode(v.clip));
-    v.clip_outside = static_cast<uint8_t>(clip_planes_.outside(v.clip));
+    const glm::vec4& clip = vertices.clip[i];
+    v.frustum_outside = static_cast<uint8_t>(frustum_outcode(clip));
+    v.clip_outside = static_cast<uint8_t>(clip_planes_.outside(clip));
     // Only where setup() would project the vertex itself: inside the guard band.
-    if (v.clip_outside == 0) v.screen = project(v.clip);
+    if (v.clip_outside == 0) v.set_screen(project(clip));
   }
 }
 
@@ -126,9 +138,6 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
     ++stats.triangles_invalid;
     return;
   }
-  const glm::vec4& a = v0.clip;
-  const glm::vec4& b = v1.clip;
-  const glm::vec4& c = v2.clip;
   if ((v0.frustum_outside & v1.frustum_outside & v2.frustum_outside) != 0) {
     ++stats.triangles_culled;
     return;
@@ -136,10 +145,7 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
   const uint32_t outside = v0.clip_outside | v1.clip_outside | v2.clip_outside;
   if (outside == 0 && object.cull_back_faces) {
     // Projected already: the same orientation emit() would find, before any attribute work.
-    const ScreenVertex& s0 = v0.screen;
-    const ScreenVertex& s1 = v1.screen;
-    const ScreenVertex& s2 = v2.screen;
-    if (edge_function(s0.x, s0.y, s1.x, s1.y, s2.x, s2.y) > 0) {
+    if (edge_function(v0.x, v0.y, v1.x, v1.y, v2.x, v2.y) > 0) {
       ++stats.triangles_back_face_culled;
       return;
     }
@@ -168,14 +174,16 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
 
   ClipPolygon polygon;
   if (outside == 0) {
-    polygon.vertices[0] = {a, {1.0f, 0.0f, 0.0f}};
-    polygon.vertices[1] = {b, {0.0f, 1.0f, 0.0f}};
-    polygon.vertices[2] = {c, {0.0f, 0.0f, 1.0f}};
+    // emit() reads an unclipped corner's weights only.
+    polygon.vertices[0].weights = {1.0f, 0.0f, 0.0f};
+    polygon.vertices[1].weights = {0.0f, 1.0f, 0.0f};
+    polygon.vertices[2].weights = {0.0f, 0.0f, 1.0f};
     polygon.size = 3;
   } else {
     if ((outside & (kClipNear | kClipPositiveW)) != 0) ++stats.triangles_clipped_near;
     if ((outside & ~(kClipNear | kClipPositiveW)) != 0) ++stats.triangles_clipped_guard_band;
-    polygon = clip_triangle(clip_planes_, outside, a, b, c);
+    polygon = clip_triangle(clip_planes_, outside, vertices.clip[at[0]], vertices.clip[at[1]],
+                            vertices.clip[at[2]]);
     if (polygon.size < 3) {
       ++stats.triangles_culled;
       return;
@@ -193,15 +201,18 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
     source.normal.fill(face_normal(object, i0, i1, i2));
   }
 
-  // Pointers, not copies: an unclipped triangle uses its vertices' projections as they are.
+  // An unclipped triangle uses its vertices' projections as they are.
   std::array<const ProjectedVertex*, ClipPolygon::kCapacity> projected;
+  std::array<ProjectedVertex, ClipPolygon::kCapacity> clipped;
   if (outside == 0) {
-    for (std::size_t k = 0; k < 3; ++k) projected[k] = &corner_vertex[k]->screen;
+    for (std::size_t k = 0; k < 3; ++k) {
+      clipped[k] = corner_vertex[k]->screen();
+      projected[k] = &clipped[k];
+    }
     emit(source, polygon, projected, {0, 1, 2}, object.cull_back_faces, triangles, clip_forms,
          stats);
     return;
   }
-  std::array<ProjectedVertex, ClipPolygon::kCapacity> clipped;
   for (int k = 0; k < polygon.size; ++k) {
     const auto index = static_cast<std::size_t>(k);
     clipped[index] = project(polygon.vertices[index].clip);
@@ -247,45 +258,34 @@ void TriangleSetup::emit(
                                                   *std::max_element(x.begin(), x.end()));
   const auto [min_py, max_py] = pixel_centre_span(*std::min_element(y.begin(), y.end()),
                                                   *std::max_element(y.begin(), y.end()));
-  ScreenTriangle triangle;
-  triangle.min_px = static_cast<int32_t>(std::max<int64_t>(min_px, 0));
-  triangle.min_py = static_cast<int32_t>(std::max<int64_t>(min_py, 0));
-  triangle.max_px = static_cast<int32_t>(std::min<int64_t>(max_px, width_ - 1));
-  triangle.max_py = static_cast<int32_t>(std::min<int64_t>(max_py, height_ - 1));
-  if (triangle.min_px > triangle.max_px || triangle.min_py > triangle.max_py) {
+  const auto first_px = static_cast<int32_t>(std::max<int64_t>(min_px, 0));
+  const auto first_py = static_cast<int32_t>(std::max<int64_t>(min_py, 0));
+  const auto last_px = static_cast<int32_t>(std::min<int64_t>(max_px, width_ - 1));
+  const auto last_py = static_cast<int32_t>(std::min<int64_t>(max_py, height_ - 1));
+  if (first_px > last_px || first_py > last_py) {
     ++stats.triangles_culled;  // off screen, or between pixel centres
     return;
   }
-  for (std::size_t k = 0; k < 3; ++k) {
-    triangle.x[k] = static_cast<int32_t>(x[k]);
-    triangle.y[k] = static_cast<int32_t>(y[k]);
-  }
-  triangle.double_area = double_area;
-
   std::array<double, 3> depth{};
+  std::array<float, 3> inv_w{};
+  std::array<glm::vec3, 3> texture_offset, normal;
   for (std::size_t k = 0; k < 3; ++k) {
     const int corner = corners[k];
     const ClipVertex& clip_vertex = polygon.vertices[static_cast<std::size_t>(corner)];
     const glm::dvec3 weights(clip_vertex.weights);
     depth[k] = vertex(static_cast<int>(k)).depth;
-    triangle.inv_w[k] = vertex(static_cast<int>(k)).inv_w;  // 1 / clip_vertex.clip.w
+    inv_w[k] = vertex(static_cast<int>(k)).inv_w;  // 1 / clip_vertex.clip.w
     // Offsets from vertex 0's texture position, combined in double, small enough for float.
     const glm::dvec3 offset = weights.y * (source.texture[1] - source.texture[0]) +
                               weights.z * (source.texture[2] - source.texture[0]);
-    triangle.texture_offset[k] = glm::vec3(
-        to_float_saturated(offset.x), to_float_saturated(offset.y), to_float_saturated(offset.z));
-    triangle.normal[k] = clip_vertex.weights.x * source.normal[0] +
-                         clip_vertex.weights.y * source.normal[1] +
-                         clip_vertex.weights.z * source.normal[2];
+    texture_offset[k] = glm::vec3(to_float_saturated(offset.x), to_float_saturated(offset.y),
+                                  to_float_saturated(offset.z));
+    normal[k] = clip_vertex.weights.x * source.normal[0] +
+                clip_vertex.weights.y * source.normal[1] + clip_vertex.weights.z * source.normal[2];
   }
-  triangle.depth = affine_form(x, y, double_area, depth);
-  triangle.texture_origin = source.texture[0];
-  triangle.object = source.object_index;
-  triangle.back_face = back_face;
 
+  const auto first_clip_form = static_cast<uint32_t>(clip_forms.size());
   if (source.straddling_planes != 0) {
-    triangle.clip_mask = source.straddling_planes;
-    triangle.first_clip_form = static_cast<uint32_t>(clip_forms.size());
     for (std::size_t j = 0; j < static_cast<std::size_t>(clip_plane_count_); ++j) {
       // Signed distance / w is affine on screen, and w > 0 here, so its sign is the
       // distance's sign: no division per fragment.
@@ -295,12 +295,31 @@ void TriangleSetup::emit(
         const double distance = static_cast<double>(weights.x) * source.plane_distance[0][j] +
                                 static_cast<double>(weights.y) * source.plane_distance[1][j] +
                                 static_cast<double>(weights.z) * source.plane_distance[2][j];
-        distance_over_w[k] = distance * static_cast<double>(triangle.inv_w[k]);
+        distance_over_w[k] = distance * static_cast<double>(inv_w[k]);
       }
       clip_forms.push_back(affine_form(x, y, double_area, distance_over_w));
     }
   }
-  triangles.push_back(triangle);
+  // Every field given: the triangle is built in registers and stored once, with no zeroing of
+  // its three lines first (a fine mesh writes tens of thousands a frame).
+  triangles.push_back(ScreenTriangle{
+      .x = {static_cast<int32_t>(x[0]), static_cast<int32_t>(x[1]), static_cast<int32_t>(x[2])},
+      .y = {static_cast<int32_t>(y[0]), static_cast<int32_t>(y[1]), static_cast<int32_t>(y[2])},
+      .double_area = double_area,
+      .min_px = first_px,
+      .min_py = first_py,
+      .max_px = last_px,
+      .max_py = last_py,
+      .depth = affine_form(x, y, double_area, depth),
+      .clip_mask = source.straddling_planes,
+      .first_clip_form = source.straddling_planes != 0 ? first_clip_form : 0u,
+      .object = source.object_index,
+      .back_face = back_face,
+      .inv_w = inv_w,
+      .texture_offset = texture_offset,
+      .normal = normal,
+      .texture_origin = source.texture[0],
+  });
   ++stats.triangles_rasterized;
 }
 
