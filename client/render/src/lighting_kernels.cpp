@@ -15,8 +15,10 @@
 // After Highway: lit_pixels.h reaches the sampler's per-target kernels (-inl.h).
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
@@ -28,27 +30,30 @@ HWY_BEFORE_NAMESPACE();
 namespace soltex::render_internal::HWY_NAMESPACE {
 
 using render::LitPixels;
+using render::LitTile;
 using render::SurfaceUnprojection;
 
-void unproject_target(const SurfaceUnprojection& u, const GBuffer& g, LitPixels& lit) {
-  ShadeBatch& b = lit.batch;
-  const auto count = static_cast<std::size_t>(b.count);
-  // Gathered first, so that the arithmetic below runs over plain arrays.
+// The G-buffer's lighting inputs of a batch's lanes, as unproject_lanes() reads them.
+struct UnprojectInputs {
   alignas(64) ShadeBatch::Lanes<double> ndc_x, ndc_y;
   alignas(64) ShadeBatch::Lanes<float> depth, nx, ny, nz;
   alignas(64) ShadeBatch::Lanes<uint8_t> back;
-  for (std::size_t l = 0; l < count; ++l) {
-    const std::size_t i = lit.index[l];
-    ndc_x[l] = u.ndc_x[static_cast<std::size_t>(lit.x[l])];
-    ndc_y[l] = u.ndc_y[static_cast<std::size_t>(lit.y[l])];
-    depth[l] = g.depth[i];
-    nx[l] = g.normal[i].x;
-    ny[l] = g.normal[i].y;
-    nz[l] = g.normal[i].z;
-    back[l] = g.back_face(i) ? 1 : 0;
-  }
-  const glm::dmat4& m = u.inverse_vp;
-  const glm::dvec3& eye = u.eye;
+};
+
+// The batch's position, to_viewer and normal lanes from `in` (SurfaceUnprojection::fill()).
+// Restrict: with `in` and the batch possibly one, the loop would stay scalar.
+HWY_NOINLINE void unproject_lanes(const SurfaceUnprojection& u,
+                                  const UnprojectInputs& __restrict in, ShadeBatch& __restrict b) {
+  const auto count = static_cast<std::size_t>(b.count);
+  const auto& ndc_x = in.ndc_x;
+  const auto& ndc_y = in.ndc_y;
+  const auto& depth = in.depth;
+  const auto& nx = in.nx;
+  const auto& ny = in.ny;
+  const auto& nz = in.nz;
+  const auto& back = in.back;
+  const glm::dmat4 m = u.inverse_vp;
+  const glm::dvec3 eye = u.eye;
   for (std::size_t l = 0; l < count; ++l) {
     const double ndc_z = static_cast<double>(depth[l]) * 2.0 - 1.0;
     // glm's matrix-vector product: (m0 x + m1 y) + (m2 z + m3 w), with w = 1.
@@ -85,6 +90,23 @@ void unproject_target(const SurfaceUnprojection& u, const GBuffer& g, LitPixels&
     b.to_viewer_y[l] = ty;
     b.to_viewer_z[l] = tz;
   }
+}
+
+void unproject_target(const SurfaceUnprojection& u, const GBuffer& g, LitPixels& lit) {
+  const auto count = static_cast<std::size_t>(lit.batch.count);
+  // Gathered first, so that the arithmetic runs over plain arrays.
+  UnprojectInputs in;
+  for (std::size_t l = 0; l < count; ++l) {
+    const std::size_t i = lit.index[l];
+    in.ndc_x[l] = u.ndc_x[static_cast<std::size_t>(lit.x[l])];
+    in.ndc_y[l] = u.ndc_y[static_cast<std::size_t>(lit.y[l])];
+    in.depth[l] = g.depth[i];
+    in.nx[l] = g.normal[i].x;
+    in.ny[l] = g.normal[i].y;
+    in.nz[l] = g.normal[i].z;
+    in.back[l] = g.back_face(i) ? 1 : 0;
+  }
+  unproject_lanes(u, in, lit.batch);
 }
 
 // light_term() across the batch, for a light whose direction and radiance are in the batch's
@@ -171,8 +193,7 @@ void shade_batch_target(const PreparedLights& lights, ShadeBatch& b) {
 
 // LitPixels::write()'s bytes: per lane what set_pixel() gives (over_background(), then
 // Image's rounding), with selects for its branches. bytes[3 l + c]: lane l's channel c.
-void colour_bytes_target(const LitPixels& lit, uint8_t* bytes) {
-  const ShadeBatch& b = lit.batch;
+void colour_bytes_lanes(const ShadeBatch& b, const float* opacity_lanes, uint8_t* bytes) {
   const auto count = static_cast<std::size_t>(b.count);
   alignas(64) ShadeBatch::Lanes<uint8_t> red, green, blue;
   const glm::vec3 background = render::kBackground;
@@ -182,7 +203,7 @@ void colour_bytes_target(const LitPixels& lit, uint8_t* bytes) {
     return byte;
   };
   for (std::size_t l = 0; l < count; ++l) {
-    const float opacity = lit.opacity[l];
+    const float opacity = opacity_lanes[l];
     const bool blend = opacity < 1.0f;
     const float r = background.r + opacity * (b.colour_r[l] - background.r);
     const float g = background.g + opacity * (b.colour_g[l] - background.g);
@@ -198,6 +219,89 @@ void colour_bytes_target(const LitPixels& lit, uint8_t* bytes) {
   }
 }
 
+void colour_bytes_target(const LitPixels& lit, uint8_t* bytes) {
+  colour_bytes_lanes(lit.batch, lit.opacity.data(), bytes);
+}
+
+// LitTile::light(): each row's span from its first to its last lit pixel goes into the lanes as
+// it lies in the G-buffer and the tile's planes (contiguous reads), rows after rows while they
+// fit a batch; the batch is unprojected, lit and made bytes as a LitPixels batch is, and only
+// the lit pixels' bytes are written. A span's pixels that are not lit (another object's, an
+// unlit one's, the background) are computed too, from whatever their planes hold, and dropped.
+void light_tile_target(const SurfaceUnprojection& u, const PreparedLights& lights, const GBuffer& g,
+                       LitTile& t, ShadeBatch& b, Image& image) {
+  constexpr std::size_t kSide = LitTile::kSide;
+  struct Span {
+    std::size_t row, begin, count, lane;
+    uint32_t mask;  // bit c: pixel begin + c is lit
+    bool all_lit;
+  };
+  std::array<Span, kSide> spans;
+  std::size_t pending = 0, lanes = 0;
+  UnprojectInputs in;
+  alignas(64) ShadeBatch::Lanes<float> opacity;
+  alignas(64) std::array<uint8_t, 3 * ShadeBatch::kCapacity> bytes;
+  const auto light_pending = [&] {
+    b.count = static_cast<int>(lanes);
+    unproject_lanes(u, in, b);
+    shade_batch_target(lights, b);
+    colour_bytes_lanes(b, opacity.data(), bytes.data());
+    for (std::size_t s = 0; s < pending; ++s) {
+      const Span& span = spans[s];
+      uint8_t* out =
+          image.pixel(t.x0 + static_cast<int>(span.begin), t.y0 + static_cast<int>(span.row));
+      const uint8_t* from = &bytes[3 * span.lane];
+      if (span.all_lit) {
+        for (std::size_t c = 0; c < 3 * span.count; ++c) out[c] = from[c];
+        continue;
+      }
+      for (uint32_t m = span.mask; m != 0; m &= m - 1) {
+        const auto p = static_cast<std::size_t>(3 * std::countr_zero(m));
+        out[p] = from[p];
+        out[p + 1] = from[p + 1];
+        out[p + 2] = from[p + 2];
+      }
+    }
+    pending = lanes = 0;
+    b.count = 0;  // the batch is a LitPixels' too, whose count says what it holds
+  };
+  for (std::size_t r = 0; r < static_cast<std::size_t>(t.height); ++r) {
+    const uint32_t mask = t.row_mask(r);
+    if (mask == 0) continue;
+    const auto begin = static_cast<std::size_t>(std::countr_zero(mask));
+    const std::size_t end = kSide - static_cast<std::size_t>(std::countl_zero(mask));
+    const std::size_t n = end - begin;
+    if (lanes + n > static_cast<std::size_t>(ShadeBatch::kCapacity)) light_pending();
+    spans[pending++] =
+        Span{r, begin, n, lanes, mask >> begin, static_cast<std::size_t>(std::popcount(mask)) == n};
+    const std::size_t gi = t.first + r * t.row_stride + begin;
+    const std::size_t si = r * kSide + begin;
+    const double ndc_y = u.ndc_y[static_cast<std::size_t>(t.y0) + r];
+    // Plane to lanes by memcpy: a loop over the tile's planes and the batch's, which the
+    // compiler cannot tell apart, stays scalar.
+    const auto copy = [n](auto* to, const auto* from) { std::memcpy(to, from, n * sizeof *from); };
+    copy(&in.ndc_x[lanes], &u.ndc_x[static_cast<std::size_t>(t.x0) + begin]);
+    copy(&in.depth[lanes], &g.depth[gi]);
+    copy(&b.albedo_r[lanes], &t.albedo_r[si]);
+    copy(&b.albedo_g[lanes], &t.albedo_g[si]);
+    copy(&b.albedo_b[lanes], &t.albedo_b[si]);
+    copy(&b.specular[lanes], &t.specular[si]);
+    copy(&b.shininess[lanes], &t.shininess[si]);
+    copy(&opacity[lanes], &t.opacity[si]);
+    for (std::size_t l = 0; l < n; ++l) {
+      const std::size_t at = lanes + l;
+      in.ndc_y[at] = ndc_y;
+      in.nx[at] = g.normal[gi + l].x;
+      in.ny[at] = g.normal[gi + l].y;
+      in.nz[at] = g.normal[gi + l].z;
+      in.back[at] = (g.flags[gi + l] & GBuffer::kBackFace) != 0 ? 1 : 0;
+    }
+    lanes += n;
+  }
+  if (lanes > 0) light_pending();
+  std::fill_n(t.lit.begin(), static_cast<std::size_t>(t.height) * kSide, uint8_t{0});
+}
+
 }  // namespace soltex::render_internal::HWY_NAMESPACE
 HWY_AFTER_NAMESPACE();
 
@@ -208,6 +312,7 @@ namespace render_internal {
 HWY_EXPORT(unproject_target);
 HWY_EXPORT(shade_batch_target);
 HWY_EXPORT(colour_bytes_target);
+HWY_EXPORT(light_tile_target);
 
 // Dispatched from this namespace, where the kernels' per-target namespaces are: a build with
 // one target only (-march=native) calls that target's kernel directly by the same name.
@@ -223,6 +328,11 @@ void shade_lanes(const PreparedLights& lights, ShadeBatch& batch) {
 
 void colour_bytes(const render::LitPixels& lit, uint8_t* bytes) {
   HWY_DYNAMIC_DISPATCH(colour_bytes_target)(lit, bytes);
+}
+
+void light_tile(const render::SurfaceUnprojection& u, const PreparedLights& lights,
+                const GBuffer& g, render::LitTile& tile, ShadeBatch& scratch, Image& image) {
+  HWY_DYNAMIC_DISPATCH(light_tile_target)(u, lights, g, tile, scratch, image);
 }
 
 }  // namespace
@@ -252,6 +362,11 @@ void render::LitPixels::write(Image& image) const {
     pixel[1] = bytes[3 * l + 1];
     pixel[2] = bytes[3 * l + 2];
   }
+}
+
+void render::LitTile::light(const SurfaceUnprojection& u, const PreparedLights& lights,
+                            const GBuffer& g, ShadeBatch& scratch, Image& image) {
+  render_internal::light_tile(u, lights, g, *this, scratch, image);
 }
 
 void render::SurfaceUnprojection::fill(const GBuffer& g, LitPixels& lit) const {

@@ -95,7 +95,15 @@ void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y,
 void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
                        Image& image) {
   assert(x1 - x0 <= kTile);
+  SOLTEX_DCHECK(y1 - y0 <= kTile);
   gbuffer_ = &g;
+  by_tile_ = true;
+  tile_.x0 = x0;
+  tile_.y0 = y0;
+  tile_.width = x1 - x0;
+  tile_.height = y1 - y0;
+  tile_.first = g.index(x0 - origin_x, y0 - origin_y);
+  tile_.row_stride = static_cast<std::size_t>(g.width);
   const auto& background = background_row();
   const std::size_t object_count = frame_.objects.size();
   // Counted in a register and added once: an increment in memory per pixel chains each pixel
@@ -138,7 +146,9 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
   counts_.covered += covered;
   if (cached_.pending != 0) look_up_all(image);
   if (evaluated_.count > 0) evaluate(image);
-  if (lit_.batch.count > 0) flush(image);
+  SOLTEX_DCHECK(lit_.batch.count == 0);
+  tile_.light(frame_.unprojection, frame_.lights, g, lit_.batch, image);
+  by_tile_ = false;
 }
 
 void TileShader::shade_pixels(const GBuffer& g, int origin_x, int origin_y,
@@ -247,6 +257,7 @@ void TileShader::look_up(int level, Image& image) {
   const MaterialInputs& m = object.material;
   SOLTEX_DCHECK(!m.unlit);
   int lit = lit_.batch.count;
+  const bool by_tile = by_tile_;
   for (std::size_t i = 0; i < n; ++i) {
     const SampleResult* result = &cached_.results[i];
     SampleResult again;
@@ -259,6 +270,10 @@ void TileShader::look_up(int level, Image& image) {
       result = &again;
     }
     const Pixel pixel = group.pixels[i];
+    if (by_tile) {
+      tile_.add(tile_.slot(pixel.x, pixel.y), m.read(result->values.data()), m.shininess);
+      continue;
+    }
     lit_.add(lit, pixel.x, pixel.y, pixel.index, m.read(result->values.data()), m.shininess);
     if (++lit == ShadeBatch::kCapacity) {
       lit_.batch.count = lit;
@@ -282,6 +297,10 @@ void TileShader::shade_values(Pixel pixel, const MaterialInputs& m, const float*
     return;
   }
   ++counts_.shaded;
+  if (by_tile_) {
+    tile_.add(tile_.slot(pixel.x, pixel.y), surface, m.shininess);
+    return;
+  }
   lit_.add(lit_.batch.count++, pixel.x, pixel.y, pixel.index, surface, m.shininess);
   if (lit_.batch.count == ShadeBatch::kCapacity) flush(image);
 }

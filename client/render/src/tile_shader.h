@@ -54,8 +54,8 @@ struct TileCounts {
 };
 
 // Shades tiles of a frame on one render thread: per covered pixel, read the texture (a
-// cached lookup at the footprint's level, or an evaluation over the footprint), light it in
-// batches, and write the image. Keeps the thread's samplers (and their microcaches) and
+// cached lookup at the footprint's level, or an evaluation over the footprint), light it (a
+// shade() tile in scan order once its lookups are done), and write the image. Keeps the thread's samplers (and their microcaches) and
 // tallies the bricks its pixels missed.
 class TileShader {
  public:
@@ -77,7 +77,7 @@ class TileShader {
   const TileCounts& counts() const { return counts_; }
   TileCounts& counts() { return counts_; }
 
-  static constexpr int kTile = 32;
+  static constexpr int kTile = LitTile::kSide;
 
  private:
   // Passed by value: 16 bytes travel in two registers, where a reference made the callee
@@ -143,9 +143,13 @@ class TileShader {
   MissedBricks missed_;  // one pixel's, refilled by each lookup (kept: not zeroed per pixel)
   TileCounts counts_;
   const GBuffer* gbuffer_ = nullptr;  // the tile being shaded
-  LitPixels lit_;                     // about 40 KB, uninitialised but for the count
-  EvaluatedPixels evaluated_;         // about 10 KB, likewise
-  CachedPixels cached_;               // about 40 KB, likewise
+  // Set while shade() takes a tile: lit pixels go to tile_ and are lit in scan order at its
+  // end; shade_pixels()'s pixels, in any order, go through the batch lit_ by index.
+  bool by_tile_ = false;
+  LitTile tile_;               // about 25 KB
+  LitPixels lit_;              // about 40 KB, uninitialised but for the count
+  EvaluatedPixels evaluated_;  // about 10 KB, likewise
+  CachedPixels cached_;        // about 40 KB, likewise
 };
 
 }  // namespace soltex::render
