@@ -41,7 +41,9 @@ struct UnprojectInputs {
 };
 
 // The batch's position, to_viewer and normal lanes from `in` (SurfaceUnprojection::fill()).
-// Restrict: with `in` and the batch possibly one, the loop would stay scalar.
+// Restrict: with `in` and the batch possibly one, the loop would stay scalar. kPositions:
+// whether the position lanes are written (only point lights read them).
+template <bool kPositions>
 HWY_NOINLINE void unproject_lanes(const SurfaceUnprojection& u,
                                   const UnprojectInputs& __restrict in, ShadeBatch& __restrict b) {
   const auto count = static_cast<std::size_t>(b.count);
@@ -62,9 +64,11 @@ HWY_NOINLINE void unproject_lanes(const SurfaceUnprojection& u,
     const double hz = (m[0].z * ndc_x[l] + m[1].z * ndc_y[l]) + (m[2].z * ndc_z + m[3].z * 1.0);
     const double hw = (m[0].w * ndc_x[l] + m[1].w * ndc_y[l]) + (m[2].w * ndc_z + m[3].w * 1.0);
     const double rx = hx / hw, ry = hy / hw, rz = hz / hw;
-    b.position_x[l] = eye.x + rx;
-    b.position_y[l] = eye.y + ry;
-    b.position_z[l] = eye.z + rz;
+    if constexpr (kPositions) {
+      b.position_x[l] = eye.x + rx;
+      b.position_y[l] = eye.y + ry;
+      b.position_z[l] = eye.z + rz;
+    }
     const auto vx = static_cast<float>(-rx);
     const auto vy = static_cast<float>(-ry);
     const auto vz = static_cast<float>(-rz);
@@ -106,7 +110,7 @@ void unproject_target(const SurfaceUnprojection& u, const GBuffer& g, LitPixels&
     in.nz[l] = g.normal[i].z;
     in.back[l] = g.back_face(i) ? 1 : 0;
   }
-  unproject_lanes(u, in, lit.batch);
+  unproject_lanes<true>(u, in, lit.batch);
 }
 
 // light_term() across the batch, for a light whose direction and radiance are in the batch's
@@ -243,7 +247,11 @@ void light_tile_target(const SurfaceUnprojection& u, const PreparedLights& light
   alignas(64) std::array<uint8_t, 3 * ShadeBatch::kCapacity> bytes;
   const auto light_pending = [&] {
     b.count = static_cast<int>(lanes);
-    unproject_lanes(u, in, b);
+    if (lights.point.empty()) {
+      unproject_lanes<false>(u, in, b);
+    } else {
+      unproject_lanes<true>(u, in, b);
+    }
     shade_batch_target(lights, b);
     colour_bytes_lanes(b, opacity.data(), bytes.data());
     for (std::size_t s = 0; s < pending; ++s) {
@@ -271,23 +279,27 @@ void light_tile_target(const SurfaceUnprojection& u, const PreparedLights& light
     const auto begin = static_cast<std::size_t>(std::countr_zero(mask));
     const std::size_t end = kSide - static_cast<std::size_t>(std::countl_zero(mask));
     const std::size_t n = end - begin;
-    if (lanes + n > static_cast<std::size_t>(ShadeBatch::kCapacity)) light_pending();
+    if (lanes + kSide > static_cast<std::size_t>(ShadeBatch::kCapacity)) light_pending();
     spans[pending++] =
         Span{r, begin, n, lanes, mask >> begin, static_cast<std::size_t>(std::popcount(mask)) == n};
     const std::size_t gi = t.first + r * t.row_stride + begin;
     const std::size_t si = r * kSide + begin;
     const double ndc_y = u.ndc_y[static_cast<std::size_t>(t.y0) + r];
-    // Plane to lanes by memcpy: a loop over the tile's planes and the batch's, which the
-    // compiler cannot tell apart, stays scalar.
-    const auto copy = [n](auto* to, const auto* from) { std::memcpy(to, from, n * sizeof *from); };
-    copy(&in.ndc_x[lanes], &u.ndc_x[static_cast<std::size_t>(t.x0) + begin]);
-    copy(&in.depth[lanes], &g.depth[gi]);
-    copy(&b.albedo_r[lanes], &t.albedo_r[si]);
-    copy(&b.albedo_g[lanes], &t.albedo_g[si]);
-    copy(&b.albedo_b[lanes], &t.albedo_b[si]);
-    copy(&b.specular[lanes], &t.specular[si]);
-    copy(&b.shininess[lanes], &t.shininess[si]);
-    copy(&opacity[lanes], &t.opacity[si]);
+    // Planes to lanes by memcpy (a loop over the tile's planes and the batch's, which the
+    // compiler cannot tell apart, stays scalar); whole rows of the tile's planes, a fixed size
+    // the compiler makes a few vector moves (the lanes past the span are overwritten or unused).
+    const auto copy_row = [](float* to, const float* from) {
+      std::memcpy(to, from, kSide * sizeof(float));
+    };
+    std::memcpy(&in.ndc_x[lanes], &u.ndc_x[static_cast<std::size_t>(t.x0) + begin],
+                n * sizeof(double));
+    std::memcpy(&in.depth[lanes], &g.depth[gi], n * sizeof(float));
+    copy_row(&b.albedo_r[lanes], &t.albedo_r[si]);
+    copy_row(&b.albedo_g[lanes], &t.albedo_g[si]);
+    copy_row(&b.albedo_b[lanes], &t.albedo_b[si]);
+    copy_row(&b.specular[lanes], &t.specular[si]);
+    copy_row(&b.shininess[lanes], &t.shininess[si]);
+    copy_row(&opacity[lanes], &t.opacity[si]);
     for (std::size_t l = 0; l < n; ++l) {
       const std::size_t at = lanes + l;
       in.ndc_y[at] = ndc_y;

@@ -71,9 +71,12 @@ struct LitTile {
   int x0 = 0, y0 = 0, width = 0, height = 0;
   std::size_t first = 0, row_stride = 0;
   // Zeroed once: a pixel not lit in this tile keeps finite values of an earlier one, which
-  // light() computes over (within a row's span of lit pixels) but never writes.
-  alignas(64) std::array<float, kPixels> albedo_r{}, albedo_g{}, albedo_b{};
-  alignas(64) std::array<float, kPixels> specular{}, shininess{}, opacity{};
+  // light() computes over (within a row's span of lit pixels) but never writes. A row more
+  // than the tile: light() copies kSide values from any column of any row.
+  template <typename T>
+  using Plane = std::array<T, kPixels + kSide>;
+  alignas(64) Plane<float> albedo_r{}, albedo_g{}, albedo_b{};
+  alignas(64) Plane<float> specular{}, shininess{}, opacity{};
   alignas(64) std::array<uint8_t, kPixels> lit{};  // 1: lit from these values; light() clears
 
   // Bit c: pixel c of row r is lit. Eight 0-or-1 bytes at a time: the multiplication moves
