@@ -113,17 +113,38 @@ void unproject_target(const SurfaceUnprojection& u, const GBuffer& g, LitPixels&
   unproject_lanes<true>(u, in, lit.batch);
 }
 
-// light_term() across the batch, for a light whose direction and radiance are in the batch's
-// light_* and radiance_* lanes; adds it to the colour lanes.
-void add_light_term(ShadeBatch& b) {
+// A light's direction and radiance per lane: a point light's in the batch's light_* and
+// radiance_* lanes, a directional light's the same in every lane (no lanes filled with it).
+struct LaneLight {
+  const ShadeBatch& b;
+  float light_x(int i) const { return b.light_x[i]; }
+  float light_y(int i) const { return b.light_y[i]; }
+  float light_z(int i) const { return b.light_z[i]; }
+  float radiance_r(int i) const { return b.radiance_r[i]; }
+  float radiance_g(int i) const { return b.radiance_g[i]; }
+  float radiance_b(int i) const { return b.radiance_b[i]; }
+};
+struct UniformLight {
+  glm::vec3 to_light, radiance;
+  float light_x(int) const { return to_light.x; }
+  float light_y(int) const { return to_light.y; }
+  float light_z(int) const { return to_light.z; }
+  float radiance_r(int) const { return radiance.r; }
+  float radiance_g(int) const { return radiance.g; }
+  float radiance_b(int) const { return radiance.b; }
+};
+
+// light_term() across the batch for `light`; adds it to the colour lanes.
+template <class Light>
+void add_light_term(ShadeBatch& b, const Light light) {
   const int count = b.count;
   // Diffuse, and the half vector's cosine, in vector loops.
   for (int i = 0; i < count; ++i) {
-    const float n_dot_l = (b.normal_x[i] * b.light_x[i] + b.normal_y[i] * b.light_y[i]) +
-                          b.normal_z[i] * b.light_z[i];
-    const float hx = b.light_x[i] + b.to_viewer_x[i];
-    const float hy = b.light_y[i] + b.to_viewer_y[i];
-    const float hz = b.light_z[i] + b.to_viewer_z[i];
+    const float n_dot_l = (b.normal_x[i] * light.light_x(i) + b.normal_y[i] * light.light_y(i)) +
+                          b.normal_z[i] * light.light_z(i);
+    const float hx = light.light_x(i) + b.to_viewer_x[i];
+    const float hy = light.light_y(i) + b.to_viewer_y[i];
+    const float hz = light.light_z(i) + b.to_viewer_z[i];
     const float inverse_length = 1.0f / std::sqrt((hx * hx + hy * hy) + hz * hz);
     b.n_dot_l[i] = n_dot_l;
     b.n_dot_h[i] = (b.normal_x[i] * (hx * inverse_length) + b.normal_y[i] * (hy * inverse_length)) +
@@ -139,15 +160,15 @@ void add_light_term(ShadeBatch& b) {
   }
   for (int i = 0; i < count; ++i) {
     const float n_dot_l = b.n_dot_l[i];
-    const float r = b.albedo_r[i] * b.radiance_r[i] * n_dot_l;
-    const float g = b.albedo_g[i] * b.radiance_g[i] * n_dot_l;
-    const float bl = b.albedo_b[i] * b.radiance_b[i] * n_dot_l;
+    const float r = b.albedo_r[i] * light.radiance_r(i) * n_dot_l;
+    const float g = b.albedo_g[i] * light.radiance_g(i) * n_dot_l;
+    const float bl = b.albedo_b[i] * light.radiance_b(i) * n_dot_l;
     // Every sum computed, then selected: additions under a condition would keep the loop scalar.
     // light_term() adds the highlight only where it computed one.
     const bool has_highlight = n_dot_l > 0.0f && b.specular[i] > 0.0f && b.n_dot_h[i] > 0.0f;
-    const float r_total = has_highlight ? r + b.radiance_r[i] * b.highlight[i] : r;
-    const float g_total = has_highlight ? g + b.radiance_g[i] * b.highlight[i] : g;
-    const float b_total = has_highlight ? bl + b.radiance_b[i] * b.highlight[i] : bl;
+    const float r_total = has_highlight ? r + light.radiance_r(i) * b.highlight[i] : r;
+    const float g_total = has_highlight ? g + light.radiance_g(i) * b.highlight[i] : g;
+    const float b_total = has_highlight ? bl + light.radiance_b(i) * b.highlight[i] : bl;
     const bool lit = n_dot_l > 0.0f;
     b.colour_r[i] = lit ? b.colour_r[i] + r_total : b.colour_r[i];
     b.colour_g[i] = lit ? b.colour_g[i] + g_total : b.colour_g[i];
@@ -162,17 +183,7 @@ void shade_batch_target(const PreparedLights& lights, ShadeBatch& b) {
     b.colour_g[i] = b.albedo_g[i] * lights.ambient.g;
     b.colour_b[i] = b.albedo_b[i] * lights.ambient.b;
   }
-  for (const auto& d : lights.directional) {
-    for (int i = 0; i < count; ++i) {
-      b.light_x[i] = d.to_light.x;
-      b.light_y[i] = d.to_light.y;
-      b.light_z[i] = d.to_light.z;
-      b.radiance_r[i] = d.radiance.r;
-      b.radiance_g[i] = d.radiance.g;
-      b.radiance_b[i] = d.radiance.b;
-    }
-    add_light_term(b);
-  }
+  for (const auto& d : lights.directional) add_light_term(b, UniformLight{d.to_light, d.radiance});
   for (const auto& p : lights.point) {
     const glm::dvec3 light = p.position;
     const glm::vec3 radiance = p.radiance;
@@ -191,7 +202,7 @@ void shade_batch_target(const PreparedLights& lights, ShadeBatch& b) {
       b.radiance_g[i] = radiance.g / d2;
       b.radiance_b[i] = radiance.b / d2;
     }
-    add_light_term(b);
+    add_light_term(b, LaneLight{b});
   }
 }
 
