@@ -53,7 +53,7 @@ inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
   SOLTEX_DCHECK(l < CachedPixels::kLevels);
   CachedPixels::Group& group = cached_.groups[l];
   std::size_t count = group.count;
-  const bool full = group.push(count, pixel, p);
+  const bool full = group.push(count, slot_of(pixel), p);
   group.count = count;
   cached_.pending |= 1u << l;
   if (full) look_up(level, image);
@@ -66,8 +66,10 @@ inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
 void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y, std::size_t first,
                                 const ObjectShading& object, TextureSampler& sampler,
                                 Image& image) {
+  SOLTEX_DCHECK(by_tile_);
   use_cached_object(object, sampler, image);
   const NearestLevelTable& table = object.level_table;
+  const auto first_slot = static_cast<uint32_t>(tile_.slot(x_begin, y));
   CachedPixels::Group* group = nullptr;
   int level = -1;
   std::size_t count = 0;
@@ -82,7 +84,8 @@ void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y,
       count = group->count;
       cached_.pending |= 1u << l;
     }
-    if (group->push(count, Pixel{x, y, i}, g.texture_position[i])) {
+    const uint32_t slot = first_slot + static_cast<uint32_t>(x - x_begin);
+    if (group->push(count, slot, g.texture_position[i])) {
       group->count = count;
       look_up(level, image);
       group = nullptr;
@@ -154,7 +157,12 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
 void TileShader::shade_pixels(const GBuffer& g, int origin_x, int origin_y,
                               std::span<const glm::ivec2> pixels, Image& image) {
   gbuffer_ = &g;
-  for (const glm::ivec2& at : pixels) {
+  list_ = pixels;
+  list_origin_x_ = origin_x;
+  list_origin_y_ = origin_y;
+  list_at_ = 0;
+  for (; list_at_ < pixels.size(); ++list_at_) {
+    const glm::ivec2 at = pixels[list_at_];
     const Pixel pixel{at.x, at.y, g.index(at.x - origin_x, at.y - origin_y)};
     const uint32_t id = g.object_id[pixel.index];
     if (!g.covered(pixel.index) || id >= frame_.objects.size()) continue;
@@ -269,12 +277,14 @@ void TileShader::look_up(int level, Image& image) {
       if (again.level < 0) ++counts_.empty;
       result = &again;
     }
-    const Pixel pixel = group.pixels[i];
+    const uint32_t slot = group.slots[i];
     if (by_tile) {
-      tile_.add(tile_.slot(pixel.x, pixel.y), m.read(result->values.data()), m.shininess);
+      tile_.add(slot, m.read(result->values.data()), m.shininess);
       continue;
     }
-    lit_.add(lit, pixel.x, pixel.y, pixel.index, m.read(result->values.data()), m.shininess);
+    const glm::ivec2 at = list_[slot];
+    lit_.add(lit, at.x, at.y, gbuffer_->index(at.x - list_origin_x_, at.y - list_origin_y_),
+             m.read(result->values.data()), m.shininess);
     if (++lit == ShadeBatch::kCapacity) {
       lit_.batch.count = lit;
       flush(image);
