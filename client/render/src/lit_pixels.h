@@ -30,8 +30,9 @@ inline void set_pixel(Image& image, int x, int y, const glm::vec3& colour, float
   image.set(x, y, seen.r, seen.g, seen.b);
 }
 
-// The lit pixels of a tile waiting to be shaded together: where they are, their texture
-// values, and the batch that shade_batch() lights.
+// Lit pixels in any order (TileShader::shade_pixels()'s) waiting to be shaded together: where
+// they are, their texture values, and the batch that shade_batch() lights. A tile shaded in
+// scan order uses LitTile instead.
 struct LitPixels {
   ShadeBatch batch;
   ShadeBatch::Lanes<int> x, y;
