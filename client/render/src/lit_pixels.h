@@ -1,8 +1,11 @@
 #pragma once
 
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <vector>
@@ -27,8 +30,9 @@ inline void set_pixel(Image& image, int x, int y, const glm::vec3& colour, float
   image.set(x, y, seen.r, seen.g, seen.b);
 }
 
-// The lit pixels of a tile waiting to be shaded together: where they are, their texture
-// values, and the batch that shade_batch() lights.
+// Lit pixels in any order (TileShader::shade_pixels()'s) waiting to be shaded together: where
+// they are, their texture values, and the batch that shade_batch() lights. A tile shaded in
+// scan order uses LitTile instead.
 struct LitPixels {
   ShadeBatch batch;
   ShadeBatch::Lanes<int> x, y;
@@ -51,6 +55,61 @@ struct LitPixels {
   // Writes the batch's colours, seen through their opacity, to their pixels of `image`, as
   // set_pixel() writes them (lighting_kernels.cpp: the bytes made in vector lanes).
   void write(Image& image) const;
+};
+
+struct SurfaceUnprojection;
+
+// The lit pixels of one shading tile (at most kSide x kSide), kept by their place in it (row
+// r, column c at r * kSide + c): their texture values, written in whatever order the lookups
+// finish, then lit in scan order straight from the G-buffer's planes (light()): no pixel
+// positions kept per pixel, no gather by index, each row's bytes written where they lie.
+struct LitTile {
+  static constexpr int kSide = 32;
+  static constexpr std::size_t kPixels = static_cast<std::size_t>(kSide) * kSide;
+
+  // The tile: frame pixels [x0, x0 + width) x [y0, y0 + height), pixel (x0, y0) at G-buffer
+  // index `first`, rows `row_stride` apart there.
+  int x0 = 0, y0 = 0, width = 0, height = 0;
+  std::size_t first = 0, row_stride = 0;
+  // Zeroed once: a pixel not lit in this tile keeps finite values of an earlier one, which
+  // light() computes over (within a row's span of lit pixels) but never writes. A row more
+  // than the tile: light() copies kSide values from any column of any row.
+  template <typename T>
+  using Plane = std::array<T, kPixels + kSide>;
+  alignas(64) Plane<float> albedo_r{}, albedo_g{}, albedo_b{};
+  alignas(64) Plane<float> specular{}, shininess{}, opacity{};
+  alignas(64) std::array<uint8_t, kPixels> lit{};  // 1: lit from these values; light() clears
+
+  // Bit c: pixel c of row r is lit. Eight 0-or-1 bytes at a time: the multiplication moves
+  // byte i's bit to bit 56 + i, and no two partial products meet (so nothing carries).
+  uint32_t row_mask(std::size_t r) const {
+    static_assert(std::endian::native == std::endian::little);
+    uint32_t mask = 0;
+    for (std::size_t word = 0; word < kSide / 8; ++word) {
+      uint64_t bytes;
+      std::memcpy(&bytes, &lit[r * kSide + 8 * word], sizeof bytes);
+      mask |= static_cast<uint32_t>((bytes * 0x0102040810204080ull) >> 56) << (8 * word);
+    }
+    return mask;
+  }
+  std::size_t slot(int x, int y) const {
+    return static_cast<std::size_t>(y - y0) * kSide + static_cast<std::size_t>(x - x0);
+  }
+  void add(std::size_t at, const SurfaceInputs& surface, float shininess_in) {
+    albedo_r[at] = surface.albedo.r;
+    albedo_g[at] = surface.albedo.g;
+    albedo_b[at] = surface.albedo.b;
+    specular[at] = surface.specular;
+    shininess[at] = shininess_in;
+    opacity[at] = surface.opacity;
+    lit[at] = 1;
+  }
+
+  // Lights the tile's lit pixels as SurfaceUnprojection::fill(), shade_batch() and
+  // LitPixels::write() would, bit for bit, and clears `lit`; `scratch` holds the lanes
+  // (lighting_kernels.cpp, runtime-dispatched once per tile).
+  void light(const SurfaceUnprojection& u, const PreparedLights& lights, const GBuffer& g,
+             ShadeBatch& scratch, Image& image);
 };
 
 // The lighting inputs of a batch's pixels: the world position unprojected from depth (relative

@@ -53,7 +53,7 @@ inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
   SOLTEX_DCHECK(l < CachedPixels::kLevels);
   CachedPixels::Group& group = cached_.groups[l];
   std::size_t count = group.count;
-  const bool full = group.push(count, pixel, p);
+  const bool full = group.push(count, slot_of(pixel), p);
   group.count = count;
   cached_.pending |= 1u << l;
   if (full) look_up(level, image);
@@ -66,8 +66,10 @@ inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
 void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y, std::size_t first,
                                 const ObjectShading& object, TextureSampler& sampler,
                                 Image& image) {
+  SOLTEX_DCHECK(by_tile_);
   use_cached_object(object, sampler, image);
   const NearestLevelTable& table = object.level_table;
+  const auto first_slot = static_cast<uint32_t>(tile_.slot(x_begin, y));
   CachedPixels::Group* group = nullptr;
   int level = -1;
   std::size_t count = 0;
@@ -82,7 +84,8 @@ void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y,
       count = group->count;
       cached_.pending |= 1u << l;
     }
-    if (group->push(count, Pixel{x, y, i}, g.texture_position[i])) {
+    const uint32_t slot = first_slot + static_cast<uint32_t>(x - x_begin);
+    if (group->push(count, slot, g.texture_position[i])) {
       group->count = count;
       look_up(level, image);
       group = nullptr;
@@ -95,7 +98,15 @@ void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y,
 void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
                        Image& image) {
   assert(x1 - x0 <= kTile);
+  SOLTEX_DCHECK(y1 - y0 <= kTile);
   gbuffer_ = &g;
+  by_tile_ = true;
+  tile_.x0 = x0;
+  tile_.y0 = y0;
+  tile_.width = x1 - x0;
+  tile_.height = y1 - y0;
+  tile_.first = g.index(x0 - origin_x, y0 - origin_y);
+  tile_.row_stride = static_cast<std::size_t>(g.width);
   const auto& background = background_row();
   const std::size_t object_count = frame_.objects.size();
   // Counted in a register and added once: an increment in memory per pixel chains each pixel
@@ -138,13 +149,20 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
   counts_.covered += covered;
   if (cached_.pending != 0) look_up_all(image);
   if (evaluated_.count > 0) evaluate(image);
-  if (lit_.batch.count > 0) flush(image);
+  SOLTEX_DCHECK(lit_.batch.count == 0);
+  tile_.light(frame_.unprojection, frame_.lights, g, lit_.batch, image);
+  by_tile_ = false;
 }
 
 void TileShader::shade_pixels(const GBuffer& g, int origin_x, int origin_y,
                               std::span<const glm::ivec2> pixels, Image& image) {
   gbuffer_ = &g;
-  for (const glm::ivec2& at : pixels) {
+  list_ = pixels;
+  list_origin_x_ = origin_x;
+  list_origin_y_ = origin_y;
+  list_at_ = 0;
+  for (; list_at_ < pixels.size(); ++list_at_) {
+    const glm::ivec2 at = pixels[list_at_];
     const Pixel pixel{at.x, at.y, g.index(at.x - origin_x, at.y - origin_y)};
     const uint32_t id = g.object_id[pixel.index];
     if (!g.covered(pixel.index) || id >= frame_.objects.size()) continue;
@@ -247,6 +265,7 @@ void TileShader::look_up(int level, Image& image) {
   const MaterialInputs& m = object.material;
   SOLTEX_DCHECK(!m.unlit);
   int lit = lit_.batch.count;
+  const bool by_tile = by_tile_;
   for (std::size_t i = 0; i < n; ++i) {
     const SampleResult* result = &cached_.results[i];
     SampleResult again;
@@ -258,8 +277,14 @@ void TileShader::look_up(int level, Image& image) {
       if (again.level < 0) ++counts_.empty;
       result = &again;
     }
-    const Pixel pixel = group.pixels[i];
-    lit_.add(lit, pixel.x, pixel.y, pixel.index, m.read(result->values.data()), m.shininess);
+    const uint32_t slot = group.slots[i];
+    if (by_tile) {
+      tile_.add(slot, m.read(result->values.data()), m.shininess);
+      continue;
+    }
+    const glm::ivec2 at = list_[slot];
+    lit_.add(lit, at.x, at.y, gbuffer_->index(at.x - list_origin_x_, at.y - list_origin_y_),
+             m.read(result->values.data()), m.shininess);
     if (++lit == ShadeBatch::kCapacity) {
       lit_.batch.count = lit;
       flush(image);
@@ -282,6 +307,10 @@ void TileShader::shade_values(Pixel pixel, const MaterialInputs& m, const float*
     return;
   }
   ++counts_.shaded;
+  if (by_tile_) {
+    tile_.add(tile_.slot(pixel.x, pixel.y), surface, m.shininess);
+    return;
+  }
   lit_.add(lit_.batch.count++, pixel.x, pixel.y, pixel.index, surface, m.shininess);
   if (lit_.batch.count == ShadeBatch::kCapacity) flush(image);
 }

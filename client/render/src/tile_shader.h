@@ -54,9 +54,9 @@ struct TileCounts {
 };
 
 // Shades tiles of a frame on one render thread: per covered pixel, read the texture (a
-// cached lookup at the footprint's level, or an evaluation over the footprint), light it in
-// batches, and write the image. Keeps the thread's samplers (and their microcaches) and
-// tallies the bricks its pixels missed.
+// cached lookup at the footprint's level, or an evaluation over the footprint), light it (a
+// shade() tile in scan order once its lookups are done), and write the image. Keeps the thread's
+// samplers (and their microcaches) and tallies the bricks its pixels missed.
 class TileShader {
  public:
   // `samplers`: one per object, made for this thread.
@@ -77,7 +77,7 @@ class TileShader {
   const TileCounts& counts() const { return counts_; }
   TileCounts& counts() { return counts_; }
 
-  static constexpr int kTile = 32;
+  static constexpr int kTile = LitTile::kSide;
 
  private:
   // Passed by value: 16 bytes travel in two registers, where a reference made the callee
@@ -104,14 +104,14 @@ class TileShader {
     static constexpr std::size_t kLevels = SpecLimits::kMaxFinestLevelLog2 + 1;
     struct Group {
       std::size_t count = 0;
-      std::array<Pixel, kCapacity> pixels;
+      std::array<uint32_t, kCapacity> slots;  // each pixel's slot_of()
       std::array<glm::dvec3, kCapacity> points;
 
-      // Adds a pixel at `at`, the group's count as the caller holds it (a store of the pixel's
-      // size_t index may alias `count`, which would then be read back from memory), and moves
-      // `at` on; returns whether that filled the group, which is then due for look_up().
-      bool push(std::size_t& at, Pixel pixel, const glm::dvec3& p) {
-        pixels[at] = pixel;
+      // Adds a pixel at `at`, the group's count as the caller holds it (a store to the group
+      // may alias `count`, which would then be read back from memory), and moves `at` on;
+      // returns whether that filled the group, which is then due for look_up().
+      bool push(std::size_t& at, uint32_t slot, const glm::dvec3& p) {
+        slots[at] = slot;
         points[at] = p;
         return ++at == kCapacity;
       }
@@ -142,10 +142,23 @@ class TileShader {
   MissTally misses_;
   MissedBricks missed_;  // one pixel's, refilled by each lookup (kept: not zeroed per pixel)
   TileCounts counts_;
+  // Where a cached pixel's colour goes, kept in its group: its place in tile_ (shade()), or
+  // its index in the list (shade_pixels(), which sets list_at_ to each pixel's in turn).
+  uint32_t slot_of(Pixel pixel) const {
+    return by_tile_ ? static_cast<uint32_t>(tile_.slot(pixel.x, pixel.y)) : list_at_;
+  }
+
   const GBuffer* gbuffer_ = nullptr;  // the tile being shaded
-  LitPixels lit_;                     // about 40 KB, uninitialised but for the count
-  EvaluatedPixels evaluated_;         // about 10 KB, likewise
-  CachedPixels cached_;               // about 40 KB, likewise
+  std::span<const glm::ivec2> list_;  // shade_pixels()'s pixels, with their G-buffer's origin
+  int list_origin_x_ = 0, list_origin_y_ = 0;
+  uint32_t list_at_ = 0;
+  // Set while shade() takes a tile: lit pixels go to tile_ and are lit in scan order at its
+  // end; shade_pixels()'s pixels, in any order, go through the batch lit_ by index.
+  bool by_tile_ = false;
+  LitTile tile_;               // about 25 KB
+  LitPixels lit_;              // about 40 KB, uninitialised but for the count
+  EvaluatedPixels evaluated_;  // about 10 KB, likewise
+  CachedPixels cached_;        // about 40 KB, likewise
 };
 
 }  // namespace soltex::render
