@@ -267,10 +267,8 @@ void Rasterizer::Impl::transform_vertices(const RasterView& view,
   }
   vertices.resize(vertex_count, static_cast<int>(view.clip_planes.size()));
   pool.parallel_for(blocks.size(), [&](std::size_t b, int) {
-    const ObjectFrame& object = objects[blocks[b].object];
-    raster_internal::transform_vertices(object, blocks[b].begin, blocks[b].end, vertices);
-    setup.project_vertices(vertices, object.first_vertex + blocks[b].begin,
-                           object.first_vertex + blocks[b].end);
+    setup.transform_and_project(objects[blocks[b].object], blocks[b].begin, blocks[b].end,
+                                vertices);
   });
 }
 

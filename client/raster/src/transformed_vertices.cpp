@@ -37,7 +37,6 @@ void transform_vertices(const ObjectFrame& object, std::size_t begin, std::size_
                         TransformedVertices& out) {
   const RasterMesh& mesh = object.source->mesh;
   const bool has_normals = !mesh.normals.empty();
-  const auto planes = static_cast<std::size_t>(out.plane_count);
   for (std::size_t i = begin; i < end; ++i) {
     const std::size_t at = object.first_vertex + i;
     const glm::vec3 position = mesh.positions[i];
@@ -49,6 +48,18 @@ void transform_vertices(const ObjectFrame& object, std::size_t begin, std::size_
     v.normal = has_normals ? unit_or_zero(object.world_normal_from_object * mesh.normals[i])
                            : glm::vec3(0.0f);
     v.valid = is_finite(clip) && is_finite(v.texture) ? 1 : 0;
+  }
+  write_plane_distances(object, begin, end, out);
+}
+
+void write_plane_distances(const ObjectFrame& object, std::size_t begin, std::size_t end,
+                           TransformedVertices& out) {
+  const auto planes = static_cast<std::size_t>(out.plane_count);
+  if (planes == 0) return;
+  const RasterMesh& mesh = object.source->mesh;
+  for (std::size_t i = begin; i < end; ++i) {
+    const std::size_t at = object.first_vertex + i;
+    const glm::dvec4 position_d(glm::dvec3(mesh.positions[i]), 1.0);
     for (std::size_t j = 0; j < planes; ++j) {
       out.plane_distance[at * planes + j] =
           to_float_saturated(glm::dot(object.object_planes[j], position_d));

@@ -59,8 +59,14 @@ struct TransformedVertices {
   void resize(std::size_t vertex_count, int planes);
 };
 
-// Transforms the object's vertices [begin, end) (indices into its mesh).
+// Transforms the object's vertices [begin, end) (indices into its mesh), one at a time: the
+// definition that transform_and_project() (vertex_kernels.h) computes in vector lanes.
 void transform_vertices(const ObjectFrame& object, std::size_t begin, std::size_t end,
                         TransformedVertices& out);
+
+// The user clip planes' signed distances of the object's vertices [begin, end), in double,
+// saturated to float (TransformedVertices::plane_distance); nothing when the frame has none.
+void write_plane_distances(const ObjectFrame& object, std::size_t begin, std::size_t end,
+                           TransformedVertices& out);
 
 }  // namespace soltex::raster_internal

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "saturating_cast.h"
+#include "vertex_kernels.h"
 
 namespace soltex::raster_internal {
 
@@ -116,6 +117,12 @@ void TriangleSetup::project_vertices(TransformedVertices& vertices, std::size_t 
     // Only where setup() would project the vertex itself: inside the guard band.
     if (v.clip_outside == 0) v.set_screen(project(clip));
   }
+}
+
+void TriangleSetup::transform_and_project(const ObjectFrame& object, std::size_t begin,
+                                          std::size_t end, TransformedVertices& vertices) const {
+  raster_internal::transform_and_project(object, VertexProjection{width_, height_, &clip_planes_},
+                                         begin, end, vertices);
 }
 
 void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,

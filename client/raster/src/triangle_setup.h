@@ -32,6 +32,11 @@ class TriangleSetup {
   // every triangle that uses them and needs no clipping: the same values it would compute.
   void project_vertices(TransformedVertices& vertices, std::size_t begin, std::size_t end) const;
 
+  // transform_vertices() of the object's vertices [begin, end) (indices into its mesh), then
+  // project_vertices() of them, in vector lanes (vertex_kernels.h): the same values.
+  void transform_and_project(const ObjectFrame& object, std::size_t begin, std::size_t end,
+                             TransformedVertices& vertices) const;
+
   // Appends the screen triangles of the object's triangle (i0, i1, i2) to `triangles`, their
   // clip-plane forms to `clip_forms`, and counts what it did.
   void setup(const ObjectFrame& object, uint32_t object_index, const TransformedVertices& vertices,
