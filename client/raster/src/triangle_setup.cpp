@@ -208,18 +208,18 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
     source.normal.fill(face_normal(object, i0, i1, i2));
   }
 
-  // An unclipped triangle uses its vertices' projections as they are.
+  // An unclipped triangle uses its vertices' projections as they are. Each array is made
+  // where it is filled: a ProjectedVertex is zeroed when made, and zeroing the clipped
+  // polygon's nine per triangle was a tenth of set-up's time for a fine mesh.
   std::array<const ProjectedVertex*, ClipPolygon::kCapacity> projected;
-  std::array<ProjectedVertex, ClipPolygon::kCapacity> clipped;
   if (outside == 0) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      clipped[k] = corner_vertex[k]->screen();
-      projected[k] = &clipped[k];
-    }
+    const std::array<ProjectedVertex, 3> corners = {v0.screen(), v1.screen(), v2.screen()};
+    for (std::size_t k = 0; k < 3; ++k) projected[k] = &corners[k];
     emit(source, polygon, projected, {0, 1, 2}, object.cull_back_faces, triangles, clip_forms,
          stats);
     return;
   }
+  std::array<ProjectedVertex, ClipPolygon::kCapacity> clipped;
   for (int k = 0; k < polygon.size; ++k) {
     const auto index = static_cast<std::size_t>(k);
     clipped[index] = project(polygon.vertices[index].clip);
