@@ -35,6 +35,7 @@ using raster_internal::EdgeSampler;
 using raster_internal::kTileSize;
 using raster_internal::ObjectFrame;
 using raster_internal::ScreenTriangle;
+using raster_internal::ScreenTriangles;
 using raster_internal::TileFrame;
 using raster_internal::TileRasterizer;
 using raster_internal::TransformedVertices;
@@ -51,7 +52,7 @@ constexpr uint32_t kPrefetchAhead = 8;  // triangles
 // The screen triangles of one chunk of submitted triangles, and their tile bins: the
 // triangles of tile t are bin_items[bin_start[t] .. bin_start[t + 1]), in submission order.
 struct SetupChunk {
-  std::vector<ScreenTriangle> triangles;
+  ScreenTriangles triangles;
   std::vector<AffineForm> clip_forms;
   std::vector<uint32_t> bin_start;
   std::vector<uint32_t> bin_items;

@@ -4,6 +4,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <vector>
+
+#include "soltex/raster/gbuffer.h"
 
 // A triangle ready to rasterize: what triangle setup hands to the tile rasterizer.
 namespace soltex::raster_internal {
@@ -25,32 +28,38 @@ struct AffineForm {
 
 // Laid out for the tile pass: what drawing reads (positions, bounds, depth, clip mask) fills
 // the first 64-byte line, so a triangle drawn into a tile and beaten there costs one line;
-// resolving a winner reads the other two.
+// resolving a winner reads the other two. No field has a default: TriangleSetup::emit() writes
+// every one into the chunk's storage (ScreenTriangles), where a zeroed triangle, or one built
+// elsewhere and copied, cost a fine mesh's set-up a second pass over 192 bytes a triangle.
 struct alignas(64) ScreenTriangle {
   // Fixed-point positions, y down, ordered so that double_area > 0 (clockwise on screen).
-  std::array<int32_t, 3> x{};
-  std::array<int32_t, 3> y{};
-  int64_t double_area = 0;
+  std::array<int32_t, 3> x;
+  std::array<int32_t, 3> y;
+  int64_t double_area;
   // Pixels whose centres can be inside, clamped to the viewport (inclusive).
-  int32_t min_px = 0, min_py = 0, max_px = 0, max_py = 0;
+  int32_t min_px, min_py, max_px, max_py;
   AffineForm depth;  // window depth, affine on screen
   // User clip planes this triangle straddles (bit j: plane j needs a per-fragment test), and
   // where their forms (signed distance / w, affine on screen; one per clip plane of the frame)
   // start in the chunk's clip-form array.
-  uint32_t clip_mask = 0;
+  uint32_t clip_mask;
 
-  uint32_t first_clip_form = 0;
-  uint32_t object = 0;  // index of the object in the render call
-  bool back_face = false;
+  uint32_t first_clip_form;
+  uint32_t object;  // index of the object in the render call
+  bool back_face;
   // Per vertex (in the order above): 1/w, and attributes to interpolate perspective-correctly.
-  std::array<float, 3> inv_w{};
-  std::array<glm::vec3, 3> texture_offset{};  // texture position - texture_origin
-  std::array<glm::vec3, 3> normal{};          // world space
-  glm::dvec3 texture_origin{0.0};
+  std::array<float, 3> inv_w;
+  std::array<glm::vec3, 3> texture_offset;  // texture position - texture_origin
+  std::array<glm::vec3, 3> normal;          // world space
+  glm::dvec3 texture_origin;
 
   float x0_pixels() const { return static_cast<float>(x[0]) / static_cast<float>(kSubpixelScale); }
   float y0_pixels() const { return static_cast<float>(y[0]) / static_cast<float>(kSubpixelScale); }
 };
+
+// A chunk's screen triangles: appended uninitialised (UninitializedAllocator), then written
+// field by field in place.
+using ScreenTriangles = std::vector<ScreenTriangle, UninitializedAllocator<ScreenTriangle>>;
 
 // Twice the signed area of (a, b, p), in fixed-point units squared: positive when p is to the
 // inside of the edge a -> b for a triangle with double_area > 0. Exact in int64: coordinates

@@ -127,7 +127,7 @@ void TriangleSetup::transform_and_project(const ObjectFrame& object, std::size_t
 
 void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
                           const TransformedVertices& vertices, uint32_t i0, uint32_t i1,
-                          uint32_t i2, std::vector<ScreenTriangle>& triangles,
+                          uint32_t i2, ScreenTriangles& triangles,
                           std::vector<AffineForm>& clip_forms, RasterStats& stats) const {
   ++stats.triangles_in;
   const RasterMesh& mesh = object.source->mesh;
@@ -234,7 +234,7 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
 void TriangleSetup::emit(
     const SourceTriangle& source, const ClipPolygon& polygon,
     const std::array<const ProjectedVertex*, ClipPolygon::kCapacity>& projected,
-    std::array<int, 3> corners, bool cull_back_faces, std::vector<ScreenTriangle>& triangles,
+    std::array<int, 3> corners, bool cull_back_faces, ScreenTriangles& triangles,
     std::vector<AffineForm>& clip_forms, RasterStats& stats) const {
   const auto vertex = [&](int k) -> const ProjectedVertex& {
     return *projected[static_cast<std::size_t>(corners[static_cast<std::size_t>(k)])];
@@ -307,26 +307,27 @@ void TriangleSetup::emit(
       clip_forms.push_back(affine_form(x, y, double_area, distance_over_w));
     }
   }
-  // Every field given: the triangle is built in registers and stored once, with no zeroing of
-  // its three lines first (a fine mesh writes tens of thousands a frame).
-  triangles.push_back(ScreenTriangle{
-      .x = {static_cast<int32_t>(x[0]), static_cast<int32_t>(x[1]), static_cast<int32_t>(x[2])},
-      .y = {static_cast<int32_t>(y[0]), static_cast<int32_t>(y[1]), static_cast<int32_t>(y[2])},
-      .double_area = double_area,
-      .min_px = first_px,
-      .min_py = first_py,
-      .max_px = last_px,
-      .max_py = last_py,
-      .depth = affine_form(x, y, double_area, depth),
-      .clip_mask = source.straddling_planes,
-      .first_clip_form = source.straddling_planes != 0 ? first_clip_form : 0u,
-      .object = source.object_index,
-      .back_face = back_face,
-      .inv_w = inv_w,
-      .texture_offset = texture_offset,
-      .normal = normal,
-      .texture_origin = source.texture[0],
-  });
+  // Written in place, every field once: built on the stack and copied, the triangle's narrow
+  // stores were read back 16 bytes at a time, each read waiting for them to drain.
+  ScreenTriangle& t = triangles.emplace_back();
+  for (std::size_t k = 0; k < 3; ++k) {
+    t.x[k] = static_cast<int32_t>(x[k]);
+    t.y[k] = static_cast<int32_t>(y[k]);
+  }
+  t.double_area = double_area;
+  t.min_px = first_px;
+  t.min_py = first_py;
+  t.max_px = last_px;
+  t.max_py = last_py;
+  t.depth = affine_form(x, y, double_area, depth);
+  t.clip_mask = source.straddling_planes;
+  t.first_clip_form = source.straddling_planes != 0 ? first_clip_form : 0u;
+  t.object = source.object_index;
+  t.back_face = back_face;
+  t.inv_w = inv_w;
+  t.texture_offset = texture_offset;
+  t.normal = normal;
+  t.texture_origin = source.texture[0];
   ++stats.triangles_rasterized;
 }
 

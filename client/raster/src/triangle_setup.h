@@ -40,7 +40,7 @@ class TriangleSetup {
   // Appends the screen triangles of the object's triangle (i0, i1, i2) to `triangles`, their
   // clip-plane forms to `clip_forms`, and counts what it did.
   void setup(const ObjectFrame& object, uint32_t object_index, const TransformedVertices& vertices,
-             uint32_t i0, uint32_t i1, uint32_t i2, std::vector<ScreenTriangle>& triangles,
+             uint32_t i0, uint32_t i1, uint32_t i2, ScreenTriangles& triangles,
              std::vector<AffineForm>& clip_forms, RasterStats& stats) const;
 
  private:
@@ -50,9 +50,8 @@ class TriangleSetup {
   ProjectedVertex project(const glm::vec4& clip) const;
   void emit(const SourceTriangle& source, const ClipPolygon& polygon,
             const std::array<const ProjectedVertex*, ClipPolygon::kCapacity>& projected,
-            std::array<int, 3> corners, bool cull_back_faces,
-            std::vector<ScreenTriangle>& triangles, std::vector<AffineForm>& clip_forms,
-            RasterStats& stats) const;
+            std::array<int, 3> corners, bool cull_back_faces, ScreenTriangles& triangles,
+            std::vector<AffineForm>& clip_forms, RasterStats& stats) const;
 
   int width_;
   int height_;
