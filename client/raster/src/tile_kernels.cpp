@@ -318,6 +318,26 @@ void resolve_surface_runs_target(const SurfaceRun* runs, std::size_t run_count,
   for (std::size_t r = 0; r < run_count; ++r) resolve_long_run(runs[r], chunk, target);
 }
 
+uint64_t run_starts_target(const ScreenTriangle* const* winners, int count) {
+  // Each pixel's winner against its left neighbour's, a vector of pointers at a time, compared
+  // as their bits (Highway's loads may alias anything). A vector may read past the row: into
+  // the next row, or the plane's padding after the last one; bits past `count` are dropped.
+  namespace hn = hwy::HWY_NAMESPACE;
+  constexpr std::size_t kMaxLanes = 8;
+  static_assert(kPlanePadding >= kMaxLanes - 1 && kTileSize <= 64);
+  const hn::CappedTag<uint64_t, kMaxLanes> d;
+  const auto lanes = static_cast<int>(hn::Lanes(d));
+  const auto* bits = reinterpret_cast<const uint64_t*>(winners);
+  uint64_t starts = 1;
+  for (int i = 1; i < count; i += lanes) {
+    const auto differs = hn::Ne(hn::LoadU(d, bits + i), hn::LoadU(d, bits + i - 1));
+    uint8_t mask[8] = {};  // lane j's bit is bit j % 8 of byte j / 8
+    hn::StoreMaskBits(d, differs, mask);
+    for (int b = 0; b * 8 < lanes; ++b) starts |= uint64_t{mask[b]} << (i + 8 * b);
+  }
+  return count >= 64 ? starts : starts & ((uint64_t{1} << count) - 1);
+}
+
 void interpolate_surfaces_target(SurfaceLanes& lanes, std::size_t count) {
   interpolate(GatheredTerms{lanes}, lanes, count);
 }
@@ -332,6 +352,7 @@ HWY_EXPORT(draw_unclipped_target);
 HWY_EXPORT(draw_narrow_target);
 HWY_EXPORT(resolve_surface_runs_target);
 HWY_EXPORT(interpolate_surfaces_target);
+HWY_EXPORT(run_starts_target);
 
 void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
                     const ScreenTriangle** winner, RasterStats& stats) {
@@ -341,6 +362,10 @@ void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
 void draw_narrow(const ScreenTriangle& t, const SpanDraw& span, float* depth,
                  const ScreenTriangle** winner, RasterStats& stats) {
   HWY_DYNAMIC_DISPATCH(draw_narrow_target)(t, span, depth, winner, stats);
+}
+
+uint64_t run_starts(const ScreenTriangle* const* winners, int count) {
+  return HWY_DYNAMIC_DISPATCH(run_starts_target)(winners, count);
 }
 
 void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count) {

@@ -142,6 +142,11 @@ struct SurfaceLanes {
 };
 void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count);
 
+// The runs of one row of a tile's winners (count <= 64 pixels): bit i is set where pixel i
+// sees another triangle (or none) than pixel i - 1; bit 0 always. The plane must hold
+// kPlanePadding elements past the row's last pixel (read and ignored).
+uint64_t run_starts(const ScreenTriangle* const* winners, int count);
+
 // Pixels of one row of a tile that all see the same triangle (no cap): resolved together, so
 // that the triangle's data is read once per run rather than once per pixel, and the
 // arithmetic runs across the run's pixels in vector lanes.
