@@ -325,9 +325,9 @@ uint64_t run_starts_target(const ScreenTriangle* const* winners, int count) {
   namespace hn = hwy::HWY_NAMESPACE;
   constexpr std::size_t kMaxLanes = 8;
   static_assert(kPlanePadding >= kMaxLanes - 1 && kTileSize <= 64);
-  const hn::CappedTag<uint64_t, kMaxLanes> d;
+  const hn::CappedTag<uintptr_t, kMaxLanes> d;
   const auto lanes = static_cast<int>(hn::Lanes(d));
-  const auto* bits = reinterpret_cast<const uint64_t*>(winners);
+  const auto* bits = reinterpret_cast<const uintptr_t*>(winners);
   uint64_t starts = 1;
   for (int i = 1; i < count; i += lanes) {
     const auto differs = hn::Ne(hn::LoadU(d, bits + i), hn::LoadU(d, bits + i - 1));
