@@ -14,7 +14,6 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -78,72 +77,6 @@ void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float*
     row[0] += step_y[0];
     row[1] += step_y[1];
     row[2] += step_y[2];
-  }
-  stats.fragments_rasterized += rasterized;
-  stats.fragments_depth_passed += depth_passed;
-}
-
-void draw_narrow_target(const ScreenTriangle& t, const SpanDraw& span, float* depth_plane,
-                        const ScreenTriangle** winner_plane, RasterStats& stats) {
-  // draw_unclipped_target's tests for up to kNarrowColumns columns in one vector per row
-  // (two on 256-bit targets, four on 128-bit ones), whatever the span's width: the
-  // variable-length loop ran a span this short a lane at a time, with a mispredicted branch
-  // per pixel, or 64-bit edge functions in lanes. Columns past the span
-  // are masked out and keep what they held (the planes are padded for them). Edge functions in
-  // 32 bits, exact for the triangles sent here (kNarrowExtent); depth as draw() makes it.
-  namespace hn = hwy::HWY_NAMESPACE;
-  const hn::CappedTag<int32_t, kNarrowColumns> di;
-  const hn::Rebind<float, decltype(di)> df;
-  const std::size_t lanes = hn::Lanes(di);
-  const int count = span.last_x - span.first_x + 1;
-  const float x0 = t.x0_pixels();
-  const float y0 = t.y0_pixels();
-  const float per_y = t.depth.per_y;
-  const auto far = hn::Set(df, kFarDepth);
-  const auto minus_one = hn::Set(di, -1);
-  const auto columns = hn::Set(di, count);
-  std::size_t rasterized = 0, depth_passed = 0;
-  for (std::size_t k = 0; k < static_cast<std::size_t>(count); k += lanes) {
-    // Columns k.. of the span: each edge function's step from the span's first column, and
-    // the depth's terms that do not depend on the row, (at_vertex0 + per_x dx) as draw() adds
-    // them (dx exact: pixel columns are far below 2^24).
-    const auto column = hn::Iota(di, static_cast<int32_t>(k));
-    const auto step0 = hn::Mul(column, hn::Set(di, static_cast<int32_t>(span.step_x[0])));
-    const auto step1 = hn::Mul(column, hn::Set(di, static_cast<int32_t>(span.step_x[1])));
-    const auto step2 = hn::Mul(column, hn::Set(di, static_cast<int32_t>(span.step_x[2])));
-    const auto in_span = hn::RebindMask(df, hn::Lt(column, columns));
-    const auto pixel_x = hn::ConvertTo(df, hn::Add(column, hn::Set(di, span.first_x)));
-    const auto dx = hn::Sub(hn::Add(pixel_x, hn::Set(df, 0.5f)), hn::Set(df, x0));
-    const auto depth_x =
-        hn::Add(hn::Set(df, t.depth.at_vertex0), hn::Mul(hn::Set(df, t.depth.per_x), dx));
-    std::array<int64_t, 3> row = span.row;
-    for (int y = span.first_y; y <= span.last_y; ++y) {
-      const auto depth_y = hn::Set(df, per_y * (static_cast<float>(y) + 0.5f - y0));
-      const auto row_start = static_cast<std::ptrdiff_t>((y - span.tile_y0) * kTileSize +
-                                                         (span.first_x - span.tile_x0)) +
-                             static_cast<std::ptrdiff_t>(k);
-      const auto e0 = hn::Add(hn::Set(di, static_cast<int32_t>(row[0])), step0);
-      const auto e1 = hn::Add(hn::Set(di, static_cast<int32_t>(row[1])), step1);
-      const auto e2 = hn::Add(hn::Set(di, static_cast<int32_t>(row[2])), step2);
-      // (e0 | e1 | e2) >= 0, as > -1: Highway has no integer >=.
-      const auto inside =
-          hn::And(hn::RebindMask(df, hn::Gt(hn::Or(hn::Or(e0, e1), e2), minus_one)), in_span);
-      const auto depth = hn::Add(depth_x, depth_y);
-      float* depth_row = depth_plane + row_start;
-      const auto old_depth = hn::LoadU(df, depth_row);
-      const auto pass = hn::AndNot(hn::Gt(depth, far), hn::And(inside, hn::Lt(depth, old_depth)));
-      rasterized += hn::CountTrue(df, inside);
-      depth_passed += hn::CountTrue(df, pass);
-      hn::StoreU(hn::IfThenElse(pass, depth, old_depth), df, depth_row);
-      uint8_t bits[8] = {};  // lane j's bit is bit j % 8 of byte j / 8
-      hn::StoreMaskBits(df, pass, bits);
-      for (unsigned won = bits[0] | unsigned{bits[1]} << 8; won != 0; won &= won - 1) {
-        winner_plane[row_start + std::countr_zero(won)] = &t;
-      }
-      row[0] += span.step_y[0];
-      row[1] += span.step_y[1];
-      row[2] += span.step_y[2];
-    }
   }
   stats.fragments_rasterized += rasterized;
   stats.fragments_depth_passed += depth_passed;
@@ -349,7 +282,6 @@ HWY_AFTER_NAMESPACE();
 namespace soltex::raster_internal {
 
 HWY_EXPORT(draw_unclipped_target);
-HWY_EXPORT(draw_narrow_target);
 HWY_EXPORT(resolve_surface_runs_target);
 HWY_EXPORT(interpolate_surfaces_target);
 HWY_EXPORT(run_starts_target);
@@ -359,13 +291,12 @@ void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
   HWY_DYNAMIC_DISPATCH(draw_unclipped_target)(t, span, depth, winner, stats);
 }
 
-void draw_narrow(const ScreenTriangle& t, const SpanDraw& span, float* depth,
-                 const ScreenTriangle** winner, RasterStats& stats) {
-  HWY_DYNAMIC_DISPATCH(draw_narrow_target)(t, span, depth, winner, stats);
-}
-
 uint64_t run_starts(const ScreenTriangle* const* winners, int count) {
   return HWY_DYNAMIC_DISPATCH(run_starts_target)(winners, count);
+}
+
+int64_t tile_kernels_compiled_targets() {
+  return HWY_TARGETS;
 }
 
 void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count) {

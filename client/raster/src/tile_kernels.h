@@ -1,6 +1,5 @@
 #pragma once
 
-#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -29,22 +28,6 @@ struct SpanDraw {
 };
 void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
                     const ScreenTriangle** winner, RasterStats& stats);
-
-// draw_unclipped() for a span of at most kNarrowColumns columns (a fine mesh's triangles),
-// whose triangle's vertices lie within kNarrowExtent pixels of each other on both axes: its edge
-// functions over the span then stay far inside 32 bits (below 2^28 in magnitude). The depth
-// and winner planes must hold kNarrowColumns - 1 elements past the tile's last pixel: the
-// columns past the span are read and written back unchanged.
-inline constexpr int kNarrowColumns = 16;
-inline constexpr int64_t kNarrowExtent = 32;
-inline bool fits_narrow_draw(const ScreenTriangle& t) {
-  const auto [min_x, max_x] = std::minmax({t.x[0], t.x[1], t.x[2]});
-  const auto [min_y, max_y] = std::minmax({t.y[0], t.y[1], t.y[2]});
-  constexpr int64_t kLimit = kNarrowExtent * kSubpixelScale;
-  return int64_t{max_x} - min_x <= kLimit && int64_t{max_y} - min_y <= kLimit;
-}
-void draw_narrow(const ScreenTriangle& t, const SpanDraw& span, float* depth,
-                 const ScreenTriangle** winner, RasterStats& stats);
 
 // The G-buffer's planes as raw pointers, taken once per tile: a store through uint8_t* (the
 // flags) may alias anything, so through the vectors every store would reload every data pointer.
@@ -146,6 +129,9 @@ void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count);
 // sees another triangle (or none) than pixel i - 1; bit 0 always. The plane must hold
 // kPlanePadding elements past the row's last pixel (read and ignored).
 uint64_t run_starts(const ScreenTriangle* const* winners, int count);
+
+// For tests: the Highway targets compiled into tile_kernels.cpp.
+int64_t tile_kernels_compiled_targets();
 
 // Pixels of one row of a tile that all see the same triangle (no cap): resolved together, so
 // that the triangle's data is read once per run rather than once per pixel, and the

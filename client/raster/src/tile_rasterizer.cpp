@@ -17,9 +17,6 @@ constexpr float kFarDepth = 1.0f;
 // Triangles spanning at least this many pixel columns of a tile are drawn by the vectorised
 // loop.
 constexpr int kVectorColumns = 8;
-// Spans of up to kNarrowColumns go to draw_narrow() when their triangle is small enough; it
-// reads and writes back kNarrowColumns columns.
-static_assert(kPlanePadding >= kNarrowColumns - 1);
 
 // Edge k is the edge opposite vertex k; its edge function, over the double area, is vertex
 // k's barycentric weight.
@@ -301,17 +298,11 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   const AffineForm* forms = t.clip_mask != 0 ? clip_forms.data() + t.first_clip_form : nullptr;
   // Narrow triangles (most of a fine mesh's) stay with the loop below: a vector loop's set-up
   // per row would cost more than the few pixels it covers.
-  if (forms == nullptr && coverage == nullptr) {
-    const SpanDraw span{first_x, last_x, first_y, last_y, x0_, y0_, row, step_x, step_y};
-    const int columns = last_x - first_x + 1;
-    if (columns <= kNarrowColumns && fits_narrow_draw(t)) {
-      raster_internal::draw_narrow(t, span, depth_.data(), winner_.data(), stats);
-      return;
-    }
-    if (columns >= kVectorColumns) {
-      raster_internal::draw_unclipped(t, span, depth_.data(), winner_.data(), stats);
-      return;
-    }
+  if (forms == nullptr && coverage == nullptr && last_x - first_x + 1 >= kVectorColumns) {
+    raster_internal::draw_unclipped(
+        t, SpanDraw{first_x, last_x, first_y, last_y, x0_, y0_, row, step_x, step_y}, depth_.data(),
+        winner_.data(), stats);
+    return;
   }
   // Counted locally, added once: the counters must not cost a store per fragment.
   uint64_t rasterized = 0, depth_passed = 0, clip_tested = 0, clip_discarded = 0;

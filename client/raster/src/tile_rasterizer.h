@@ -19,9 +19,9 @@
 namespace soltex::raster_internal {
 
 inline constexpr int kTileSize = 64;
-// Elements past a tile's last pixel in its depth and winner planes: draw_narrow() reads and
-// writes back, unchanged, up to fifteen columns past a span (tile_kernels.h, kNarrowColumns).
-inline constexpr std::size_t kPlanePadding = 15;
+// Elements past a tile's last pixel in its winner plane: run_starts() reads up to seven past a
+// row's end, a vector's worth (tile_kernels.h).
+inline constexpr std::size_t kPlanePadding = 7;
 
 // What resolving needs of the frame.
 struct TileFrame {
@@ -51,10 +51,8 @@ class TileRasterizer {
 
  private:
   int x0_ = 0, y0_ = 0, x1_ = 0, y1_ = 0;
-  // Padded past the last pixel for draw_narrow()'s columns past a span (tile_kernels.h).
-  static constexpr std::size_t kPlaneSize = kTileSize * kTileSize + kPlanePadding;
-  std::array<float, kPlaneSize> depth_{};
-  std::array<const ScreenTriangle*, kPlaneSize> winner_{};
+  std::array<float, kTileSize * kTileSize> depth_{};
+  std::array<const ScreenTriangle*, kTileSize * kTileSize + kPlanePadding> winner_{};
 };
 
 }  // namespace soltex::raster_internal
