@@ -17,7 +17,8 @@
 // built-in default scene instead (four objects; a clip plane cuts the marble sphere open, so
 // the frame has caps); 4 for the bunny alone in bricks of 8 instead of 16; 5, 6 and 7 a
 // marble sphere of a million triangles, of ten thousand, and of a million drawn without its
-// simplified levels (sphere_scene()). Times are
+// simplified levels (sphere_scene()); /1/5 and /1/6 the two spheres on one thread, whose
+// instructions valgrind counts whole (it runs threads one at a time). Times are
 // wall-clock per frame; the CPU column is the whole process's CPU time (all render threads) per
 // frame. Counters: the warm frame's raster and shade wall times (ms) as FrameRenderer reports them,
 // and its PSNR against the per-pixel reference (dB).
@@ -422,6 +423,8 @@ void wall_and_process_cpu_ms(benchmark::internal::Benchmark* b) {
 
 BENCHMARK(BM_WarmFrame)
     ->Args({1, 0})
+    ->Args({1, 5})
+    ->Args({1, 6})
     ->Args({2, 0})
     ->Args({2, 1})
     ->Args({2, 2})
