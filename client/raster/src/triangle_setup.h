@@ -28,12 +28,14 @@ class TriangleSetup {
  public:
   TriangleSetup(int width, int height, int clip_plane_count);
 
-  // Projects vertices [begin, end) (indices into `vertices`) once, for setup() to reuse in
-  // every triangle that uses them and needs no clipping: the same values it would compute.
+  // Projects vertices [begin, end) (indices into `vertices`) one at a time, for setup() to
+  // reuse in every triangle that uses them and needs no clipping: the same values it would
+  // compute. The definition that transform_and_project() computes in lanes.
   void project_vertices(TransformedVertices& vertices, std::size_t begin, std::size_t end) const;
 
   // transform_vertices() of the object's vertices [begin, end) (indices into its mesh), then
-  // project_vertices() of them, in vector lanes (vertex_kernels.h): the same values.
+  // project_vertices() of them, in vector lanes (vertex_kernels.h): the same values. What a
+  // frame runs.
   void transform_and_project(const ObjectFrame& object, std::size_t begin, std::size_t end,
                              TransformedVertices& vertices) const;
 
