@@ -11,13 +11,8 @@ ClipPlanes::ClipPlanes(float guard_x, float guard_y)
 
 namespace {
 
-constexpr int kPositiveWIndex = 1;
-static_assert(kClipPositiveW == 1u << kPositiveWIndex);
-
 float signed_distance(const glm::vec4& plane, int index, const glm::vec4& clip) {
-  // kClipPositiveW keeps w >= kMinClipW, not w >= 0.
-  const float offset = index == kPositiveWIndex ? kMinClipW : 0.0f;
-  return glm::dot(plane, clip) - offset;
+  return glm::dot(plane, clip) - clip_plane_offset(static_cast<std::size_t>(index));
 }
 
 // The point where the edge from `inside` to `outside` crosses the plane; always computed in

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -46,6 +47,12 @@ enum ClipPlaneBit : uint32_t {
 };
 
 inline constexpr float kMinClipW = 1e-5f;
+
+// What plane `index` of ClipPlanes subtracts from dot(plane, clip): kClipPositiveW keeps
+// w >= kMinClipW, not w >= 0; every other plane keeps dot >= 0.
+inline constexpr float clip_plane_offset(std::size_t index) {
+  return (1u << index) == kClipPositiveW ? kMinClipW : 0.0f;
+}
 
 // The planes, in clip space, for a guard band of guard_x, guard_y (>= 1) times the viewport.
 struct ClipPlanes {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -16,6 +17,19 @@ namespace soltex::raster_internal {
 // it, and the top-left rule can settle the tie.
 inline constexpr int kSubpixelBits = 8;
 inline constexpr int64_t kSubpixelScale = int64_t{1} << kSubpixelBits;
+
+// A screen coordinate in pixels as a fixed-point value, rounded to nearest (ties to even, as
+// std::nearbyint in the default mode), still a double. The guard band bounds the coordinate;
+// the clamp (min and max, which vector lanes keep) only keeps a rounding overshoot defined.
+// Inline and without a library call: the generic x86-64 target has no rounding instruction,
+// and adding 1.5 * 2^52 leaves the sum no fraction bits, so the addition rounds.
+inline double subpixel_position(double pixels) {
+  constexpr double kLimit = double{1 << 24};
+  constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52
+  const double scaled = pixels * static_cast<double>(kSubpixelScale);
+  const double clamped = std::min(std::max(scaled, -kLimit), kLimit);
+  return (clamped + kShift) - kShift;
+}
 
 // An affine function of the pixel position (px, py), relative to the triangle's first
 // vertex so that float keeps its precision: value(px, py) = at_vertex0 + per_x * (px - x0) +

@@ -43,14 +43,6 @@ std::pair<int64_t, int64_t> pixel_centre_span(int64_t low, int64_t high) {
   return {-floor_subpixels(-(low - kHalf)), floor_subpixels(high - kHalf)};
 }
 
-// std::nearbyint in the default rounding mode (to nearest, ties to even) for |value| < 2^51,
-// inline: the generic x86-64 target has no rounding instruction, so nearbyint is a library
-// call. Adding 1.5 * 2^52 leaves the sum no fraction bits, so the addition rounds.
-double round_to_even(double value) {
-  constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52
-  return (value + kShift) - kShift;
-}
-
 // The affine form through three values at three fixed-point positions.
 AffineForm affine_form(const std::array<int64_t, 3>& x, const std::array<int64_t, 3>& y,
                        int64_t double_area, const std::array<double, 3>& value) {
@@ -97,12 +89,9 @@ TriangleSetup::ProjectedVertex TriangleSetup::project(const glm::vec4& clip) con
   const double ndc_z = static_cast<double>(clip.z) * inv_w;
   const double screen_x = (ndc_x * 0.5 + 0.5) * static_cast<double>(width_);
   const double screen_y = (0.5 - ndc_y * 0.5) * static_cast<double>(height_);
-  // The guard band bounds these; the clamp only keeps a rounding overshoot defined.
-  constexpr double kLimit = double{1 << 24};
-  const double scale = static_cast<double>(kSubpixelScale);
-  return {static_cast<int32_t>(round_to_even(std::clamp(screen_x * scale, -kLimit, kLimit))),
-          static_cast<int32_t>(round_to_even(std::clamp(screen_y * scale, -kLimit, kLimit))),
-          ndc_z * 0.5 + 0.5, static_cast<float>(inv_w)};
+  return {static_cast<int32_t>(subpixel_position(screen_x)),
+          static_cast<int32_t>(subpixel_position(screen_y)), ndc_z * 0.5 + 0.5,
+          static_cast<float>(inv_w)};
 }
 
 void TriangleSetup::project_vertices(TransformedVertices& vertices, std::size_t begin,

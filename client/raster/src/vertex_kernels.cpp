@@ -15,10 +15,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 
 #include "finite_lane.h"
-#include "saturating_cast.h"
 #include "screen_triangle.h"
 
 #ifndef SOLTEX_VERTEX_KERNELS_SHARED
@@ -39,8 +37,8 @@ struct VertexLanes {
   alignas(64) std::array<Lanes<float>, 3> unit_normal;  // world space, or zero
   alignas(64) Lanes<double> screen_x, screen_y, depth;  // fixed point, rounded; window depth
   alignas(64) Lanes<float> inv_w;
-  alignas(64) Lanes<uint32_t> valid, frustum_outside,
-      clip_outside;  // 32 bits: as wide as a float lane
+  // 32 bits, as wide as a float lane: narrower lanes kept the loops from vectorising.
+  alignas(64) Lanes<uint32_t> valid, frustum_outside, clip_outside;
 };
 
 // The pieces of a frame's matrices the lanes read, as scalars.
@@ -106,15 +104,12 @@ void transform_lanes(const VertexMatrices& m, bool has_normals, VertexLanes& v, 
   }
 }
 
-// TriangleSetup::project_vertices(): outcodes, guard band and near planes, and project()'s
-// screen position (rounded, not yet an integer), depth and 1/w; lanes the vertex does not
+// TriangleSetup::project_vertices(): outcodes, guard band and near planes (dot products as
+// glm::dot groups them), and project()'s screen position (rounded, not yet an integer), depth
+// and 1/w; lanes the vertex does not
 // project to (invalid, or outside a plane) hold values nobody reads.
 void project_lanes(const VertexMatrices& m, double width, double height, VertexLanes& v,
                    std::size_t n) {
-  constexpr double kShift = 6755399441055744.0;  // 1.5 * 2^52: round_to_even()
-  constexpr double kLimit = double{1 << 24};
-  constexpr double kScale = static_cast<double>(kSubpixelScale);
-  constexpr std::size_t kPositiveWIndex = 1;  // ClipPlanes: w >= kMinClipW
   for (std::size_t l = 0; l < n; ++l) {
     const float x = v.clip[0][l], y = v.clip[1][l], z = v.clip[2][l], w = v.clip[3][l];
     const uint32_t frustum = (x < -w ? 1u : 0u) | (x > w ? 2u : 0u) | (y < -w ? 4u : 0u) |
@@ -122,9 +117,8 @@ void project_lanes(const VertexMatrices& m, double width, double height, VertexL
     uint32_t outside = 0;
     for (std::size_t p = 0; p < ClipPolygon::kMaxPlanes; ++p) {
       const std::array<float, 4>& plane = m.planes[p];
-      const float offset = p == kPositiveWIndex ? kMinClipW : 0.0f;
       const float distance =
-          ((plane[0] * x + plane[1] * y) + (plane[2] * z + plane[3] * w)) - offset;
+          ((plane[0] * x + plane[1] * y) + (plane[2] * z + plane[3] * w)) - clip_plane_offset(p);
       outside |= distance >= 0.0f ? 0u : 1u << p;
     }
     v.frustum_outside[l] = frustum;
@@ -135,11 +129,8 @@ void project_lanes(const VertexMatrices& m, double width, double height, VertexL
     const double ndc_z = static_cast<double>(z) * inv_w;
     const double screen_x = (ndc_x * 0.5 + 0.5) * width;
     const double screen_y = (0.5 - ndc_y * 0.5) * height;
-    // std::clamp for the lanes that project (finite there); min and max run in lanes.
-    const double clamped_x = std::min(std::max(screen_x * kScale, -kLimit), kLimit);
-    const double clamped_y = std::min(std::max(screen_y * kScale, -kLimit), kLimit);
-    v.screen_x[l] = (clamped_x + kShift) - kShift;
-    v.screen_y[l] = (clamped_y + kShift) - kShift;
+    v.screen_x[l] = subpixel_position(screen_x);
+    v.screen_y[l] = subpixel_position(screen_y);
     v.depth[l] = ndc_z * 0.5 + 0.5;
     v.inv_w[l] = static_cast<float>(inv_w);
   }
