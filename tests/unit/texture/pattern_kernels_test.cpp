@@ -135,7 +135,10 @@ std::vector<glm::dvec3> points_to_check() {
 }
 
 std::string describe(const glm::dvec3& p) {
-  return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
+  // Appended piece by piece: GCC 12's -Wrestrict misfires on "(" + std::string for aarch64.
+  std::string text = "(";
+  text += std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
+  return text;
 }
 
 TEST(PatternKernels, EveryTargetSamplesPointsAsTheScalarDefinition) {

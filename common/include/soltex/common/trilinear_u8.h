@@ -20,9 +20,13 @@ namespace soltex {
 // [0, 1] along each axis. Writes Channels values in [0, 1] (sample / 255); `out` must hold
 // max(Channels, 4) floats: the 3-channel SIMD path writes a fourth, 0 (the scalar path
 // leaves it alone).
+// HWY_ATTR: compiled with the static target's instruction set, as the kernel it inlines is.
+// Where the build's flags already imply it (a native build), callers inline this too; where
+// they do not (on ARM, NEON's attribute adds the crypto extension), it is called.
 template <int Channels>
-inline void trilinear_u8(const uint8_t* s, std::ptrdiff_t y_stride, std::ptrdiff_t z_stride,
-                         float fx, float fy, float fz, float* out) {
+HWY_ATTR inline void trilinear_u8(const uint8_t* s, std::ptrdiff_t y_stride,
+                                  std::ptrdiff_t z_stride, float fx, float fy, float fz,
+                                  float* out) {
   // The emulated 128-bit target is slower than the scalar code; every real SIMD target is
   // faster. Both give the same bits.
 #if HWY_TARGET != HWY_EMU128 && HWY_TARGET != HWY_SCALAR
