@@ -2,7 +2,7 @@
 # Builds soltex and runs every test through ctest (unit, integration over loopback), the
 # scale-out test (memcached + three soltexd + nginx) and the soak, then the unit tests again
 # under AddressSanitizer + UndefinedBehaviorSanitizer, then the libFuzzer targets for a
-# bounded time, then the texture core's and rasterizer's unit tests built for 64-bit ARM.
+# bounded time, then the core's unit and stability tests built for 64-bit ARM.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 # ccache hits across clones in different directories: hash paths relative to the clone.
@@ -41,5 +41,5 @@ CC=clang CXX=clang++ cmake -S "$root" -B "$fuzz" -G Ninja -DCMAKE_BUILD_TYPE=Rel
 cmake --build "$fuzz" --target fuzz_targets -j "$jobs"
 ctest --test-dir "$fuzz" -L fuzz --output-on-failure
 
-echo "== aarch64: the texture core and rasterizer cross-built, their unit tests under qemu"
+echo "== aarch64: the client's core cross-built, its unit and stability tests under qemu"
 SOLTEX_JOBS="$jobs" "$root/deploy/arm64-check.sh"

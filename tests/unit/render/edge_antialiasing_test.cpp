@@ -200,8 +200,10 @@ TEST(EdgeAntialiasing, FrameComesNearerTheSupersampledReference) {
   for (std::size_t p = 0; p < without.image.rgb.size(); p += 3) {
     double a = 0.0, b = 0.0;
     for (std::size_t c = p; c < p + 3; ++c) {
-      const double d0 = double{without.image.rgb[c]} - double{reference.rgb[c]};
-      const double d1 = double{with.image.rgb[c]} - double{reference.rgb[c]};
+      const double d0 =
+          static_cast<double>(without.image.rgb[c]) - static_cast<double>(reference.rgb[c]);
+      const double d1 =
+          static_cast<double>(with.image.rgb[c]) - static_cast<double>(reference.rgb[c]);
       a += d0 * d0;
       b += d1 * d1;
     }

@@ -135,10 +135,7 @@ std::vector<glm::dvec3> points_to_check() {
 }
 
 std::string describe(const glm::dvec3& p) {
-  // Appended piece by piece: GCC 12's -Wrestrict misfires on "(" + std::string for aarch64.
-  std::string text = "(";
-  text += std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
-  return text;
+  return "(" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) + ")";
 }
 
 TEST(PatternKernels, EveryTargetSamplesPointsAsTheScalarDefinition) {
