@@ -97,7 +97,7 @@ Capability measure_machine() {
   sphere.name = "probe";
   sphere.source = SphereShape{};
   sphere.mesh = std::make_shared<const Mesh>(make_sphere(SphereShape{1.0, 48, 24}));
-  sphere.material.texture = validated(TextureSpec{ColourCubeParams{0.5}, {}, {}, {}, {}});
+  sphere.material.texture = validated(TextureSpec{ColourCubeParams{0.5}, {}, {}, {}, {}, {}});
   scene.objects.push_back(std::move(sphere));
 
   BrickCache cache(32u << 20);
@@ -186,7 +186,7 @@ namespace {
 // no slower (the link is faster than the probe can tell).
 double raw_link_mb_per_s(net::BrickSource& source, const Volume& volume, double zstd_ratio,
                          double decode_ns, const ProbeClock& clock) {
-  const TextureSpec cube = validated(TextureSpec{ColourCubeParams{0.5}, {}, {}, {}, {}});
+  const TextureSpec cube = validated(TextureSpec{ColourCubeParams{0.5}, {}, {}, {}, {}, {}});
   const MipSettings point{MipMode::point, 1};
   const auto shifted = [&](double by) {
     Volume v = volume;
