@@ -11,26 +11,9 @@ export CCACHE_BASEDIR="$root" CCACHE_NOHASHDIR=1
 build=${SOLTEX_ARM64_DIR:-$root/build-arm64}
 jobs=${SOLTEX_JOBS:-2}
 
-packages=(g++-aarch64-linux-gnu qemu-user libhwy-dev:arm64 libgtest-dev:arm64
-  libgmock-dev:arm64 libzstd-dev:arm64 liblz4-dev:arm64 libxxhash-dev:arm64
-  libmeshoptimizer-dev:arm64 libpugixml-dev:arm64 libglm-dev nlohmann-json3-dev libstb-dev)
-missing=()
-for package in "${packages[@]}"; do
-  dpkg -s "$package" >/dev/null 2>&1 || missing+=("$package")
-done
-# apt only when something is missing, as install-deps.sh.
-if [ ${#missing[@]} -gt 0 ]; then
-  if [ "$(id -u)" -ne 0 ]; then
-    echo "arm64-check.sh: missing packages (run as root to install): ${missing[*]}" >&2
-    exit 1
-  fi
-  if ! dpkg --print-foreign-architectures | grep -qx arm64; then
-    dpkg --add-architecture arm64
-  fi
-  apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends \
-    "${missing[@]}" >/dev/null
-fi
+"$root/deploy/install-deps.sh" g++-aarch64-linux-gnu qemu-user libhwy-dev:arm64 \
+  libgtest-dev:arm64 libgmock-dev:arm64 libzstd-dev:arm64 liblz4-dev:arm64 libxxhash-dev:arm64 \
+  libmeshoptimizer-dev:arm64 libpugixml-dev:arm64 libglm-dev nlohmann-json3-dev libstb-dev
 
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DSOLTEX_CORE_ONLY=ON \
   -DSOLTEX_BUILD_BENCHMARKS=OFF -DCMAKE_TOOLCHAIN_FILE="$root/cmake/aarch64-linux-gnu.cmake" \

@@ -1,8 +1,13 @@
 #!/usr/bin/env bash
-# Installs the Debian packages soltex builds and tests with. Quick when they are present:
-# apt runs only when something is missing.
+# Installs the Debian packages soltex builds and tests with, or those named as arguments
+# (arm64-check.sh's cross toolchain). Quick when they are present: apt runs only when
+# something is missing. A package of another architecture (name:arm64) adds that
+# architecture to dpkg first.
 set -euo pipefail
 
+if [ $# -gt 0 ]; then
+  packages=("$@")
+else
 packages=(
   build-essential cmake ninja-build ccache pkg-config curl
   clang libclang-rt-14-dev        # libFuzzer and the sanitizer runtimes
@@ -28,6 +33,7 @@ packages=(
 # The web viewer (client/web) builds and tests with Node.js and npm; vite 7 needs Node 20.19 or
 # later (Debian 13's nodejs; on Debian 12 install Node 20 from nodejs.org or NodeSource).
 command -v npm >/dev/null || packages+=(nodejs npm)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
@@ -35,12 +41,20 @@ for p in "${packages[@]}"; do
 done
 
 if [ ${#missing[@]} -eq 0 ]; then
-  echo "deploy: all ${#packages[@]} build packages present"
+  echo "deploy: all ${#packages[@]} packages present"
   exit 0
 fi
 
 sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
 echo "deploy: installing ${missing[*]}"
+for p in "${missing[@]}"; do
+  case "$p" in
+    *:*)
+      arch=${p##*:}
+      dpkg --print-foreign-architectures | grep -qx "$arch" || $sudo dpkg --add-architecture "$arch"
+      ;;
+  esac
+done
 $sudo apt-get update -qq
 DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${packages[@]}"
