@@ -106,8 +106,8 @@ void transform_lanes(const VertexMatrices& m, bool has_normals, VertexLanes& v, 
 
 // TriangleSetup::project_vertices(): outcodes, guard band and near planes (dot products as
 // glm::dot groups them), and project()'s screen position (rounded, not yet an integer), depth
-// and 1/w; lanes the vertex does not
-// project to (invalid, or outside a plane) hold values nobody reads.
+// and 1/w; lanes the vertex does not project to (invalid, or outside a plane) hold values
+// nobody reads.
 void project_lanes(const VertexMatrices& m, double width, double height, VertexLanes& v,
                    std::size_t n) {
   for (std::size_t l = 0; l < n; ++l) {
