@@ -1,10 +1,11 @@
 // Runtime dispatch of the tile's per-pixel loops (tile_kernels.h). Highway compiles this file
 // once per target (hwy/foreach_target.h re-includes it) and HWY_DYNAMIC_DISPATCH calls the
 // widest one the CPU supports, once per triangle drawn into a tile and once per batch of
-// resolved runs of pixels. The loops are plain per-lane code, written with selects rather than
+// resolved runs of pixels. Most loops are plain per-lane code, written with selects rather than
 // branches so that the compiler runs them in vector lanes; a target only widens the lanes
 // (AVX2: 8 floats, AVX-512: 16, against 4 in the baseline build, whose lack of 64-bit vector
-// compares keeps drawing scalar). The same IEEE operations in the same order per lane, and no
+// compares keeps draw_unclipped_target scalar). draw_small_target and run_starts_target are
+// written in Highway's operations. The same IEEE operations in the same order per lane, and no
 // contraction (-ffp-contract=off holds for every target): the same bits on every target.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "tile_kernels.cpp"
@@ -14,6 +15,7 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -77,6 +79,72 @@ void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float*
     row[0] += step_y[0];
     row[1] += step_y[1];
     row[2] += step_y[2];
+  }
+  stats.fragments_rasterized += rasterized;
+  stats.fragments_depth_passed += depth_passed;
+}
+
+void draw_small_target(const ScreenTriangle& t, const SpanDraw32& span, float* depth_plane,
+                       const ScreenTriangle** winner_plane, RasterStats& stats) {
+  // draw_unclipped_target()'s tests and depth, a tile's column of up to kSmallLanes pixels at a
+  // time over the triangle's rows, in 32-bit lanes: twice draw_unclipped_target()'s lanes, and
+  // no branch per pixel, whose outcome a small triangle's edges make random.
+  namespace hn = hwy::HWY_NAMESPACE;
+  const hn::CappedTag<int32_t, kSmallLanes> di;
+  const hn::Rebind<float, decltype(di)> df;
+  // Winners are pointers: as many 64-bit lanes, in one to four vectors.
+  const hn::CappedTag<uint64_t, kSmallLanes> dw;
+  const int lanes = static_cast<int>(hn::Lanes(di));
+  const int pointer_lanes = static_cast<int>(hn::Lanes(dw));
+  const int count = span.last_x - span.first_x + 1;
+  assert(count >= 1 && count <= kTileSize);
+  // Edge k's function j pixels right of a column's first: its value there plus this.
+  alignas(64) std::array<std::array<int32_t, kSmallLanes>, 3> along;
+  for (std::size_t k = 0; k < 3; ++k) {
+    for (int j = 0; j < kSmallLanes; ++j)
+      along[k][static_cast<std::size_t>(j)] = span.step_x[k] * j;
+  }
+  const float x0 = t.x0_pixels();
+  const float y0 = t.y0_pixels();
+  const auto self = hn::Set(dw, static_cast<uint64_t>(reinterpret_cast<uintptr_t>(&t)));
+  auto* winners = reinterpret_cast<uint64_t*>(winner_plane);
+  const auto far = hn::Set(df, kFarDepth);
+  uint64_t rasterized = 0, depth_passed = 0;
+  for (int c = 0; c < count; c += lanes) {
+    const auto columns = hn::RebindMask(df, hn::FirstN(di, static_cast<std::size_t>(count - c)));
+    const auto edge = [&](std::size_t k) {
+      return hn::Add(hn::Set(di, span.row[k] + span.step_x[k] * c), hn::Load(di, along[k].data()));
+    };
+    auto e0 = edge(0), e1 = edge(1), e2 = edge(2);
+    // The depth as draw_unclipped_target() has it: (at_vertex0 + per_x * dx) + per_y * dy.
+    const auto x = hn::ConvertTo(df, hn::Iota(di, span.first_x + c));
+    const auto dx = hn::Sub(hn::Add(x, hn::Set(df, 0.5f)), hn::Set(df, x0));
+    const auto depth_x =
+        hn::Add(hn::Set(df, t.depth.at_vertex0), hn::Mul(hn::Set(df, t.depth.per_x), dx));
+    for (int y = span.first_y; y <= span.last_y; ++y) {
+      const float dy = static_cast<float>(y) + 0.5f - y0;
+      const auto depth = hn::Add(depth_x, hn::Set(df, t.depth.per_y * dy));
+      const std::ptrdiff_t at = static_cast<std::ptrdiff_t>(y - span.tile_y0) * kTileSize +
+                                (span.first_x - span.tile_x0) + c;
+      const auto old_depth = hn::LoadU(df, depth_plane + at);
+      const auto outside = hn::Lt(hn::Or(hn::Or(e0, e1), e2), hn::Zero(di));
+      const auto inside = hn::AndNot(hn::RebindMask(df, outside), columns);
+      const auto pass = hn::AndNot(hn::Gt(depth, far), hn::And(inside, hn::Lt(depth, old_depth)));
+      rasterized += hn::CountTrue(df, inside);
+      depth_passed += hn::CountTrue(df, pass);
+      // Lanes past the triangle's columns (the tile's next pixels, or its planes' padding)
+      // are written back as they were.
+      hn::StoreU(hn::IfThenElse(pass, depth, old_depth), df, depth_plane + at);
+      uint8_t bits[8] = {};
+      hn::StoreMaskBits(df, pass, bits);
+      for (int w = 0; w < lanes; w += pointer_lanes) {
+        const auto part = static_cast<uint8_t>(bits[0] >> w);
+        hn::BlendedStore(self, hn::LoadMaskBits(dw, &part), dw, winners + at + w);
+      }
+      e0 = hn::Add(e0, hn::Set(di, span.step_y[0]));
+      e1 = hn::Add(e1, hn::Set(di, span.step_y[1]));
+      e2 = hn::Add(e2, hn::Set(di, span.step_y[2]));
+    }
   }
   stats.fragments_rasterized += rasterized;
   stats.fragments_depth_passed += depth_passed;
@@ -282,6 +350,7 @@ HWY_AFTER_NAMESPACE();
 namespace soltex::raster_internal {
 
 HWY_EXPORT(draw_unclipped_target);
+HWY_EXPORT(draw_small_target);
 HWY_EXPORT(resolve_surface_runs_target);
 HWY_EXPORT(interpolate_surfaces_target);
 HWY_EXPORT(run_starts_target);
@@ -289,6 +358,11 @@ HWY_EXPORT(run_starts_target);
 void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
                     const ScreenTriangle** winner, RasterStats& stats) {
   HWY_DYNAMIC_DISPATCH(draw_unclipped_target)(t, span, depth, winner, stats);
+}
+
+void draw_small(const ScreenTriangle& t, const SpanDraw32& span, float* depth,
+                const ScreenTriangle** winner, RasterStats& stats) {
+  HWY_DYNAMIC_DISPATCH(draw_small_target)(t, span, depth, winner, stats);
 }
 
 uint64_t run_starts(const ScreenTriangle* const* winners, int count) {

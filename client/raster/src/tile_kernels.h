@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -28,6 +29,30 @@ struct SpanDraw {
 };
 void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
                     const ScreenTriangle** winner, RasterStats& stats);
+
+// The same for a small triangle (extents of at most kSmallExtent, fits_int32()), its edge
+// functions in 32-bit lanes: exact there, so the same fragments win as in the 64-bit loops.
+// The planes must hold kPlanePadding elements past the tile's last pixel (read, and written
+// back unchanged).
+inline constexpr int kSmallLanes = 8;
+struct SpanDraw32 {
+  int first_x, last_x, first_y, last_y;
+  int tile_x0, tile_y0;
+  std::array<int32_t, 3> row, step_x, step_y;
+};
+void draw_small(const ScreenTriangle& t, const SpanDraw32& span, float* depth,
+                const ScreenTriangle** winner, RasterStats& stats);
+
+// Whether every edge function of `t` (with its top-left bias) stays within int32 at the pixel
+// centres of its bounds and up to kSmallLanes - 1 pixels right of them: each is a sum of two
+// products of coordinate differences, each within the triangle's extent (or that extent and
+// the lanes past it), so extents of at most 64 pixels bound it by (64 + 71) * 64 * 2^16 < 2^30.
+inline constexpr int64_t kSmallExtent = 64 * kSubpixelScale;
+inline bool fits_int32(const ScreenTriangle& t) {
+  const auto [min_x, max_x] = std::minmax({t.x[0], t.x[1], t.x[2]});
+  const auto [min_y, max_y] = std::minmax({t.y[0], t.y[1], t.y[2]});
+  return int64_t{max_x} - min_x <= kSmallExtent && int64_t{max_y} - min_y <= kSmallExtent;
+}
 
 // The G-buffer's planes as raw pointers, taken once per tile: a store through uint8_t* (the
 // flags) may alias anything, so through the vectors every store would reload every data pointer.

@@ -296,13 +296,28 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   const float x0 = t.x0_pixels();
   const float y0 = t.y0_pixels();
   const AffineForm* forms = t.clip_mask != 0 ? clip_forms.data() + t.first_clip_form : nullptr;
-  // Narrow triangles (most of a fine mesh's) stay with the loop below: a vector loop's set-up
-  // per row would cost more than the few pixels it covers.
-  if (forms == nullptr && coverage == nullptr && last_x - first_x + 1 >= kVectorColumns) {
-    raster_internal::draw_unclipped(
-        t, SpanDraw{first_x, last_x, first_y, last_y, x0_, y0_, row, step_x, step_y}, depth_.data(),
-        winner_.data(), stats);
-    return;
+  if (forms == nullptr && coverage == nullptr) {
+    // A triangle at most 64 pixels across (most of a mesh's) is drawn in 32-bit lanes, a
+    // larger one in 64-bit lanes where it spans enough of the tile's columns.
+    if (fits_int32(t)) {
+      const auto narrow = [](const std::array<int64_t, 3>& v) {
+        return std::array<int32_t, 3>{static_cast<int32_t>(v[0]), static_cast<int32_t>(v[1]),
+                                      static_cast<int32_t>(v[2])};
+      };
+      raster_internal::draw_small(t,
+                                  SpanDraw32{first_x, last_x, first_y, last_y, x0_, y0_,
+                                             narrow(row), narrow(step_x), narrow(step_y)},
+                                  depth_.data(), winner_.data(), stats);
+      return;
+    }
+    // A narrow one stays with the loop below: a vector loop's set-up per row would cost more
+    // than the few pixels it covers.
+    if (last_x - first_x + 1 >= kVectorColumns) {
+      raster_internal::draw_unclipped(
+          t, SpanDraw{first_x, last_x, first_y, last_y, x0_, y0_, row, step_x, step_y},
+          depth_.data(), winner_.data(), stats);
+      return;
+    }
   }
   // Counted locally, added once: the counters must not cost a store per fragment.
   uint64_t rasterized = 0, depth_passed = 0, clip_tested = 0, clip_discarded = 0;

@@ -19,8 +19,8 @@
 namespace soltex::raster_internal {
 
 inline constexpr int kTileSize = 64;
-// Elements past a tile's last pixel in its winner plane: run_starts() reads up to seven past a
-// row's end, a vector's worth (tile_kernels.h).
+// Elements past a tile's last pixel in its depth and winner planes: run_starts() and
+// draw_small() read up to seven past a row's end, a vector's worth (tile_kernels.h).
 inline constexpr std::size_t kPlanePadding = 7;
 
 // What resolving needs of the frame.
@@ -51,7 +51,7 @@ class TileRasterizer {
 
  private:
   int x0_ = 0, y0_ = 0, x1_ = 0, y1_ = 0;
-  std::array<float, kTileSize * kTileSize> depth_{};
+  std::array<float, kTileSize * kTileSize + kPlanePadding> depth_{};
   std::array<const ScreenTriangle*, kTileSize * kTileSize + kPlanePadding> winner_{};
 };
 

@@ -1,17 +1,21 @@
 // The tile kernels (client/raster/src/tile_kernels.cpp) on every Highway target the CPU runs:
-// a row's run starts against the pixel-by-pixel comparison.
+// a row's run starts against the pixel-by-pixel comparison, and drawing in vector lanes against
+// the rasterizer's fragment-by-fragment loop.
 
 #include "tile_kernels.h"
 
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "../texture/dispatch_targets.h"
+#include "raster_test_scenes.h"
+#include "soltex/raster/rasterizer.h"
 #include "tile_rasterizer.h"
 
 namespace soltex {
@@ -44,6 +48,50 @@ TEST(RunStarts, EveryTargetFindsTheRunsOfARow) {
             << hwy::TargetName(target) << " row " << row << " count " << count;
       }
     }
+  }
+}
+
+// Triangles from under a pixel to wider than a tile (so both the 32-bit and 64-bit lanes draw),
+// at random depths and facing both ways, overlapping: drawn in vector lanes on each target, they
+// leave the G-buffer and fragment counts that counting coverage gives, which draws every
+// fragment one at a time.
+TEST(DrawKernels, EveryTargetDrawsWhatTheFragmentLoopDraws) {
+  const std::vector<int64_t> targets =
+      test::targets_to_run(raster_internal::tile_kernels_compiled_targets());
+  constexpr int kWidth = 200, kHeight = 150;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  raster_test::Mesh mesh;
+  for (uint32_t i = 0; i < 3000; ++i) {
+    // Sizes spread over a log scale, 0.3 to 200 pixels.
+    const float size = 0.3f * std::pow(700.0f, unit(rng) * unit(rng));
+    const glm::vec2 centre(unit(rng) * kWidth, unit(rng) * kHeight);
+    // Half of them flat at one of four depths, so that equal depths meet (the first one keeps
+    // the pixel); the others sloped.
+    const float flat = i % 2 == 0 ? -0.25f * static_cast<float>(rng() % 4) : 1.0f;
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec2 p = centre + size * glm::vec2(unit(rng) - 0.5f, unit(rng) - 0.5f);
+      mesh.positions.push_back({p.x, p.y, flat <= 0.0f ? flat : -unit(rng)});
+    }
+    mesh.add_triangle(3 * i, 3 * i + 1, 3 * i + 2);
+  }
+  RasterObject object;
+  object.mesh = mesh.view();
+  object.closed = false;
+  const RasterView view{kWidth, kHeight, raster_test::pixel_ortho(kWidth, kHeight), {}};
+  GBuffer reference;
+  Rasterizer counting({.threads = 1, .count_coverage = true});
+  const RasterStats expected = counting.render(view, std::span(&object, 1), reference);
+  ASSERT_GT(expected.fragments_depth_passed, 20000u);
+  for (const int64_t target : targets) {
+    const test::ForcedTarget forced(target);
+    Rasterizer rasterizer({.threads = 1});
+    GBuffer g;
+    const RasterStats stats = rasterizer.render(view, std::span(&object, 1), g);
+    SCOPED_TRACE(hwy::TargetName(target));
+    raster_test::expect_same_buffer(g, reference);
+    EXPECT_EQ(stats.fragments_rasterized, expected.fragments_rasterized);
+    EXPECT_EQ(stats.fragments_depth_passed, expected.fragments_depth_passed);
   }
 }
 
