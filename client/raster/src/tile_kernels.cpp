@@ -84,7 +84,7 @@ void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float*
   stats.fragments_depth_passed += depth_passed;
 }
 
-void draw_small_target(const ScreenTriangle& t, const SpanDraw32& span, float* depth_plane,
+void draw_small_target(const ScreenTriangle& t, const SpanDraw& span, float* depth_plane,
                        const ScreenTriangle** winner_plane, RasterStats& stats) {
   // draw_unclipped_target()'s tests and depth, a tile's column of up to kSmallLanes pixels at a
   // time over the triangle's rows, in 32-bit lanes: twice draw_unclipped_target()'s lanes, and
@@ -98,12 +98,18 @@ void draw_small_target(const ScreenTriangle& t, const SpanDraw32& span, float* d
   const int pointer_lanes = static_cast<int>(hn::Lanes(dw));
   const int count = span.last_x - span.first_x + 1;
   assert(count >= 1 && count <= kTileSize);
-  // Edge k's function j pixels right of a column's first: its value there plus this.
-  alignas(64) std::array<std::array<int32_t, kSmallLanes>, 3> along;
+  // Exact in int32 (fits_int32()), narrowed here: in registers, not through the caller's stack.
+  std::array<int32_t, 3> row{}, step_x{}, step_y{};
   for (std::size_t k = 0; k < 3; ++k) {
-    for (int j = 0; j < kSmallLanes; ++j)
-      along[k][static_cast<std::size_t>(j)] = span.step_x[k] * j;
+    row[k] = static_cast<int32_t>(span.row[k]);
+    step_x[k] = static_cast<int32_t>(span.step_x[k]);
+    step_y[k] = static_cast<int32_t>(span.step_y[k]);
   }
+  // Edge k's function j pixels right of a column's first: its value there plus lane j of this.
+  const auto along = [&](std::size_t k) {
+    return hn::Mul(hn::Iota(di, 0), hn::Set(di, step_x[k]));
+  };
+  const auto along0 = along(0), along1 = along(1), along2 = along(2);
   const float x0 = t.x0_pixels();
   const float y0 = t.y0_pixels();
   const auto self = hn::Set(dw, static_cast<uint64_t>(reinterpret_cast<uintptr_t>(&t)));
@@ -112,10 +118,9 @@ void draw_small_target(const ScreenTriangle& t, const SpanDraw32& span, float* d
   uint64_t rasterized = 0, depth_passed = 0;
   for (int c = 0; c < count; c += lanes) {
     const auto columns = hn::RebindMask(df, hn::FirstN(di, static_cast<std::size_t>(count - c)));
-    const auto edge = [&](std::size_t k) {
-      return hn::Add(hn::Set(di, span.row[k] + span.step_x[k] * c), hn::Load(di, along[k].data()));
-    };
-    auto e0 = edge(0), e1 = edge(1), e2 = edge(2);
+    auto e0 = hn::Add(hn::Set(di, row[0] + step_x[0] * c), along0);
+    auto e1 = hn::Add(hn::Set(di, row[1] + step_x[1] * c), along1);
+    auto e2 = hn::Add(hn::Set(di, row[2] + step_x[2] * c), along2);
     // The depth as draw_unclipped_target() has it: (at_vertex0 + per_x * dx) + per_y * dy.
     const auto x = hn::ConvertTo(df, hn::Iota(di, span.first_x + c));
     const auto dx = hn::Sub(hn::Add(x, hn::Set(df, 0.5f)), hn::Set(df, x0));
@@ -141,9 +146,9 @@ void draw_small_target(const ScreenTriangle& t, const SpanDraw32& span, float* d
         const auto part = static_cast<uint8_t>(bits[0] >> w);
         hn::BlendedStore(self, hn::LoadMaskBits(dw, &part), dw, winners + at + w);
       }
-      e0 = hn::Add(e0, hn::Set(di, span.step_y[0]));
-      e1 = hn::Add(e1, hn::Set(di, span.step_y[1]));
-      e2 = hn::Add(e2, hn::Set(di, span.step_y[2]));
+      e0 = hn::Add(e0, hn::Set(di, step_y[0]));
+      e1 = hn::Add(e1, hn::Set(di, step_y[1]));
+      e2 = hn::Add(e2, hn::Set(di, step_y[2]));
     }
   }
   stats.fragments_rasterized += rasterized;
@@ -360,7 +365,7 @@ void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
   HWY_DYNAMIC_DISPATCH(draw_unclipped_target)(t, span, depth, winner, stats);
 }
 
-void draw_small(const ScreenTriangle& t, const SpanDraw32& span, float* depth,
+void draw_small(const ScreenTriangle& t, const SpanDraw& span, float* depth,
                 const ScreenTriangle** winner, RasterStats& stats) {
   HWY_DYNAMIC_DISPATCH(draw_small_target)(t, span, depth, winner, stats);
 }

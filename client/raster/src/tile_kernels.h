@@ -35,12 +35,7 @@ void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
 // The planes must hold kPlanePadding elements past the tile's last pixel (read, and written
 // back unchanged).
 inline constexpr int kSmallLanes = 8;
-struct SpanDraw32 {
-  int first_x, last_x, first_y, last_y;
-  int tile_x0, tile_y0;
-  std::array<int32_t, 3> row, step_x, step_y;
-};
-void draw_small(const ScreenTriangle& t, const SpanDraw32& span, float* depth,
+void draw_small(const ScreenTriangle& t, const SpanDraw& span, float* depth,
                 const ScreenTriangle** winner, RasterStats& stats);
 
 // Whether every edge function of `t` (with its top-left bias) stays within int32 at the pixel

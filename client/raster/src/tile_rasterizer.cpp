@@ -299,23 +299,15 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   if (forms == nullptr && coverage == nullptr) {
     // A triangle at most 64 pixels across (most of a mesh's) is drawn in 32-bit lanes, a
     // larger one in 64-bit lanes where it spans enough of the tile's columns.
+    const SpanDraw span{first_x, last_x, first_y, last_y, x0_, y0_, row, step_x, step_y};
     if (fits_int32(t)) {
-      const auto narrow = [](const std::array<int64_t, 3>& v) {
-        return std::array<int32_t, 3>{static_cast<int32_t>(v[0]), static_cast<int32_t>(v[1]),
-                                      static_cast<int32_t>(v[2])};
-      };
-      raster_internal::draw_small(t,
-                                  SpanDraw32{first_x, last_x, first_y, last_y, x0_, y0_,
-                                             narrow(row), narrow(step_x), narrow(step_y)},
-                                  depth_.data(), winner_.data(), stats);
+      raster_internal::draw_small(t, span, depth_.data(), winner_.data(), stats);
       return;
     }
     // A narrow one stays with the loop below: a vector loop's set-up per row would cost more
     // than the few pixels it covers.
     if (last_x - first_x + 1 >= kVectorColumns) {
-      raster_internal::draw_unclipped(
-          t, SpanDraw{first_x, last_x, first_y, last_y, x0_, y0_, row, step_x, step_y},
-          depth_.data(), winner_.data(), stats);
+      raster_internal::draw_unclipped(t, span, depth_.data(), winner_.data(), stats);
       return;
     }
   }
