@@ -51,7 +51,7 @@ TEST(RunStarts, EveryTargetFindsTheRunsOfARow) {
   }
 }
 
-// Triangles from under a pixel to wider than a tile (so both the 32-bit and 64-bit lanes draw),
+// Triangles from under a pixel to several tiles wide (so both the 32-bit and 64-bit lanes draw),
 // at random depths and facing both ways, overlapping: drawn in vector lanes on each target, they
 // leave the G-buffer and fragment counts that counting coverage gives, which draws every
 // fragment one at a time.
@@ -63,8 +63,10 @@ TEST(DrawKernels, EveryTargetDrawsWhatTheFragmentLoopDraws) {
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   raster_test::Mesh mesh;
   for (uint32_t i = 0; i < 3000; ++i) {
-    // Sizes spread over a log scale, 0.3 to 200 pixels.
-    const float size = 0.3f * std::pow(700.0f, unit(rng) * unit(rng));
+    // Sizes spread over a log scale: a third from 0.3 to 600 pixels (tiles wholly inside some,
+    // cut at one corner by others), the rest mostly small.
+    const float size = 0.3f * std::pow(i % 3 == 0 ? 2000.0f : 700.0f,
+                                       i % 3 == 0 ? unit(rng) : unit(rng) * unit(rng));
     const glm::vec2 centre(unit(rng) * kWidth, unit(rng) * kHeight);
     // Half of them flat at one of four depths, so that equal depths meet (the first one keeps
     // the pixel); the others sloped.
