@@ -87,12 +87,13 @@ void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float*
 void draw_small_target(const ScreenTriangle& t, const SpanDraw& span, float* depth_plane,
                        const ScreenTriangle** winner_plane, RasterStats& stats) {
   // draw_unclipped_target()'s tests and depth, a tile's column of up to kSmallLanes pixels at a
-  // time over the triangle's rows, in 32-bit lanes: twice draw_unclipped_target()'s lanes, and
-  // no branch per pixel, whose outcome a small triangle's edges make random.
+  // time over the triangle's rows, in 32-bit lanes (twice as many to a vector as 64-bit ones)
+  // and without a branch per pixel, whose outcome a small triangle's edges make random.
   namespace hn = hwy::HWY_NAMESPACE;
   const hn::CappedTag<int32_t, kSmallLanes> di;
   const hn::Rebind<float, decltype(di)> df;
-  // Winners are pointers: as many 64-bit lanes, in one to four vectors.
+  // Winners are pointers: as many 64-bit lanes, in one or two vectors.
+  static_assert(sizeof(uintptr_t) == sizeof(uint64_t));
   const hn::CappedTag<uint64_t, kSmallLanes> dw;
   const int lanes = static_cast<int>(hn::Lanes(di));
   const int pointer_lanes = static_cast<int>(hn::Lanes(dw));
