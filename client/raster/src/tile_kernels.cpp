@@ -166,8 +166,10 @@ void draw_small_target(const ScreenTriangle& t, const SpanDraw& span, float* dep
 // lanes; the triangle's terms are the same in every lane.
 struct SurfaceChunk {
   static constexpr std::size_t kCapacity = kTileSize;
-  // Lanes computed together: a multiple of every target's vector width in floats.
-  static constexpr std::size_t kBlock = 16;
+  // Lanes computed together: whole SSE, NEON and AVX2 vectors; AVX-512 runs a last block of
+  // eight in its loop's half-width remainder. Sixteen made a run of four to eight pixels (most
+  // of a fine mesh's long runs) compute twice its lanes.
+  static constexpr std::size_t kBlock = 8;
   static_assert(kCapacity % kBlock == 0);
   template <typename T>
   using Lanes = std::array<T, kCapacity>;
