@@ -92,6 +92,7 @@ void draw_small_target(const ScreenTriangle& t, const SpanDraw& span, float* dep
   namespace hn = hwy::HWY_NAMESPACE;
   const hn::CappedTag<int32_t, kSmallLanes> di;
   const hn::Rebind<float, decltype(di)> df;
+  static_assert(kPlanePadding >= kSmallLanes - 1);  // a vector may run past the tile's last pixel
   // Winners are pointers: as many 64-bit lanes, in one or two vectors.
   static_assert(sizeof(uintptr_t) == sizeof(uint64_t));
   const hn::CappedTag<uint64_t, kSmallLanes> dw;

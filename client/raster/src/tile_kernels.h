@@ -43,6 +43,10 @@ void draw_small(const ScreenTriangle& t, const SpanDraw& span, float* depth,
 // products of coordinate differences, each within the triangle's extent (or that extent and
 // the lanes past it), so extents of at most 64 pixels bound it by (64 + 71) * 64 * 2^16 < 2^30.
 inline constexpr int64_t kSmallExtent = 64 * kSubpixelScale;
+inline constexpr int64_t kSmallEdgeBound =
+    kSmallExtent * kSmallExtent +
+    kSmallExtent * (kSmallExtent + (kSmallLanes - 1) * kSubpixelScale);
+static_assert(kSmallEdgeBound < INT32_MAX);
 inline bool fits_int32(const ScreenTriangle& t) {
   const auto [min_x, max_x] = std::minmax({t.x[0], t.x[1], t.x[2]});
   const auto [min_y, max_y] = std::minmax({t.y[0], t.y[1], t.y[2]});
