@@ -110,10 +110,20 @@ void TextureSampler::sample(std::span<const glm::dvec3> points, double lod, Samp
     for (std::size_t i = 0; i < points.size(); ++i) results[i] = sample(points[i], lod, filter);
     return;
   }
+  if (points.empty()) return;
   const int level = static_cast<int>(std::min(lod, coarsest_lod_) + 0.5);
-  for (std::size_t first = 0; first < points.size(); first += kSampleChunk) {
-    const std::size_t n = std::min(kSampleChunk, points.size() - first);
-    sample_rgb_chunk(points.subspan(first, n), level, results.subspan(first, n));
+  // One chunk ahead: the next chunk's samples are on their way from memory while this one's
+  // are filtered.
+  const auto chunk_of = [&](std::size_t first) {
+    return points.subspan(first, std::min(kSampleChunk, points.size() - first));
+  };
+  std::array<StagedChunk, 2> staged;
+  stage_rgb_chunk(chunk_of(0), level, staged[0]);
+  for (std::size_t first = 0, k = 0; first < points.size(); first += kSampleChunk, ++k) {
+    const std::size_t next = first + kSampleChunk;
+    if (next < points.size()) stage_rgb_chunk(chunk_of(next), level, staged[(k + 1) & 1]);
+    finish_rgb_chunk(chunk_of(first), level, staged[k & 1],
+                     results.subspan(first, chunk_of(first).size()));
   }
 }
 
@@ -138,14 +148,12 @@ std::array<std::byte, 16> result_tail(int level) {
 
 }  // namespace
 
-void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int level,
-                                      std::span<SampleResult> results) {
+void TextureSampler::stage_rgb_chunk(std::span<const glm::dvec3> points, int level,
+                                     StagedChunk& staged) {
   const auto l = static_cast<std::size_t>(level);
-  CellChunk chunk;
+  CellChunk& chunk = staged.cells;
   split_cells(points, min_, finest_spacing_, level_scale_[l], cells_[l], chunk);
-  CellRows rows;
   static_assert(kSampleChunk <= 64);
-  uint64_t missed = 0;  // bit i: point i's brick is not resident
   const auto n = points.size();
   const int bricks = layout_.bricks_per_axis(level);
   uint64_t run_hits = 0, run_misses = 0;  // lookups a run answered, counted as resident() would
@@ -153,25 +161,19 @@ void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int le
     return glm::ivec3(chunk.cell[0][i] >> brick_shift_, chunk.cell[1][i] >> brick_shift_,
                       chunk.cell[2][i] >> brick_shift_);
   };
-  const std::array<std::byte, 16> tail = result_tail(level);
-  // In locals: the row stores below could alias the members, which would be read again per
-  // point.
   const std::ptrdiff_t y_stride = y_stride_, z_stride = z_stride_;
-  // Each result is started in the loop that reads its rows, while its line is being written.
-  const auto start = [&](std::size_t i, const uint8_t* corner) {
-    std::memcpy(reinterpret_cast<std::byte*>(&results[i]) + kResultTailOffset, tail.data(), 16);
-    if (corner != nullptr) {
-      rows.read(i, corner, y_stride, z_stride);
-    } else {
-      missed |= uint64_t{1} << i;
-      for (auto& row : rows.row) row[i] = 0;
-    }
+  // The cell's rows asked for now, read a chunk later: the line of its first row in each of
+  // the two z planes (measured as fast as asking for all four rows' first and last bytes).
+  const auto fetch = [&](std::size_t i, const uint8_t* corner) {
+    staged.corners[i] = corner;
+    if (corner == nullptr) return;
+    __builtin_prefetch(corner);
+    __builtin_prefetch(corner + z_stride);
   };
   if (static_cast<int64_t>(bricks) * bricks * bricks <= INT32_MAX) {
     // The flat brick index in one int32 compares a run in one instruction.
     locate_cells(chunk, n, {brick_shift_, brick_mask_, bricks, 3, y_stride_, z_stride_});
-    // Run by run: find where the brick changes, ask for the brick once, then read the run's
-    // rows in a loop with nothing else in it.
+    // Run by run: find where the brick changes, ask for the brick once.
     for (std::size_t first = 0; first < n;) {
       const int32_t run_brick = chunk.brick[first];
       std::size_t end = first + 1;
@@ -179,11 +181,11 @@ void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int le
       const Current* found = resident(level, brick_of(first));
       const auto repeats = static_cast<uint64_t>(end - first - 1);
       if (found == nullptr) {
-        for (std::size_t i = first; i < end; ++i) start(i, nullptr);
+        for (std::size_t i = first; i < end; ++i) staged.corners[i] = nullptr;
         run_misses += repeats;
       } else {
         const uint8_t* samples = found->samples;
-        for (std::size_t i = first; i < end; ++i) start(i, samples + chunk.offset[i]);
+        for (std::size_t i = first; i < end; ++i) fetch(i, samples + chunk.offset[i]);
         run_hits += repeats;
       }
       first = end;
@@ -202,15 +204,37 @@ void TextureSampler::sample_rgb_chunk(std::span<const glm::dvec3> points, int le
       }
       const glm::ivec3 local(chunk.cell[0][i] & brick_mask_, chunk.cell[1][i] & brick_mask_,
                              chunk.cell[2][i] & brick_mask_);
-      start(i, run_samples == nullptr
+      fetch(i, run_samples == nullptr
                    ? nullptr
-                   : run_samples + local.z * z_stride_ + local.y * y_stride_ + local.x * 3);
+                   : run_samples + local.z * z_stride + local.y * y_stride + local.x * 3);
     }
   }
   accessor_.count_microcache_hit(run_hits);
   accessor_.count_miss(run_misses);
+}
+
+void TextureSampler::finish_rgb_chunk(std::span<const glm::dvec3> points, int level,
+                                      const StagedChunk& staged, std::span<SampleResult> results) {
+  const auto n = points.size();
+  if (n == 0) return;
+  const std::array<std::byte, 16> tail = result_tail(level);
+  // In locals: the row stores below could alias the members, which would be read again per
+  // point.
+  const std::ptrdiff_t y_stride = y_stride_, z_stride = z_stride_;
+  CellRows rows;
+  uint64_t missed = 0;  // bit i: point i's brick is not resident
+  // Each result is started in the loop that reads its rows, while its line is being written.
+  for (std::size_t i = 0; i < n; ++i) {
+    std::memcpy(reinterpret_cast<std::byte*>(&results[i]) + kResultTailOffset, tail.data(), 16);
+    if (const uint8_t* corner = staged.corners[i]) {
+      rows.read(i, corner, y_stride, z_stride);
+    } else {
+      missed |= uint64_t{1} << i;
+      for (auto& row : rows.row) row[i] = 0;
+    }
+  }
   static_assert(sizeof(SampleResult) % sizeof(float) == 0);
-  trilinear_rgb_rows(rows, chunk, n, results[0].values.data(),
+  trilinear_rgb_rows(rows, staged.cells, n, results[0].values.data(),
                      sizeof(SampleResult) / sizeof(float));
   for (; missed != 0; missed &= missed - 1) {
     const auto i = static_cast<std::size_t>(std::countr_zero(missed));

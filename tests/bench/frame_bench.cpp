@@ -252,13 +252,13 @@ const TexturedPixels& bunny_pixels(WarmScene& w) {
   return *pixels;
 }
 
-// As the tile shader reads them: pixels grouped by level, each group of kSampleChunk looked up
+// As the tile shader reads them: pixels grouped by level, each group of kSampleBatch looked up
 // through the sampler's batch call.
 void batched_pass(benchmark::State& state, WarmScene& w, const TexturedPixels& pixels) {
   const soltex::PreparedObject& o = w.prepared.objects.front();
   soltex::TextureSampler sampler(*w.cache, o.texture_id, o.layout, o.channels);
   const soltex::NearestLevelTable table(o.layout, 0.0);
-  constexpr std::size_t kBatch = soltex::kSampleChunk;
+  constexpr std::size_t kBatch = soltex::kSampleBatch;
   constexpr std::size_t kLevels = soltex::SpecLimits::kMaxFinestLevelLog2 + 1;
   std::vector<std::array<glm::dvec3, kBatch>> groups(kLevels);
   std::array<std::size_t, kLevels> counts{};

@@ -98,9 +98,10 @@ class TileShader {
   };
   // Cached pixels of one object on the fast path wait here, grouped by level, and each
   // level's group is looked up together through TextureSampler's batch call: its kernels are
-  // dispatched once per group rather than the cell split and read run once per pixel.
+  // dispatched once per chunk rather than the cell split and read run once per pixel, and a
+  // group of several chunks has each chunk's samples fetched while the one before is filtered.
   struct CachedPixels {
-    static constexpr std::size_t kCapacity = kSampleChunk;
+    static constexpr std::size_t kCapacity = kSampleBatch;
     static constexpr std::size_t kLevels = SpecLimits::kMaxFinestLevelLog2 + 1;
     struct Group {
       std::size_t count = 0;

@@ -13,6 +13,7 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -274,6 +275,59 @@ TEST(SamplingKernels, SamplerBatchEqualsPerPointOnEveryTarget) {
       });
     }
   }
+}
+
+// A batch of several chunks is located one chunk ahead of the one filtered. With every other
+// level-0 brick resident, runs of hits and misses cross the chunks' ends; every batch size
+// (none, under, at and past a chunk, several chunks and a partial one) still equals the
+// per-point form bit for bit.
+TEST(SamplingKernels, SamplerBatchOfChunksEqualsPerPointWithBricksMissing) {
+  const RealTexture texture(spec_of(MarbleParams{}, ChannelSet{}), test_volume(), 8);
+  BrickCache cache(std::size_t{256} << 20);
+  const int bricks = texture.layout.bricks_per_axis(0);
+  for (int z = 0; z < bricks; ++z) {
+    for (int y = 0; y < bricks; ++y) {
+      for (int x = 0; x < bricks; ++x) {
+        if ((x + y + z) % 2 == 0) texture.insert(cache, 0, {x, y, z});
+      }
+    }
+  }
+  for (int level = 1; level <= texture.layout.coarsest_level(); ++level) {
+    texture.insert_level(cache, level);
+  }
+  // Along a slanted line through the volume, as a row of pixels meets it: runs of a few dozen
+  // points per brick.
+  std::vector<glm::dvec3> points(1000);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double t = static_cast<double>(i) / static_cast<double>(points.size());
+    points[i] = glm::dvec3(-0.75 + 1.4 * t, 0.35 + 1.1 * t, 2.35 - 1.2 * t);
+  }
+  on_every_target([&] {
+    TextureSampler batch(cache, texture.id, texture.layout, texture.channels);
+    TextureSampler single(cache, texture.id, texture.layout, texture.channels);
+    for (const std::size_t size :
+         {std::size_t{0}, std::size_t{1}, kSampleChunk - 1, kSampleChunk, kSampleChunk + 1,
+          kSampleBatch, kSampleBatch + 7, points.size()}) {
+      for (const double lod : {0.0, 1.0}) {
+        const std::span<const glm::dvec3> some(points.data(), size);
+        std::vector<SampleResult> results(size);
+        batch.sample(some, lod, SampleFilter::trilinear, results);
+        std::size_t incomplete = 0;
+        for (std::size_t i = 0; i < size; ++i) {
+          expect_same(results[i], single.sample(points[i], lod, SampleFilter::trilinear), i);
+          incomplete += results[i].complete ? 0 : 1;
+        }
+        // Level 0 misses half its bricks; level 1 has them all.
+        if (lod == 0.0 && size == points.size()) {
+          EXPECT_GT(incomplete, 0u);
+          EXPECT_LT(incomplete, size);
+        }
+        if (lod == 1.0) {
+          EXPECT_EQ(incomplete, 0u);
+        }
+      }
+    }
+  });
 }
 
 TEST(SamplingKernels, SamplerBatchChecksItsSizes) {

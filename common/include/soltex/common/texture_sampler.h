@@ -176,8 +176,9 @@ class TextureSampler {
   // must equal points.size() (std::invalid_argument otherwise). Missed bricks are not
   // listed: a result with complete == false names them through brick_key(). Trilinear RGB
   // runs the runtime-dispatched kernels of sampling_kernels.h, chosen once per kSampleChunk
-  // points, so a generic build uses the CPU's widest vectors; other filters and channel
-  // counts go point by point.
+  // points, so a generic build uses the CPU's widest vectors, and locates each chunk while
+  // the one before is filtered, so batches of kSampleBatch points or more wait less on
+  // memory; other filters and channel counts go point by point.
   void sample(std::span<const glm::dvec3> points, double lod, SampleFilter filter,
               std::span<SampleResult> results);
 
@@ -327,8 +328,19 @@ class TextureSampler {
     return static_cast<std::size_t>((key * 0x9E3779B97F4A7C15u) >> (64 - kRememberedBits));
   }
 
-  // The trilinear RGB lookups of up to kSampleChunk points at one level, into results.
-  void sample_rgb_chunk(std::span<const glm::dvec3> points, int level,
+  // Up to kSampleChunk trilinear RGB lookups at one level, located: each cell's split and the
+  // address of its first sample in its resident brick (nullptr where the brick is not).
+  struct StagedChunk {
+    CellChunk cells;
+    std::array<const uint8_t*, kSampleChunk> corners;
+  };
+  // The batch's lookups in two steps, so that one chunk's samples come from memory while the
+  // chunk before is filtered: stage_rgb_chunk() locates the points, finds their bricks and
+  // prefetches the samples; finish_rgb_chunk() reads them and filters into results (a point
+  // whose brick is missing takes sample_general()). Bricks found stay resident for the frame,
+  // so the addresses hold from one step to the next.
+  void stage_rgb_chunk(std::span<const glm::dvec3> points, int level, StagedChunk& staged);
+  void finish_rgb_chunk(std::span<const glm::dvec3> points, int level, const StagedChunk& staged,
                         std::span<SampleResult> results);
 
   void sample_general(const glm::dvec3& p, double lod, SampleFilter filter, MissedBricks* missed,
