@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "soltex/common/check.h"
+
 namespace soltex {
 
 const char* sample_filter_name(SampleFilter filter) {
@@ -150,6 +152,7 @@ std::array<std::byte, 16> result_tail(int level) {
 
 void TextureSampler::stage_rgb_chunk(std::span<const glm::dvec3> points, int level,
                                      StagedChunk& staged) {
+  SOLTEX_DCHECK(!points.empty() && points.size() <= kSampleChunk);
   const auto l = static_cast<std::size_t>(level);
   CellChunk& chunk = staged.cells;
   split_cells(points, min_, finest_spacing_, level_scale_[l], cells_[l], chunk);
@@ -216,6 +219,7 @@ void TextureSampler::stage_rgb_chunk(std::span<const glm::dvec3> points, int lev
 void TextureSampler::finish_rgb_chunk(std::span<const glm::dvec3> points, int level,
                                       const StagedChunk& staged, std::span<SampleResult> results) {
   const auto n = points.size();
+  SOLTEX_DCHECK(n <= kSampleChunk && results.size() == n);
   if (n == 0) return;
   const std::array<std::byte, 16> tail = result_tail(level);
   // In locals: the row stores below could alias the members, which would be read again per
