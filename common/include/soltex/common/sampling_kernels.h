@@ -18,7 +18,7 @@ inline constexpr std::size_t kSampleChunk = 64;
 // What a caller that groups points for TextureSampler's batch call hands over at a time: a
 // batch of several chunks is looked up one chunk ahead, each chunk's samples coming from memory
 // while the chunk before is filtered.
-inline constexpr std::size_t kSampleBatch = 4 * kSampleChunk;
+inline constexpr std::size_t kSampleBatch = 8 * kSampleChunk;
 
 // Where up to kSampleChunk points fall in a lattice, per axis (structure of arrays), and,
 // after locate_cells(), in which brick and where inside it.
