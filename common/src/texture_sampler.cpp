@@ -156,7 +156,6 @@ void TextureSampler::stage_rgb_chunk(std::span<const glm::dvec3> points, int lev
   const auto l = static_cast<std::size_t>(level);
   CellChunk& chunk = staged.cells;
   split_cells(points, min_, finest_spacing_, level_scale_[l], cells_[l], chunk);
-  static_assert(kSampleChunk <= 64);
   const auto n = points.size();
   const int bricks = layout_.bricks_per_axis(level);
   uint64_t run_hits = 0, run_misses = 0;  // lookups a run answered, counted as resident() would
@@ -226,6 +225,7 @@ void TextureSampler::finish_rgb_chunk(std::span<const glm::dvec3> points, int le
   // point.
   const std::ptrdiff_t y_stride = y_stride_, z_stride = z_stride_;
   CellRows rows;
+  static_assert(kSampleChunk <= 64);
   uint64_t missed = 0;  // bit i: point i's brick is not resident
   // Each result is started in the loop that reads its rows, while its line is being written.
   for (std::size_t i = 0; i < n; ++i) {
