@@ -124,8 +124,8 @@ void TextureSampler::sample(std::span<const glm::dvec3> points, double lod, Samp
   for (std::size_t first = 0, k = 0; first < points.size(); first += kSampleChunk, ++k) {
     const std::size_t next = first + kSampleChunk;
     if (next < points.size()) stage_rgb_chunk(chunk_of(next), level, staged[(k + 1) & 1]);
-    finish_rgb_chunk(chunk_of(first), level, staged[k & 1],
-                     results.subspan(first, chunk_of(first).size()));
+    const std::span<const glm::dvec3> chunk = chunk_of(first);
+    finish_rgb_chunk(chunk, level, staged[k & 1], results.subspan(first, chunk.size()));
   }
 }
 
@@ -218,7 +218,9 @@ void TextureSampler::stage_rgb_chunk(std::span<const glm::dvec3> points, int lev
 void TextureSampler::finish_rgb_chunk(std::span<const glm::dvec3> points, int level,
                                       const StagedChunk& staged, std::span<SampleResult> results) {
   const auto n = points.size();
-  SOLTEX_DCHECK(n <= kSampleChunk && results.size() == n);
+  SOLTEX_DCHECK(n >= 1 && n <= kSampleChunk && results.size() == n);
+  // Never taken (sample() passes no empty chunk); it tells the compiler that the loop below
+  // writes the rows the kernel reads.
   if (n == 0) return;
   const std::array<std::byte, 16> tail = result_tail(level);
   // In locals: the row stores below could alias the members, which would be read again per
