@@ -299,19 +299,18 @@ void resolve_long_run(const SurfaceRun& run, SurfaceChunk& chunk, const GBufferP
     }
   }
   interpolate(RunTerms{terms}, chunk, lanes);
-  // Plane by plane, through pointers of their own: a store through the flags' uint8_t* would
-  // otherwise make every other pointer be reloaded after it.
+  // Plane by plane, each in a loop of its own, the run's fields read once beforehand: a store
+  // through the flags' uint8_t* may alias anything, so a loop writing several planes reloaded
+  // every pointer and field after it and ran a pixel at a time.
   const std::size_t i = run.target;
-  float* __restrict depth = target.depth + i;
-  uint8_t* __restrict flags = target.flags + i;
-  uint32_t* __restrict object_id = target.object_id + i;
-  float* __restrict footprint = target.footprint + i;
+  const uint8_t run_flags = run.flags;
+  const uint32_t run_object_id = run.object_id;
+  std::copy_n(run.depth, n, target.depth + i);
+  std::fill_n(target.flags + i, n, run_flags);
+  std::fill_n(target.object_id + i, n, run_object_id);
+  std::copy_n(chunk.footprint.data(), n, target.footprint + i);
   glm::vec3* __restrict normal = target.normal + i;
   for (std::size_t l = 0; l < n; ++l) {
-    depth[l] = run.depth[l];
-    flags[l] = run.flags;
-    object_id[l] = run.object_id;
-    footprint[l] = chunk.footprint[l];
     normal[l] = glm::vec3(chunk.normal_x[l], chunk.normal_y[l], chunk.normal_z[l]);
   }
   glm::dvec3* __restrict position = target.texture_position + i;
