@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "nearest_levels.h"
 #include "soltex/common/check.h"
 
 namespace soltex {
@@ -51,7 +52,7 @@ NearestLevelTable::NearestLevelTable(const BrickLayout& layout, double bias) {
   nan_level_ = level_by_formula(layout, bias, std::numeric_limits<float>::quiet_NaN());
   non_positive_level_ = level_by_formula(layout, bias, -1.0f);
   const int top = level_at(kInfinityBits);
-  thresholds_.fill(0xffffffffu);
+  thresholds_.fill(std::numeric_limits<int32_t>::max());
   for (int k = 0; k < top - base_level_; ++k) {
     // The smallest bits in (0, +inf] whose level exceeds base_level_ + k.
     uint32_t low = 0, high = kInfinityBits;  // level(low) <= base + k < level(high)
@@ -63,8 +64,15 @@ NearestLevelTable::NearestLevelTable(const BrickLayout& layout, double bias) {
         low = middle;
       }
     }
-    thresholds_[static_cast<std::size_t>(k)] = high;
+    thresholds_[static_cast<std::size_t>(k)] = static_cast<int32_t>(high);
   }
+}
+
+void NearestLevelTable::levels(std::span<const float> footprints, int32_t* levels) const {
+  // The last threshold is never at or below a footprint's bits, so the kernel leaves it out.
+  static_assert(NearestLevelSteps::kCount == kThresholds - 1);
+  const NearestLevelSteps steps{thresholds_.data(), base_level_, nan_level_, non_positive_level_};
+  nearest_levels(steps, footprints.data(), footprints.size(), levels);
 }
 
 TextureSampler::TextureSampler(BrickCache& cache, uint64_t texture, const BrickLayout& layout,

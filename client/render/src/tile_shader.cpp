@@ -60,22 +60,21 @@ inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
 }
 
 // The fast path's pixels [x_begin, x_end) of row y, all of `object`, pixel x_begin at `first`
-// in the G-buffer: add_cached() for each, the object settled once and the group of the level
-// in hand kept (with its count) while the level stays the same, as it mostly does from one
-// pixel to the next.
+// in the G-buffer and its level at levels[0]: add_cached() for each, the object settled once
+// and the group of the level in hand kept (with its count) while the level stays the same, as
+// it mostly does from one pixel to the next.
 void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y, std::size_t first,
-                                const ObjectShading& object, TextureSampler& sampler,
-                                Image& image) {
+                                const int32_t* levels, const ObjectShading& object,
+                                TextureSampler& sampler, Image& image) {
   SOLTEX_DCHECK(by_tile_);
   use_cached_object(object, sampler, image);
-  const NearestLevelTable& table = object.level_table;
   const auto first_slot = static_cast<uint32_t>(tile_.slot(x_begin, y));
   CachedPixels::Group* group = nullptr;
   int level = -1;
   std::size_t count = 0;
   for (int x = x_begin; x < x_end; ++x) {
     const std::size_t i = first + static_cast<std::size_t>(x - x_begin);
-    const int l = table.level(g.footprint[i]);
+    const int l = levels[x - x_begin];
     if (l != level) {
       if (group != nullptr) group->count = count;
       level = l;
@@ -112,10 +111,15 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
   // Counted in a register and added once: an increment in memory per pixel chains each pixel
   // to the one before through a store and a load.
   std::size_t covered = 0;
+  // The fast path's levels of the row's pixels, by the table of `levels_object`: made for the
+  // whole row at once (whole vectors, one call) when a run first needs them, again only where
+  // the row's runs see another object.
+  std::array<int32_t, kTile> row_levels;
   for (int y = y0; y < y1; ++y) {
     std::copy_n(background.begin(), 3 * (x1 - x0),
                 image.rgb.begin() + 3 * (static_cast<std::ptrdiff_t>(y) * image.width + x0));
     const std::size_t row = g.index(x0 - origin_x, y - origin_y);  // pixel (x0, y)
+    const ObjectShading* levels_object = nullptr;
     for (int x = x0; x < x1;) {
       const std::size_t i = row + static_cast<std::size_t>(x - x0);
       const uint32_t id = g.object_id[i];
@@ -132,7 +136,15 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
       if (object.evaluator == nullptr && object.rgb_fast_path && object.cached_inset == 0.0) {
         // shade_cached()'s fast path without its calls: the level from the table (the fast
         // path has one), the point where the surface was drawn.
-        add_cached_run(g, x, end, y, i, object, *samplers_[id], image);
+        if (levels_object != &object) {
+          // Every pixel's footprint is a float, if not one drawn: the uncovered ones' levels
+          // are made and never read.
+          object.level_table.levels({&g.footprint[row], static_cast<std::size_t>(x1 - x0)},
+                                    row_levels.data());
+          levels_object = &object;
+        }
+        add_cached_run(g, x, end, y, i, &row_levels[static_cast<std::size_t>(x - x0)], object,
+                       *samplers_[id], image);
         x = end;
         continue;
       }

@@ -129,7 +129,8 @@ class TileShader {
   void add_cached(Pixel pixel, const glm::dvec3& p, int level, const ObjectShading& object,
                   TextureSampler& sampler, Image& image);
   void add_cached_run(const GBuffer& g, int x_begin, int x_end, int y, std::size_t first,
-                      const ObjectShading& object, TextureSampler& sampler, Image& image);
+                      const int32_t* levels, const ObjectShading& object, TextureSampler& sampler,
+                      Image& image);
   void look_up(int level, Image& image);
   void look_up_all(Image& image);
   void evaluate(Image& image);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -9,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "../texture/dispatch_targets.h"
+#include "nearest_levels.h"
 #include "real_bricks.h"
 
 namespace soltex {
@@ -347,41 +350,84 @@ TEST(TextureSampler, LevelOfDetailFromFootprint) {
   EXPECT_DOUBLE_EQ(level_of_detail(layout, std::numeric_limits<double>::denorm_min()), 0.0);
 }
 
-// The table gives the formula's level for every float: every power-of-two neighbourhood of the
-// thresholds, random bit patterns, and the special values, for several biases and layouts.
+// Footprints around every place a table of `layout` and `bias` may step: every power-of-two
+// neighbourhood of the thresholds, where the formula steps, random bit patterns, and the
+// special values.
+std::vector<float> footprints_to_check(const BrickLayout& layout, double bias,
+                                       std::mt19937& random) {
+  std::vector<float> footprints = {0.0f,
+                                   -0.0f,
+                                   -1.0f,
+                                   std::numeric_limits<float>::infinity(),
+                                   -std::numeric_limits<float>::infinity(),
+                                   std::numeric_limits<float>::quiet_NaN(),
+                                   -std::numeric_limits<float>::quiet_NaN(),
+                                   std::numeric_limits<float>::denorm_min(),
+                                   std::numeric_limits<float>::max()};
+  const auto around = [&](float centre) {
+    const uint32_t bits = std::bit_cast<uint32_t>(centre);
+    for (uint32_t d = 0; d < 64; ++d) footprints.push_back(std::bit_cast<float>(bits - 32 + d));
+  };
+  const auto h0 = static_cast<float>(layout.filter_width(0));
+  for (int e = -40; e <= 40; ++e) {
+    around(std::ldexp(h0, e / 2) * (e % 2 != 0 ? std::sqrt(2.0f) : 1.0f));
+  }
+  // Around where the formula steps: h0 * 2^(k - 0.5 - bias).
+  for (int k = -2; k <= layout.coarsest_level() + 2; ++k) {
+    around(static_cast<float>(h0 * std::exp2(k - 0.5 - bias)));
+  }
+  for (int i = 0; i < 20000; ++i) {
+    footprints.push_back(std::bit_cast<float>(static_cast<uint32_t>(random())));
+  }
+  return footprints;
+}
+
+constexpr int kFinestLevels[] = {4, 6, 9, 12};
+constexpr double kBiases[] = {0.0, -0.5, 0.5, -1.25, 0.3, 2.0, -8.0, 8.0};
+
+// The table gives the formula's level for every float, for several biases and layouts.
 TEST(NearestLevelTable, EqualsTheFormulaForEveryFootprint) {
   std::mt19937 random(7);
-  for (const int finest : {4, 6, 9, 12}) {
+  for (const int finest : kFinestLevels) {
     const BrickLayout layout(test_volume(finest), 8);
-    for (const double bias : {0.0, -0.5, 0.5, -1.25, 0.3, 2.0, -8.0, 8.0}) {
+    for (const double bias : kBiases) {
       const NearestLevelTable table(layout, bias);
-      const auto check = [&](float footprint) {
+      for (const float footprint : footprints_to_check(layout, bias, random)) {
         ASSERT_EQ(table.level(footprint),
                   NearestLevelTable::level_by_formula(layout, bias, footprint))
             << "footprint " << footprint << " bias " << bias << " finest " << finest;
-      };
-      for (const float special :
-           {0.0f, -0.0f, -1.0f, std::numeric_limits<float>::infinity(),
-            -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN(),
-            -std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::denorm_min(),
-            std::numeric_limits<float>::max()}) {
-        check(special);
       }
-      const auto h0 = static_cast<float>(layout.filter_width(0));
-      for (int e = -40; e <= 40; ++e) {
-        const float centre = std::ldexp(h0, e / 2) * (e % 2 != 0 ? std::sqrt(2.0f) : 1.0f);
-        uint32_t bits = std::bit_cast<uint32_t>(centre);
-        for (uint32_t d = 0; d < 64; ++d) {
-          check(std::bit_cast<float>(bits - 32 + d));
+    }
+  }
+}
+
+// levels() gives level()'s value for each footprint on every Highway target, in batches
+// shorter and longer than a vector and not whole vectors, and writes nothing past the batch.
+TEST(NearestLevelTable, LevelsInLanesEqualLevelOnEveryTarget) {
+  const std::vector<int64_t> targets = test::targets_to_run(nearest_levels_compiled_targets());
+  ASSERT_FALSE(targets.empty());
+  std::mt19937 random(11);
+  for (const int64_t target : targets) {
+    const test::ForcedTarget forced(target);
+    ASSERT_EQ(nearest_levels_dispatched_target(), target) << hwy::TargetName(target);
+    for (const int finest : kFinestLevels) {
+      const BrickLayout layout(test_volume(finest), 8);
+      for (const double bias : kBiases) {
+        const NearestLevelTable table(layout, bias);
+        const std::vector<float> footprints = footprints_to_check(layout, bias, random);
+        constexpr int32_t kUntouched = -12345;
+        for (std::size_t at = 0, batch = 0; at < footprints.size(); at += batch) {
+          batch = std::min<std::size_t>(footprints.size() - at, 1 + (at * 7 + batch) % 71);
+          std::vector<int32_t> levels(batch + 1, kUntouched);
+          table.levels({footprints.data() + at, batch}, levels.data());
+          for (std::size_t i = 0; i < batch; ++i) {
+            ASSERT_EQ(levels[i], table.level(footprints[at + i]))
+                << hwy::TargetName(target) << " footprint " << footprints[at + i] << " bias "
+                << bias << " finest " << finest << " batch " << batch;
+          }
+          ASSERT_EQ(levels[batch], kUntouched) << hwy::TargetName(target) << " batch " << batch;
         }
       }
-      // Around where the formula steps: h0 * 2^(k - 0.5 - bias).
-      for (int k = -2; k <= layout.coarsest_level() + 2; ++k) {
-        const auto step = static_cast<float>(h0 * std::exp2(k - 0.5 - bias));
-        const uint32_t bits = std::bit_cast<uint32_t>(step);
-        for (uint32_t d = 0; d < 64; ++d) check(std::bit_cast<float>(bits - 32 + d));
-      }
-      for (int i = 0; i < 20000; ++i) check(std::bit_cast<float>(static_cast<uint32_t>(random())));
     }
   }
 }

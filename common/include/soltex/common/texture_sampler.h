@@ -64,26 +64,31 @@ class NearestLevelTable {
     if (bits != magnitude) return non_positive_level_;  // negative, -0
     // The number of thresholds at or below the bits, by halving the (ascending) table four
     // times: four compares instead of one per level.
-    const uint32_t* t = thresholds_.data();
-    std::size_t k = t[7] <= bits ? 8 : 0;
-    k += t[k + 3] <= bits ? 4 : 0;
-    k += t[k + 1] <= bits ? 2 : 0;
-    k += t[k] <= bits ? 1 : 0;
+    const auto b = static_cast<int32_t>(bits);
+    const int32_t* t = thresholds_.data();
+    std::size_t k = t[7] <= b ? 8 : 0;
+    k += t[k + 3] <= b ? 4 : 0;
+    k += t[k + 1] <= b ? 2 : 0;
+    k += t[k] <= b ? 1 : 0;
     return base_level_ + static_cast<int>(k);
   }
+  // level() of each of `footprints`, into `levels`, all in vector lanes (nearest_levels.h): for
+  // a run of pixels, where level()'s search costs the latency of four dependent loads a pixel.
+  void levels(std::span<const float> footprints, int32_t* levels) const;
 
  private:
   static constexpr int kMaxLevels = SpecLimits::kMaxFinestLevelLog2 + 1;
-  // Sixteen entries for the four halvings; at most kMaxLevels - 1 of them are ever below all
-  // ones, so the last one always is and the count stays below 16.
+  // Sixteen entries for the four halvings; at most kMaxLevels - 1 of them are ever below
+  // INT32_MAX, so the last one always is and the count stays below 16.
   static constexpr std::size_t kThresholds = 16;
   static_assert(kMaxLevels <= static_cast<int>(kThresholds));
   int base_level_ = 0;  // the level of footprint +0
   int nan_level_ = 0;
   int non_positive_level_ = 0;
-  // thresholds_[k]: the bits of the smallest footprint at level base_level_ + k + 1; all ones
-  // (above every non-negative float) past the coarsest level.
-  std::array<uint32_t, kThresholds> thresholds_{};
+  // thresholds_[k]: the bits of the smallest footprint at level base_level_ + k + 1, as a
+  // signed integer (a positive float's bits order as they do); INT32_MAX, above the bits of
+  // every non-negative float but NaN, past the coarsest level.
+  std::array<int32_t, kThresholds> thresholds_{};
 };
 
 // The bricks one sample wanted and did not find: the level(s) it asked for and, when not
