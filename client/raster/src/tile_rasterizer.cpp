@@ -89,20 +89,34 @@ struct SurfaceBatch {
     // texture offset and normal.
     for (std::size_t l = 0; l < n; ++l) lanes.set_lane(l, *triangle[l], x[l], y[l]);
     interpolate_surfaces(lanes, n);
+    write_lanes(frame, target, n);
+    count = 0;
+  }
+
+ private:
+  // The interpolated lanes to their pixels. Through pointers of their own: a store through
+  // the flags' uint8_t* would otherwise make every plane's pointer be read again after it.
+  void write_lanes(const TileFrame& frame, const GBufferPlanes& target, std::size_t n) {
+    float* __restrict depth_plane = target.depth;
+    uint8_t* __restrict flags = target.flags;
+    uint32_t* __restrict object_id = target.object_id;
+    glm::dvec3* __restrict position = target.texture_position;
+    glm::vec3* __restrict normal = target.normal;
+    float* __restrict footprint = target.footprint;
+    uint64_t back = 0;
     for (std::size_t l = 0; l < n; ++l) {
       const ScreenTriangle& t = *triangle[l];
       const std::size_t i = index[l];
-      target.depth[i] = depth[l];
-      target.flags[i] = surface_flags(t);
-      back_faces += t.back_face ? 1 : 0;
-      target.object_id[i] = object_id_of(frame, t);
-      target.texture_position[i] =
-          t.texture_origin +
-          glm::dvec3(glm::vec3(lanes.offset_x[l], lanes.offset_y[l], lanes.offset_z[l]));
-      target.normal[i] = glm::vec3(lanes.normal_x[l], lanes.normal_y[l], lanes.normal_z[l]);
-      target.footprint[i] = lanes.footprint[l];
+      depth_plane[i] = depth[l];
+      flags[i] = surface_flags(t);
+      back += t.back_face ? 1 : 0;
+      object_id[i] = object_id_of(frame, t);
+      position[i] = t.texture_origin +
+                    glm::dvec3(glm::vec3(lanes.offset_x[l], lanes.offset_y[l], lanes.offset_z[l]));
+      normal[i] = glm::vec3(lanes.normal_x[l], lanes.normal_y[l], lanes.normal_z[l]);
+      footprint[i] = lanes.footprint[l];
     }
-    count = 0;
+    back_faces += back;
   }
 };
 
