@@ -37,6 +37,7 @@ void NearestLevelsKernel(const NearestLevelSteps& steps, const float* footprints
   const hn::ScalableTag<int32_t> d;
   const hn::Rebind<float, decltype(d)> df;
   using V = hn::Vec<decltype(d)>;
+  // An array of vectors: not possible with SVE's sizeless vectors, which the build disables.
   V thresholds[NearestLevelSteps::kCount];
   for (std::size_t k = 0; k < NearestLevelSteps::kCount; ++k) {
     thresholds[k] = hn::Set(d, steps.thresholds[k]);

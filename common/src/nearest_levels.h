@@ -12,7 +12,8 @@ namespace soltex {
 // A NearestLevelTable as the kernel reads it.
 struct NearestLevelSteps {
   static constexpr std::size_t kCount = 15;
-  // Ascending bits of the footprint that starts each next level; INT32_MAX past the coarsest.
+  // kCount ascending bits of the footprints that start each next level; INT32_MAX past the
+  // coarsest.
   const int32_t* thresholds;
   int32_t base_level;  // footprint +0
   int32_t nan_level;

@@ -68,11 +68,11 @@ NearestLevelTable::NearestLevelTable(const BrickLayout& layout, double bias) {
   }
 }
 
-void NearestLevelTable::levels(std::span<const float> footprints, int32_t* levels) const {
+void NearestLevelTable::levels(std::span<const float> footprints, int32_t* out) const {
   // The last threshold is never at or below a footprint's bits, so the kernel leaves it out.
   static_assert(NearestLevelSteps::kCount == kThresholds - 1);
   const NearestLevelSteps steps{thresholds_.data(), base_level_, nan_level_, non_positive_level_};
-  nearest_levels(steps, footprints.data(), footprints.size(), levels);
+  nearest_levels(steps, footprints.data(), footprints.size(), out);
 }
 
 TextureSampler::TextureSampler(BrickCache& cache, uint64_t texture, const BrickLayout& layout,

@@ -300,8 +300,8 @@ void resolve_long_run(const SurfaceRun& run, SurfaceChunk& chunk, const GBufferP
   }
   interpolate(RunTerms{terms}, chunk, lanes);
   // Plane by plane, each in a loop of its own, the run's fields read once beforehand: a store
-  // through the flags' uint8_t* may alias anything, so a loop writing several planes reloaded
-  // every pointer and field after it and ran a pixel at a time.
+  // through the flags' uint8_t* may alias anything, so a loop writing every plane read the
+  // run's depth pointer, flags and object again after it and ran a pixel at a time.
   const std::size_t i = run.target;
   const uint8_t run_flags = run.flags;
   const uint32_t run_object_id = run.object_id;

@@ -94,8 +94,10 @@ struct SurfaceBatch {
   }
 
  private:
-  // The interpolated lanes to their pixels. Through pointers of their own: a store through
-  // the flags' uint8_t* would otherwise make every plane's pointer be read again after it.
+  // The interpolated lanes to their pixels, through plane pointers of their own and with the
+  // back faces counted in a register: a store through the flags' uint8_t* may alias the
+  // target's pointers and the batch's back-face count, which would otherwise be loaded again
+  // (and the count stored) for each pixel.
   void write_lanes(const TileFrame& frame, const GBufferPlanes& target, std::size_t n) {
     float* __restrict depth_plane = target.depth;
     uint8_t* __restrict flags = target.flags;

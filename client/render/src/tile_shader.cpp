@@ -137,8 +137,8 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
         // shade_cached()'s fast path without its calls: the level from the table (the fast
         // path has one), the point where the surface was drawn.
         if (levels_object != &object) {
-          // Every pixel's footprint is a float, if not one drawn: the uncovered ones' levels
-          // are made and never read.
+          // The row's uncovered pixels too: their footprints are written (0) with the rest of
+          // the G-buffer, and their levels are made and never read.
           object.level_table.levels({&g.footprint[row], static_cast<std::size_t>(x1 - x0)},
                                     row_levels.data());
           levels_object = &object;

@@ -401,11 +401,14 @@ TEST(NearestLevelTable, EqualsTheFormulaForEveryFootprint) {
   }
 }
 
-// levels() gives level()'s value for each footprint on every Highway target, in batches
-// shorter and longer than a vector and not whole vectors, and writes nothing past the batch.
+// levels() gives level()'s value for each footprint on every Highway target this CPU runs,
+// in batches of every size from 0 to past two of the widest vectors, whole vectors or not.
+// Each batch is a vector of its own size, so that a read past its end is one past an
+// allocation (which the sanitizer build reports), and nothing past a batch is written.
 TEST(NearestLevelTable, LevelsInLanesEqualLevelOnEveryTarget) {
   const std::vector<int64_t> targets = test::targets_to_run(nearest_levels_compiled_targets());
   ASSERT_FALSE(targets.empty());
+  constexpr std::size_t kLargestBatch = 2 * 16 + 1;  // 16: AVX-512's floats
   std::mt19937 random(11);
   for (const int64_t target : targets) {
     const test::ForcedTarget forced(target);
@@ -416,16 +419,19 @@ TEST(NearestLevelTable, LevelsInLanesEqualLevelOnEveryTarget) {
         const NearestLevelTable table(layout, bias);
         const std::vector<float> footprints = footprints_to_check(layout, bias, random);
         constexpr int32_t kUntouched = -12345;
-        for (std::size_t at = 0, batch = 0; at < footprints.size(); at += batch) {
-          batch = std::min<std::size_t>(footprints.size() - at, 1 + (at * 7 + batch) % 71);
-          std::vector<int32_t> levels(batch + 1, kUntouched);
-          table.levels({footprints.data() + at, batch}, levels.data());
+        // Batch k holds k % (kLargestBatch + 1) footprints (fewer at the end).
+        for (std::size_t at = 0, k = 0, batch = 0; at < footprints.size(); at += batch, ++k) {
+          batch = std::min(footprints.size() - at, k % (kLargestBatch + 1));
+          const std::vector<float> in(footprints.begin() + static_cast<std::ptrdiff_t>(at),
+                                      footprints.begin() + static_cast<std::ptrdiff_t>(at + batch));
+          std::vector<int32_t> out(batch + 1, kUntouched);
+          table.levels(in, out.data());
           for (std::size_t i = 0; i < batch; ++i) {
-            ASSERT_EQ(levels[i], table.level(footprints[at + i]))
-                << hwy::TargetName(target) << " footprint " << footprints[at + i] << " bias "
-                << bias << " finest " << finest << " batch " << batch;
+            ASSERT_EQ(out[i], table.level(in[i]))
+                << hwy::TargetName(target) << " footprint " << in[i] << " bias " << bias
+                << " finest " << finest << " batch " << batch;
           }
-          ASSERT_EQ(levels[batch], kUntouched) << hwy::TargetName(target) << " batch " << batch;
+          ASSERT_EQ(out[batch], kUntouched) << hwy::TargetName(target) << " batch " << batch;
         }
       }
     }

@@ -72,9 +72,9 @@ class NearestLevelTable {
     k += t[k] <= b ? 1 : 0;
     return base_level_ + static_cast<int>(k);
   }
-  // level() of each of `footprints`, into `levels`, all in vector lanes (nearest_levels.h): for
+  // level() of each of `footprints`, into `out`, all in vector lanes (nearest_levels.h): for
   // a run of pixels, where level()'s search costs the latency of four dependent loads a pixel.
-  void levels(std::span<const float> footprints, int32_t* levels) const;
+  void levels(std::span<const float> footprints, int32_t* out) const;
 
  private:
   static constexpr int kMaxLevels = SpecLimits::kMaxFinestLevelLog2 + 1;
