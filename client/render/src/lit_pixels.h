@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -94,6 +95,22 @@ struct LitTile {
   }
   std::size_t slot(int x, int y) const {
     return static_cast<std::size_t>(y - y0) * kSide + static_cast<std::size_t>(x - x0);
+  }
+  // add() in two parts, for a colour-only material: what every pixel of it shares, for
+  // `count` pixels from `at` at once (contiguous stores), before its lookups come in; then
+  // each pixel's albedo as its lookup does.
+  void add_shared(std::size_t at, std::size_t count, float specular_in, float shininess_in) {
+    const auto first = static_cast<std::ptrdiff_t>(at);
+    const auto n = static_cast<std::ptrdiff_t>(count);
+    std::fill(specular.begin() + first, specular.begin() + first + n, specular_in);
+    std::fill(shininess.begin() + first, shininess.begin() + first + n, shininess_in);
+    std::fill(opacity.begin() + first, opacity.begin() + first + n, 1.0f);
+    std::fill(lit.begin() + first, lit.begin() + first + n, uint8_t{1});
+  }
+  void add_albedo(std::size_t at, const float* rgb) {
+    albedo_r[at] = rgb[0];
+    albedo_g[at] = rgb[1];
+    albedo_b[at] = rgb[2];
   }
   void add(std::size_t at, const SurfaceInputs& surface, float shininess_in) {
     albedo_r[at] = surface.albedo.r;

@@ -24,6 +24,10 @@ struct MaterialInputs {
   float shininess = 0.0f;
   bool unlit = false;
 
+  // Whether the channels are the albedo alone: opacity 1 and the material's specular for
+  // every pixel.
+  bool colour_only() const { return colour && opacity < 0 && specular < 0; }
+
   // `values`: the texture's channels in order, as sampled or evaluated.
   SurfaceInputs read(const float* values) const {
     return {colour ? glm::vec3(values[0], values[1], values[2]) : glm::vec3(values[0]),

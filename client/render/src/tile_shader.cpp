@@ -53,8 +53,14 @@ inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
   SOLTEX_DCHECK(l < CachedPixels::kLevels);
   CachedPixels::Group& group = cached_.groups[l];
   std::size_t count = group.count;
-  const bool full = group.push(count, slot_of(pixel), p);
+  const uint32_t slot = slot_of(pixel);
+  const bool full = group.push(count, slot, p);
   group.count = count;
+  // In a tile, what the pixel shares with its object now; its albedo when looked up.
+  if (by_tile_) {
+    const MaterialInputs& m = object.material;
+    tile_.add_shared(slot, 1, m.material_specular, m.shininess);
+  }
   cached_.pending |= 1u << l;
   if (full) look_up(level, image);
 }
@@ -69,6 +75,10 @@ void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y,
   SOLTEX_DCHECK(by_tile_);
   use_cached_object(object, sampler, image);
   const auto first_slot = static_cast<uint32_t>(tile_.slot(x_begin, y));
+  // What the run's pixels share now, in contiguous stores; their albedo when looked up.
+  const MaterialInputs& m = object.material;
+  tile_.add_shared(first_slot, static_cast<std::size_t>(x_end - x_begin), m.material_specular,
+                   m.shininess);
   CachedPixels::Group* group = nullptr;
   int level = -1;
   std::size_t count = 0;
@@ -275,7 +285,7 @@ void TileShader::look_up(int level, Image& image) {
   // joins the lit batch; the batch's count stays in a register (a store of a pixel's int lane
   // may alias it in memory) and is written back before a flush reads it.
   const MaterialInputs& m = object.material;
-  SOLTEX_DCHECK(!m.unlit);
+  SOLTEX_DCHECK(!m.unlit && m.colour_only());  // three channels: the colour alone
   int lit = lit_.batch.count;
   const bool by_tile = by_tile_;
   for (std::size_t i = 0; i < n; ++i) {
@@ -291,7 +301,8 @@ void TileShader::look_up(int level, Image& image) {
     }
     const uint32_t slot = group.slots[i];
     if (by_tile) {
-      tile_.add(slot, m.read(result->values.data()), m.shininess);
+      // The rest of the pixel's inputs came with it (add_shared()).
+      tile_.add_albedo(slot, result->values.data());
       continue;
     }
     const glm::ivec2 at = list_[slot];

@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <vector>
+
 #include "soltex/common/brick_cache.h"
 #include "soltex/net/local_brick_source.h"
 #include "soltex/render/prepared_scene.h"
@@ -43,18 +46,27 @@ GBuffer face_on_an_edge() {
   return g;
 }
 
+// A lit marble box with a highlight, lit from +x: the fast path's material.
+Scene lit_marble_box() {
+  return parse_scene(R"({"lights": [{"directional": {"direction": [-1, -0.2, -0.1]}}],
+      "objects": [{"mesh": "box", "material": {"texture": {"marble": {}}, "specular": 0.5,
+      "shininess": 48}}]})",
+                     "lit marble box");
+}
+
 struct Fixture {
-  Scene scene = checker_box();
+  explicit Fixture(Scene s = checker_box()) : scene(std::move(s)) {
+    const PreparedObject& o = prepared.objects[0];
+    samplers.push_back(std::make_unique<TextureSampler>(cache, o.texture_id, o.layout, o.channels));
+  }
+
+  Scene scene;
   BrickCache cache{std::size_t{16} << 20};
   net::LocalBrickSource source{cache};
   PreparedScene prepared = prepare_scene(scene, TextureResolution{6, 16, {}}, source);
   TextureEvaluator evaluator{prepared.objects[0].texture};
   std::vector<std::unique_ptr<TextureSampler>> samplers;
 
-  Fixture() {
-    const PreparedObject& o = prepared.objects[0];
-    samplers.push_back(std::make_unique<TextureSampler>(cache, o.texture_id, o.layout, o.channels));
-  }
   FrameShading shading(bool evaluated) const {
     const PreparedObject& o = prepared.objects[0];
     FrameShading frame{{},
@@ -119,6 +131,50 @@ TEST(TileShader, CachedPixelsReportTheBricksTheyMissed) {
   });
   EXPECT_GT(keys, 0u);
   EXPECT_GE(pixels, shader.counts().covered);
+}
+
+// The fast path (three colour channels, a tabled level) shades a tile as it shades the same
+// pixels one at a time through the lit batch (shade_pixels()), bit for bit, once its bricks
+// are resident: in a tile each pixel gets what it shares with its object (specular,
+// shininess, opacity) when it is added and its albedo when it is looked up. Without the inset
+// the tile takes the pixels run by run, with it one by one.
+TEST(TileShader, FastPathTileEqualsThePixelListBitForBit) {
+  Fixture f(lit_marble_box());
+  const GBuffer g = face_on_an_edge();
+  std::vector<glm::ivec2> covered;
+  for (int y = 0; y < kSide; ++y) {
+    for (int x = 0; x + 1 < kSide; ++x) covered.emplace_back(x, y);
+  }
+  for (const double inset : {0.0, kCachedInset}) {
+    FrameShading frame = f.shading(false);
+    frame.objects[0].rgb_fast_path = true;
+    frame.objects[0].cached_inset = inset;
+    Image tile(kSide, kSide);
+    for (int pass = 0; pass < 10; ++pass) {
+      TileShader shader(frame, f.samplers);
+      shader.shade(g, 0, 0, 0, 0, kSide, kSide, tile);
+      std::vector<net::BrickWant> wants;
+      shader.misses().drain([&](const BrickKey& key, uint32_t count) {
+        wants.push_back({key, count});
+      });
+      if (wants.empty()) break;
+      f.source.want(std::move(wants));
+      ASSERT_TRUE(f.source.wait_idle(std::chrono::seconds(10)));
+    }
+    TileShader by_tile(frame, f.samplers);
+    by_tile.shade(g, 0, 0, 0, 0, kSide, kSide, tile);
+    ASSERT_EQ(by_tile.counts().fallback, 0u) << "inset " << inset;
+    ASSERT_EQ(by_tile.counts().shaded, covered.size());
+    TileShader by_list(frame, f.samplers);
+    Image list(kSide, kSide);
+    by_list.shade_pixels(g, 0, 0, covered, list);
+    for (const glm::ivec2& at : covered) {
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_EQ(tile.pixel(at.x, at.y)[c], list.pixel(at.x, at.y)[c])
+            << "inset " << inset << " pixel " << at.x << "," << at.y << " channel " << c;
+      }
+    }
+  }
 }
 
 }  // namespace
