@@ -4,9 +4,10 @@
 // resolved runs of pixels. Most loops are plain per-lane code, written with selects rather than
 // branches so that the compiler runs them in vector lanes; a target only widens the lanes
 // (AVX2: 8 floats, AVX-512: 16, against 4 in the baseline build, whose lack of 64-bit vector
-// compares keeps draw_unclipped_target scalar). draw_small_target and run_starts_target are
-// written in Highway's operations. The same IEEE operations in the same order per lane, and no
-// contraction (-ffp-contract=off holds for every target): the same bits on every target.
+// compares keeps draw_unclipped_target scalar). draw_small_target, run_starts_target and
+// gather_surface_lanes_target are written in Highway's operations. The same IEEE operations
+// in the same order per lane, and no contraction (-ffp-contract=off holds for every target):
+// the same bits on every target.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "tile_kernels.cpp"
 #include "tile_kernels.h"
@@ -15,12 +16,16 @@
 #include <hwy/highway.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <type_traits>
 
 #include "finite_lane.h"
+#include "soltex/raster/raster_view.h"
 #include "tile_rasterizer.h"
 #include "whole_blocks.h"
 
@@ -30,12 +35,34 @@ namespace soltex::raster_internal::tile_kernels_detail {
 
 constexpr float kFarDepth = 1.0f;
 
+// A triangle's vertex attributes as SurfaceLanes takes them: 21 floats from inv_w on, read in
+// whole blocks of four (the three past the normals are part of texture_origin).
+constexpr std::size_t kAttributeFloats = 21;
+constexpr std::size_t kAttributeBlocks = 6;
+constexpr std::size_t kAttributeSlots = kAttributeBlocks * 4;
+static_assert(std::is_standard_layout_v<ScreenTriangle>);
+// The positions and the double area, read as two blocks of four int32 from the start.
+static_assert(offsetof(ScreenTriangle, x) == 0 && offsetof(ScreenTriangle, y) == 12 &&
+              offsetof(ScreenTriangle, double_area) == 24);
+static_assert(offsetof(ScreenTriangle, texture_offset) ==
+              offsetof(ScreenTriangle, inv_w) + 3 * sizeof(float));
+static_assert(offsetof(ScreenTriangle, normal) ==
+              offsetof(ScreenTriangle, texture_offset) + 9 * sizeof(float));
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float));
+static_assert(offsetof(ScreenTriangle, inv_w) + kAttributeSlots * sizeof(float) <=
+              sizeof(ScreenTriangle));
+// Pixel centres in fixed point fit in int32 with room for a difference from a position.
+static_assert(int64_t{RasterView::kMaxSize} * kSubpixelScale < (int64_t{1} << 24));
+
 }  // namespace soltex::raster_internal::tile_kernels_detail
 #endif
 
 HWY_BEFORE_NAMESPACE();
 namespace soltex::raster_internal::HWY_NAMESPACE {
 
+using tile_kernels_detail::kAttributeBlocks;
+using tile_kernels_detail::kAttributeFloats;
+using tile_kernels_detail::kAttributeSlots;
 using tile_kernels_detail::kFarDepth;
 
 void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float* depth_plane,
@@ -347,6 +374,144 @@ uint64_t run_starts_target(const ScreenTriangle* const* winners, int count) {
   return count >= 64 ? starts : starts & ((uint64_t{1} << count) - 1);
 }
 
+#if HWY_TARGET != HWY_SCALAR
+// Rows r0..r3 of a 4 x 4 block to its columns, in place (r0 then holds lane 0 of every row,
+// and so on): lanes moved, never changed, so floats keep their bits.
+template <typename D>
+void transpose4(D d, hwy::HWY_NAMESPACE::Vec<D>& r0, hwy::HWY_NAMESPACE::Vec<D>& r1,
+                hwy::HWY_NAMESPACE::Vec<D>& r2, hwy::HWY_NAMESPACE::Vec<D>& r3) {
+  namespace hn = hwy::HWY_NAMESPACE;
+  const hn::Repartition<uint64_t, D> d64;
+  const auto low01 = hn::BitCast(d64, hn::InterleaveLower(d, r0, r1));
+  const auto low23 = hn::BitCast(d64, hn::InterleaveLower(d, r2, r3));
+  const auto high01 = hn::BitCast(d64, hn::InterleaveUpper(d, r0, r1));
+  const auto high23 = hn::BitCast(d64, hn::InterleaveUpper(d, r2, r3));
+  r0 = hn::BitCast(d, hn::InterleaveLower(d64, low01, low23));
+  r1 = hn::BitCast(d, hn::InterleaveUpper(d64, low01, low23));
+  r2 = hn::BitCast(d, hn::InterleaveLower(d64, high01, high23));
+  r3 = hn::BitCast(d, hn::InterleaveUpper(d64, high01, high23));
+}
+
+// Four int64 lanes (low and high halves in 32-bit lanes) as float, rounded once as a
+// conversion from int64 rounds: each is below 2^53, so exact in double first.
+template <typename DF>
+hwy::HWY_NAMESPACE::Vec<DF> int64_to_float(
+    DF df, hwy::HWY_NAMESPACE::Vec<hwy::HWY_NAMESPACE::RebindToSigned<DF>> low,
+    hwy::HWY_NAMESPACE::Vec<hwy::HWY_NAMESPACE::RebindToSigned<DF>> high) {
+  namespace hn = hwy::HWY_NAMESPACE;
+  static_assert(std::endian::native == std::endian::little);
+  const hn::RebindToSigned<DF> di;
+  const hn::Repartition<int64_t, DF> di64;
+  const hn::Repartition<double, DF> dd;
+  const hn::Half<DF> dh;
+  const auto first = hn::ConvertTo(dd, hn::BitCast(di64, hn::InterleaveLower(di, low, high)));
+  const auto second = hn::ConvertTo(dd, hn::BitCast(di64, hn::InterleaveUpper(di, low, high)));
+  return hn::Combine(df, hn::DemoteTo(dh, second), hn::DemoteTo(dh, first));
+}
+
+// a * b - c * d of int32 lanes, exact in double (each product below 2^51), then rounded to
+// float once: the float of the int64 result.
+template <typename DI>
+hwy::HWY_NAMESPACE::Vec<hwy::HWY_NAMESPACE::RebindToFloat<DI>> cross_to_float(
+    DI, hwy::HWY_NAMESPACE::Vec<DI> a, hwy::HWY_NAMESPACE::Vec<DI> b, hwy::HWY_NAMESPACE::Vec<DI> c,
+    hwy::HWY_NAMESPACE::Vec<DI> d) {
+  namespace hn = hwy::HWY_NAMESPACE;
+  const hn::RebindToFloat<DI> df;
+  const hn::Half<DI> dih;
+  const hn::Half<decltype(df)> dfh;
+  const hn::Repartition<double, DI> dd;
+  const auto half = [&](auto take) {
+    const auto p = hn::Mul(hn::PromoteTo(dd, take(a)), hn::PromoteTo(dd, take(b)));
+    const auto q = hn::Mul(hn::PromoteTo(dd, take(c)), hn::PromoteTo(dd, take(d)));
+    return hn::DemoteTo(dfh, hn::Sub(p, q));
+  };
+  const auto lower = half([&](auto v) { return hn::LowerHalf(dih, v); });
+  const auto upper = half([&](auto v) { return hn::UpperHalf(dih, v); });
+  return hn::Combine(df, upper, lower);
+}
+#endif
+
+// The planes that the floats of a triangle's attribute block go to, in its order: 1/w of the
+// three vertices, then each vertex's texture offset (x, y, z), then each vertex's normal; the
+// three floats read past them (whole blocks of four) go to `spare`.
+std::array<float*, kAttributeSlots> attribute_planes(SurfaceLanes& s) {
+  std::array<float*, kAttributeSlots> planes{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    planes[k] = s.q[k].data();
+    planes[3 + 3 * k] = s.ox[k].data();
+    planes[4 + 3 * k] = s.oy[k].data();
+    planes[5 + 3 * k] = s.oz[k].data();
+    planes[12 + 3 * k] = s.nx[k].data();
+    planes[13 + 3 * k] = s.ny[k].data();
+    planes[14 + 3 * k] = s.nz[k].data();
+  }
+  for (std::size_t j = kAttributeFloats; j < planes.size(); ++j) planes[j] = s.spare.data();
+  return planes;
+}
+
+void gather_surface_lanes_target(const ScreenTriangle* const* triangles, const int* x, const int* y,
+                                 std::size_t count, SurfaceLanes& s) {
+#if HWY_TARGET == HWY_SCALAR
+  for (std::size_t l = 0; l < count; ++l) s.set_lane(l, *triangles[l], x[l], y[l]);
+#else
+  namespace hn = hwy::HWY_NAMESPACE;
+  const hn::FixedTag<float, 4> d;
+  const hn::RebindToSigned<decltype(d)> di;
+  const std::array<float*, kAttributeSlots> planes = attribute_planes(s);
+  for (std::size_t l0 = 0; l0 < count; l0 += 4) {
+    // A group short of four repeats its last lane; the lanes past `count` are never read.
+    std::array<const ScreenTriangle*, 4> t{};
+    std::array<int32_t, 4> px{}, py{};
+    for (std::size_t i = 0; i < 4; ++i) {
+      const std::size_t l = std::min(l0 + i, count - 1);
+      t[i] = triangles[l];
+      px[i] = x[l];
+      py[i] = y[l];
+    }
+    // The positions: x0 x1 x2 y0 | y1 y2, then the double area's low and high halves. No
+    // arrays of vectors: on some targets their constructors cannot be inlined here.
+    const auto row = [&](std::size_t i, std::size_t half) {
+      return hn::LoadU(di, reinterpret_cast<const int32_t*>(t[i]) + 4 * half);
+    };
+    auto x0 = row(0, 0), x1 = row(1, 0), x2 = row(2, 0), y0 = row(3, 0);
+    auto y1 = row(0, 1), y2 = row(1, 1), area_low = row(2, 1), area_high = row(3, 1);
+    transpose4(di, x0, x1, x2, y0);
+    transpose4(di, y1, y2, area_low, area_high);
+    hn::StoreU(int64_to_float(d, area_low, area_high), d, s.area.data() + l0);
+    // The pixel centres in fixed point, as edge_numerators() takes them. Every difference
+    // below stays within int32: positions are clamped to 2^24 in magnitude
+    // (subpixel_position()) and centres lie within a frame of at most RasterView::kMaxSize.
+    const auto half_pixel = hn::Set(di, static_cast<int32_t>(kSubpixelScale / 2));
+    const auto cx = hn::Add(hn::ShiftLeft<kSubpixelBits>(hn::LoadU(di, px.data())), half_pixel);
+    const auto cy = hn::Add(hn::ShiftLeft<kSubpixelBits>(hn::LoadU(di, py.data())), half_pixel);
+    // Edge k runs from vertex a = k + 1 to b = k + 2, as edge_numerators() takes it.
+    const auto edge = [&](std::size_t k, auto ax, auto ay, auto bx, auto by) {
+      const auto dx = hn::Sub(bx, ax), dy = hn::Sub(by, ay);
+      hn::StoreU(hn::ConvertTo(d, dy), d, s.edge_dy[k].data() + l0);
+      hn::StoreU(hn::ConvertTo(d, dx), d, s.edge_dx[k].data() + l0);
+      const auto numerator = cross_to_float(di, dx, hn::Sub(cy, ay), dy, hn::Sub(cx, ax));
+      hn::StoreU(numerator, d, s.edge[k].data() + l0);
+    };
+    edge(0, x1, y1, x2, y2);
+    edge(1, x2, y2, x0, y0);
+    edge(2, x0, y0, x1, y1);
+    for (std::size_t b = 0; b < kAttributeBlocks; ++b) {
+      const auto attributes = [&](std::size_t i) {
+        const char* from = reinterpret_cast<const char*>(t[i]) + offsetof(ScreenTriangle, inv_w);
+        return hn::LoadU(d, reinterpret_cast<const float*>(from) + 4 * b);
+      };
+      auto c0 = attributes(0), c1 = attributes(1), c2 = attributes(2), c3 = attributes(3);
+      transpose4(d, c0, c1, c2, c3);
+      float* const* to = planes.data() + 4 * b;
+      hn::StoreU(c0, d, to[0] + l0);
+      hn::StoreU(c1, d, to[1] + l0);
+      hn::StoreU(c2, d, to[2] + l0);
+      hn::StoreU(c3, d, to[3] + l0);
+    }
+  }
+#endif
+}
+
 void interpolate_surfaces_target(SurfaceLanes& lanes, std::size_t count) {
   interpolate(GatheredTerms{lanes}, lanes, count);
 }
@@ -361,6 +526,7 @@ HWY_EXPORT(draw_unclipped_target);
 HWY_EXPORT(draw_small_target);
 HWY_EXPORT(resolve_surface_runs_target);
 HWY_EXPORT(interpolate_surfaces_target);
+HWY_EXPORT(gather_surface_lanes_target);
 HWY_EXPORT(run_starts_target);
 
 void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
@@ -379,6 +545,12 @@ uint64_t run_starts(const ScreenTriangle* const* winners, int count) {
 
 int64_t tile_kernels_compiled_targets() {
   return HWY_TARGETS;
+}
+
+void gather_surface_lanes(const ScreenTriangle* const* triangles, const int* x, const int* y,
+                          std::size_t count, SurfaceLanes& lanes) {
+  assert(count <= SurfaceLanes::kCapacity);
+  HWY_DYNAMIC_DISPATCH(gather_surface_lanes_target)(triangles, x, y, count, lanes);
 }
 
 void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count) {

@@ -87,7 +87,7 @@ struct SurfaceBatch {
     // centre) and edge k's steps, already in float, so that interpolating is float arithmetic
     // alone (no 64-bit products or conversions) and runs in vector lanes; then vertex k's 1/w,
     // texture offset and normal.
-    for (std::size_t l = 0; l < n; ++l) lanes.set_lane(l, *triangle[l], x[l], y[l]);
+    gather_surface_lanes(triangle.data(), x.data(), y.data(), n, lanes);
     interpolate_surfaces(lanes, n);
     write_lanes(frame, target, n);
     count = 0;

@@ -1,14 +1,17 @@
 // The tile kernels (client/raster/src/tile_kernels.cpp) on every Highway target the CPU runs:
-// a row's run starts against the pixel-by-pixel comparison, and drawing in vector lanes against
-// the rasterizer's fragment-by-fragment loop.
+// a row's run starts against the pixel-by-pixel comparison, drawing in vector lanes against
+// the rasterizer's fragment-by-fragment loop, and the short runs' gathered lanes against
+// SurfaceLanes::set_lane().
 
 #include "tile_kernels.h"
 
 #include <gtest/gtest.h>
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -94,6 +97,72 @@ TEST(DrawKernels, EveryTargetDrawsWhatTheFragmentLoopDraws) {
     raster_test::expect_same_buffer(g, reference);
     EXPECT_EQ(stats.fragments_rasterized, expected.fragments_rasterized);
     EXPECT_EQ(stats.fragments_depth_passed, expected.fragments_depth_passed);
+  }
+}
+
+// Lanes of triangles with positions anywhere in the clamped range, areas up to the largest
+// the range allows, and attributes of every bit pattern (NaN, infinities, subnormals among
+// them), at pixels across the largest frame, in batches of every size: gathered on each
+// target, every lane up to the batch's size holds set_lane()'s bits.
+TEST(SurfaceLanes, EveryTargetGathersWhatSetLaneSets) {
+  using raster_internal::ScreenTriangle;
+  using raster_internal::SurfaceLanes;
+  const std::vector<int64_t> targets =
+      test::targets_to_run(raster_internal::tile_kernels_compiled_targets());
+  std::mt19937_64 rng(17);
+  constexpr int32_t kLimit = 1 << 24;  // subpixel_position()'s clamp
+  const auto position = [&] {
+    return rng() % 8 == 0 ? (rng() % 2 == 0 ? kLimit : -kLimit)
+                          : static_cast<int32_t>(rng() % (2 * kLimit + 1)) - kLimit;
+  };
+  const auto any_float = [&] { return std::bit_cast<float>(static_cast<uint32_t>(rng())); };
+  std::vector<ScreenTriangle> triangles(4 * SurfaceLanes::kCapacity);  // zeroed
+  for (ScreenTriangle& t : triangles) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      t.x[k] = position();
+      t.y[k] = position();
+      t.inv_w[k] = any_float();
+      t.texture_offset[k] = glm::vec3(any_float(), any_float(), any_float());
+      t.normal[k] = glm::vec3(any_float(), any_float(), any_float());
+    }
+    // Any value an area of such positions can take (below 2^51 in magnitude), odd ones
+    // included, so that rounding to float is exercised.
+    t.double_area = static_cast<int64_t>(rng() % (uint64_t{1} << 52)) - (int64_t{1} << 51);
+  }
+  const auto planes = [](const SurfaceLanes& s) {
+    std::vector<const std::array<float, SurfaceLanes::kCapacity>*> all = {&s.area};
+    for (std::size_t k = 0; k < 3; ++k) {
+      for (const auto* plane : {&s.edge[k], &s.edge_dy[k], &s.edge_dx[k], &s.q[k], &s.ox[k],
+                                &s.oy[k], &s.oz[k], &s.nx[k], &s.ny[k], &s.nz[k]}) {
+        all.push_back(plane);
+      }
+    }
+    return all;
+  };
+  for (const int64_t target : targets) {
+    const test::ForcedTarget forced(target);
+    SCOPED_TRACE(hwy::TargetName(target));
+    for (std::size_t count = 0; count <= SurfaceLanes::kCapacity; ++count) {
+      std::vector<const ScreenTriangle*> lane_triangle(count);
+      std::vector<int> x(count), y(count);
+      auto expected = std::make_unique<SurfaceLanes>();
+      auto gathered = std::make_unique<SurfaceLanes>();
+      for (std::size_t l = 0; l < count; ++l) {
+        lane_triangle[l] = &triangles[rng() % triangles.size()];
+        x[l] = static_cast<int>(rng() % RasterView::kMaxSize);
+        y[l] = static_cast<int>(rng() % RasterView::kMaxSize);
+        expected->set_lane(l, *lane_triangle[l], x[l], y[l]);
+      }
+      raster_internal::gather_surface_lanes(lane_triangle.data(), x.data(), y.data(), count,
+                                            *gathered);
+      const auto want = planes(*expected), got = planes(*gathered);
+      for (std::size_t p = 0; p < want.size(); ++p) {
+        for (std::size_t l = 0; l < count; ++l) {
+          ASSERT_EQ(std::bit_cast<uint32_t>((*got[p])[l]), std::bit_cast<uint32_t>((*want[p])[l]))
+              << "plane " << p << " lane " << l << " of " << count;
+        }
+      }
+    }
   }
 }
 
