@@ -171,6 +171,7 @@ struct Rasterizer::Impl {
   explicit Impl(RasterOptions opts) : options(opts), pool(resolve_thread_count(opts.threads)) {
     for (int i = 0; i < pool.thread_count(); ++i) {
       tiles.push_back(std::make_unique<TileRasterizer>());
+      setup_lanes.push_back(std::make_unique<raster_internal::SetupLanes>());
     }
     worker_stats.resize(static_cast<std::size_t>(pool.thread_count()));
     edge_samplers.resize(static_cast<std::size_t>(pool.thread_count()));
@@ -191,7 +192,8 @@ struct Rasterizer::Impl {
   std::vector<std::size_t> first_triangle;  // per object, plus the total at the end
   TransformedVertices vertices;
   std::vector<SetupChunk> chunks;
-  std::vector<std::unique_ptr<TileRasterizer>> tiles;  // one per thread
+  std::vector<std::unique_ptr<TileRasterizer>> tiles;                     // one per thread
+  std::vector<std::unique_ptr<raster_internal::SetupLanes>> setup_lanes;  // one per thread
   std::vector<RasterStats> worker_stats;
   std::vector<GBuffer> tile_targets;  // one per thread, for render_tiles()
   // What render_tiles() hands over for a tile no triangle touches (most of a frame around a
@@ -278,24 +280,27 @@ std::size_t Rasterizer::Impl::set_up_and_bin(std::span<const RasterObject> sourc
   const std::size_t triangle_count = first_triangle.back();
   const std::size_t chunk_count = (triangle_count + kTrianglesPerChunk - 1) / kTrianglesPerChunk;
   if (chunks.size() < chunk_count) chunks.resize(chunk_count);
-  pool.parallel_for(chunk_count, [&](std::size_t c, int) {
+  pool.parallel_for(chunk_count, [&](std::size_t c, int worker) {
     SetupChunk& chunk = chunks[c];
     chunk.triangles.clear();
     chunk.clip_forms.clear();
     chunk.stats = {};
     const std::size_t begin = c * kTrianglesPerChunk;
     const std::size_t end = std::min(triangle_count, begin + kTrianglesPerChunk);
-    // The object holding triangle `begin`, then walk on.
+    // The object holding triangle `begin`, then walk on, an object's part of the chunk at a
+    // time.
     std::size_t object = static_cast<std::size_t>(
         std::upper_bound(first_triangle.begin(), first_triangle.end(), begin) -
         first_triangle.begin() - 1);
-    for (std::size_t global = begin; global < end; ++global) {
+    raster_internal::SetupLanes& lanes = *setup_lanes[static_cast<std::size_t>(worker)];
+    for (std::size_t global = begin; global < end;) {
       while (global >= first_triangle[object + 1]) ++object;
+      const std::size_t part_end = std::min(end, first_triangle[object + 1]);
       const std::size_t local = global - first_triangle[object];
-      const std::span<const uint32_t> indices = sources[object].mesh.indices;
-      setup.setup(objects[object], static_cast<uint32_t>(object), vertices, indices[3 * local],
-                  indices[3 * local + 1], indices[3 * local + 2], chunk.triangles, chunk.clip_forms,
-                  chunk.stats);
+      setup.setup_range(objects[object], static_cast<uint32_t>(object), vertices,
+                        sources[object].mesh.indices, local, local + (part_end - global), lanes,
+                        chunk.triangles, chunk.clip_forms, chunk.stats);
+      global = part_end;
     }
     bin_triangles(chunk, grid);
   });

@@ -21,6 +21,15 @@ struct TriangleSetup::SourceTriangle {
   uint32_t straddling_planes = 0;
 };
 
+// A triangle classify() kept, for finish(): its indices, vertices, the clip planes its
+// vertices are outside of (ClipPlaneBit), and its source so far.
+struct TriangleSetup::Classified {
+  std::array<uint32_t, 3> index;
+  std::array<const TransformedVertex*, 3> vertex;
+  uint32_t outside = 0;
+  SourceTriangle source;
+};
+
 namespace {
 
 // The sides of the view volume a clip-space point is outside of, for trivial rejection.
@@ -57,6 +66,14 @@ AffineForm affine_form(const std::array<int64_t, 3>& x, const std::array<int64_t
   const double d2 = value[2] - value[0];
   return {to_float_saturated(value[0]), to_float_saturated((d1 * y2 - d2 * y1) / area),
           to_float_saturated((d2 * x1 - d1 * x2) / area)};
+}
+
+// Whether all three vertices carry a normal (the mesh's, transformed); otherwise the
+// triangle is shaded with its face normal.
+bool has_vertex_normals(const TransformedVertex& v0, const TransformedVertex& v1,
+                        const TransformedVertex& v2) {
+  return glm::dot(v0.normal, v0.normal) > 0.0f && glm::dot(v1.normal, v1.normal) > 0.0f &&
+         glm::dot(v2.normal, v2.normal) > 0.0f;
 }
 
 // In double throughout: the cross product of float differences can pass float's range.
@@ -118,56 +135,138 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
                           const TransformedVertices& vertices, uint32_t i0, uint32_t i1,
                           uint32_t i2, ScreenTriangles& triangles,
                           std::vector<AffineForm>& clip_forms, RasterStats& stats) const {
-  ++stats.triangles_in;
-  const RasterMesh& mesh = object.source->mesh;
-  const std::size_t vertex_count = mesh.positions.size();
-  if (i0 >= vertex_count || i1 >= vertex_count || i2 >= vertex_count) {
-    ++stats.triangles_invalid;
-    return;
+  Classified c;
+  if (!classify(object, object_index, vertices, {i0, i1, i2}, c, stats)) return;
+  finish(object, vertices, c, triangles, clip_forms, stats);
+}
+
+void TriangleSetup::setup_range(const ObjectFrame& object, uint32_t object_index,
+                                const TransformedVertices& vertices,
+                                std::span<const uint32_t> indices, std::size_t first,
+                                std::size_t end, SetupLanes& lanes, ScreenTriangles& triangles,
+                                std::vector<AffineForm>& clip_forms, RasterStats& stats) const {
+  for (std::size_t i = first; i < end; ++i) {
+    Classified c;
+    if (!classify(object, object_index, vertices,
+                  {indices[3 * i], indices[3 * i + 1], indices[3 * i + 2]}, c, stats)) {
+      continue;
+    }
+    const TransformedVertex &v0 = *c.vertex[0], &v1 = *c.vertex[1], &v2 = *c.vertex[2];
+    if (c.outside == 0 && c.source.straddling_planes == 0 && has_vertex_normals(v0, v1, v2)) {
+      lanes.add(v0, v1, v2, object_index);
+      if (lanes.count == SetupLanes::kCapacity) flush(lanes, triangles, stats);
+      continue;
+    }
+    // In order: what the lanes hold comes first.
+    flush(lanes, triangles, stats);
+    finish(object, vertices, c, triangles, clip_forms, stats);
   }
-  const std::array<std::size_t, 3> at = {object.first_vertex + i0, object.first_vertex + i1,
-                                         object.first_vertex + i2};
-  const TransformedVertex& v0 = vertices.vertex[at[0]];
-  const TransformedVertex& v1 = vertices.vertex[at[1]];
-  const TransformedVertex& v2 = vertices.vertex[at[2]];
+  flush(lanes, triangles, stats);
+}
+
+void TriangleSetup::flush(SetupLanes& lanes, ScreenTriangles& triangles, RasterStats& stats) const {
+  if (lanes.count == 0) return;
+  set_up_lanes(lanes, width_, height_);
+  for (std::size_t l = 0; l < lanes.count; ++l) {
+    switch (lanes.outcome[l]) {
+      case SetupLanes::kDegenerate:
+        ++stats.triangles_degenerate;
+        continue;
+      case SetupLanes::kOffScreen:
+        ++stats.triangles_culled;
+        continue;
+      default:
+        break;
+    }
+    ScreenTriangle& t = triangles.emplace_back();
+    for (std::size_t k = 0; k < 3; ++k) {
+      t.x[k] = lanes.screen_x[k][l];
+      t.y[k] = lanes.screen_y[k][l];
+    }
+    t.double_area = static_cast<int64_t>(lanes.double_area[l]);
+    t.min_px = lanes.min_px[l];
+    t.min_py = lanes.min_py[l];
+    t.max_px = lanes.max_px[l];
+    t.max_py = lanes.max_py[l];
+    t.depth = {lanes.depth_at_vertex0[l], lanes.depth_per_x[l], lanes.depth_per_y[l]};
+    t.clip_mask = 0;
+    t.first_clip_form = 0;
+    t.object = lanes.object[l];
+    t.back_face = lanes.back_face[l] != 0;
+    for (std::size_t k = 0; k < 3; ++k) {
+      t.inv_w[k] = lanes.q[k][l];
+      t.texture_offset[k] = glm::vec3(lanes.ox[k][l], lanes.oy[k][l], lanes.oz[k][l]);
+      t.normal[k] = glm::vec3(lanes.mx[k][l], lanes.my[k][l], lanes.mz[k][l]);
+    }
+    t.texture_origin = glm::dvec3(lanes.tx[0][l], lanes.ty[0][l], lanes.tz[0][l]);
+    ++stats.triangles_rasterized;
+  }
+  lanes.count = 0;
+}
+
+bool TriangleSetup::classify(const ObjectFrame& object, uint32_t object_index,
+                             const TransformedVertices& vertices,
+                             const std::array<uint32_t, 3>& index, Classified& c,
+                             RasterStats& stats) const {
+  ++stats.triangles_in;
+  const std::size_t vertex_count = object.source->mesh.positions.size();
+  if (index[0] >= vertex_count || index[1] >= vertex_count || index[2] >= vertex_count) {
+    ++stats.triangles_invalid;
+    return false;
+  }
+  c.index = index;
+  for (std::size_t k = 0; k < 3; ++k) {
+    c.vertex[k] = &vertices.vertex[object.first_vertex + index[k]];
+  }
+  const TransformedVertex &v0 = *c.vertex[0], &v1 = *c.vertex[1], &v2 = *c.vertex[2];
   if (!v0.valid || !v1.valid || !v2.valid) {
     ++stats.triangles_invalid;
-    return;
+    return false;
   }
   if ((v0.frustum_outside & v1.frustum_outside & v2.frustum_outside) != 0) {
     ++stats.triangles_culled;
-    return;
+    return false;
   }
-  const uint32_t outside = v0.clip_outside | v1.clip_outside | v2.clip_outside;
-  if (outside == 0 && object.cull_back_faces) {
+  c.outside = v0.clip_outside | v1.clip_outside | v2.clip_outside;
+  if (c.outside == 0 && object.cull_back_faces) {
     // Projected already: the same orientation emit() would find, before any attribute work.
     if (edge_function(v0.x, v0.y, v1.x, v1.y, v2.x, v2.y) > 0) {
       ++stats.triangles_back_face_culled;
-      return;
+      return false;
     }
   }
-
-  SourceTriangle source;
-  source.object_index = object_index;
+  c.source.object_index = object_index;
   if (clip_plane_count_ > 0) {
     ++stats.triangles_clip_tested;
     const auto planes = static_cast<std::size_t>(clip_plane_count_);
     for (std::size_t j = 0; j < planes; ++j) {
       int removed = 0;
       for (std::size_t k = 0; k < 3; ++k) {
-        const float distance = vertices.plane_distance[at[k] * planes + j];
-        source.plane_distance[k][j] = distance;
+        const float distance =
+            vertices.plane_distance[(object.first_vertex + index[k]) * planes + j];
+        c.source.plane_distance[k][j] = distance;
         removed += distance < 0.0f ? 1 : 0;
       }
       if (removed == 3) {
         ++stats.triangles_clip_rejected;
-        return;
+        return false;
       }
-      if (removed > 0) source.straddling_planes |= 1u << j;
+      if (removed > 0) c.source.straddling_planes |= 1u << j;
     }
-    if (source.straddling_planes != 0) ++stats.triangles_clip_straddling;
+    if (c.source.straddling_planes != 0) ++stats.triangles_clip_straddling;
   }
+  return true;
+}
 
+void TriangleSetup::finish(const ObjectFrame& object, const TransformedVertices& vertices,
+                           Classified& c, ScreenTriangles& triangles,
+                           std::vector<AffineForm>& clip_forms, RasterStats& stats) const {
+  const TransformedVertex &v0 = *c.vertex[0], &v1 = *c.vertex[1], &v2 = *c.vertex[2];
+  const uint32_t outside = c.outside;
+  SourceTriangle& source = c.source;
+  const std::array<std::size_t, 3> at = {object.first_vertex + c.index[0],
+                                         object.first_vertex + c.index[1],
+                                         object.first_vertex + c.index[2]};
   ClipPolygon polygon;
   if (outside == 0) {
     // emit() reads an unclipped corner's weights only.
@@ -186,15 +285,11 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
     }
   }
 
-  const std::array<const TransformedVertex*, 3> corner_vertex = {&v0, &v1, &v2};
-  for (std::size_t k = 0; k < 3; ++k) source.texture[k] = corner_vertex[k]->texture;
-  const bool has_normals = glm::dot(v0.normal, v0.normal) > 0.0f &&
-                           glm::dot(v1.normal, v1.normal) > 0.0f &&
-                           glm::dot(v2.normal, v2.normal) > 0.0f;
-  if (has_normals) {
-    for (std::size_t k = 0; k < 3; ++k) source.normal[k] = corner_vertex[k]->normal;
+  for (std::size_t k = 0; k < 3; ++k) source.texture[k] = c.vertex[k]->texture;
+  if (has_vertex_normals(v0, v1, v2)) {
+    for (std::size_t k = 0; k < 3; ++k) source.normal[k] = c.vertex[k]->normal;
   } else {
-    source.normal.fill(face_normal(object, i0, i1, i2));
+    source.normal.fill(face_normal(object, c.index[0], c.index[1], c.index[2]));
   }
 
   // An unclipped triangle uses its vertices' projections as they are. Each array is made

@@ -1,12 +1,15 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "homogeneous_clipper.h"
 #include "object_frame.h"
 #include "screen_triangle.h"
+#include "setup_kernels.h"
 #include "soltex/raster/raster_stats.h"
 #include "transformed_vertices.h"
 
@@ -45,9 +48,32 @@ class TriangleSetup {
              uint32_t i0, uint32_t i1, uint32_t i2, ScreenTriangles& triangles,
              std::vector<AffineForm>& clip_forms, RasterStats& stats) const;
 
+  // setup() of the object's triangles [first, end) (triangle i: indices[3 i .. 3 i + 2]), the
+  // same triangles in the same order with the same counts: those that need neither clipping
+  // nor clip forms nor a face normal (most of a mesh's) set up together in `lanes`
+  // (set_up_lanes()), the rest one at a time as setup() does, after what the lanes hold.
+  void setup_range(const ObjectFrame& object, uint32_t object_index,
+                   const TransformedVertices& vertices, std::span<const uint32_t> indices,
+                   std::size_t first, std::size_t end, SetupLanes& lanes,
+                   ScreenTriangles& triangles, std::vector<AffineForm>& clip_forms,
+                   RasterStats& stats) const;
+
  private:
   using ProjectedVertex = ScreenVertex;
   struct SourceTriangle;
+  struct Classified;
+
+  // setup()'s tests before any attribute work (indices, validity, the view volume, an early
+  // back face, the user clip planes); false when they drop the triangle.
+  bool classify(const ObjectFrame& object, uint32_t object_index,
+                const TransformedVertices& vertices, const std::array<uint32_t, 3>& index,
+                Classified& c, RasterStats& stats) const;
+  // The rest of setup() for a triangle classify() kept: clipping, attributes, emit().
+  void finish(const ObjectFrame& object, const TransformedVertices& vertices, Classified& c,
+              ScreenTriangles& triangles, std::vector<AffineForm>& clip_forms,
+              RasterStats& stats) const;
+  // Sets up what `lanes` holds and appends its triangles, in order; empties it.
+  void flush(SetupLanes& lanes, ScreenTriangles& triangles, RasterStats& stats) const;
 
   ProjectedVertex project(const glm::vec4& clip) const;
   void emit(const SourceTriangle& source, const ClipPolygon& polygon,
