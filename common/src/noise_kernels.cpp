@@ -49,7 +49,10 @@ class FaceTable {
         table_(table),
         x0_(face_x[0]),
         x_(hn::LoadU(DI(), face_x)),
-        contiguous_(hn::AllTrue(DI(), hn::Eq(x_, hn::Iota(DI(), x0_)))) {}
+        // Iota(0) plus x0_, not Iota(x0_): with a run-time start Iota is built by scalar
+        // stores read back as one vector, which waits for their forwarding.
+        contiguous_(hn::AllTrue(DI(), hn::Eq(x_, hn::Add(hn::Iota(DI(), 0), hn::Set(DI(), x0_))))) {
+  }
 
   HWY_INLINE hn::Vec<D> operator()(int32_t h) const {
     // face_x <= 256 and h <= 255 keep both forms inside the 512-entry tables.

@@ -151,7 +151,9 @@ void draw_small_target(const ScreenTriangle& t, const SpanDraw& span, float* dep
     auto e1 = hn::Add(hn::Set(di, row[1] + step_x[1] * c), along1);
     auto e2 = hn::Add(hn::Set(di, row[2] + step_x[2] * c), along2);
     // The depth as draw_unclipped_target() has it: (at_vertex0 + per_x * dx) + per_y * dy.
-    const auto x = hn::ConvertTo(df, hn::Iota(di, span.first_x + c));
+    // Iota(0) is a constant; Iota(first) with a run-time first was built by scalar stores and
+    // read back as a vector, which waited on their forwarding.
+    const auto x = hn::ConvertTo(df, hn::Add(hn::Iota(di, 0), hn::Set(di, span.first_x + c)));
     const auto dx = hn::Sub(hn::Add(x, hn::Set(df, 0.5f)), hn::Set(df, x0));
     const auto depth_x =
         hn::Add(hn::Set(df, t.depth.at_vertex0), hn::Mul(hn::Set(df, t.depth.per_x), dx));
