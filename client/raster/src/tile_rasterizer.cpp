@@ -298,15 +298,17 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
 
   // Edge functions at the first pixel centre, stepped exactly in integers. The top-left rule
   // as a bias: a centre on a top or left edge (value 0) is in, on any other edge it is out.
+  // Written where the kernels read them: copied into a SpanDraw, the 64-bit values were read
+  // back two to a vector before their stores had landed, and waited for them.
+  SpanDraw span{first_x, last_x, first_y, last_y, x0_, y0_, {}, {}, {}};
   const std::array<Edge, 3> edges = edges_of(t);
-  std::array<int64_t, 3> row{}, step_x{}, step_y{};
   for (std::size_t k = 0; k < 3; ++k) {
     const Edge& e = edges[k];
     const int64_t bias = is_top_left(e.ax, e.ay, e.bx, e.by) ? 0 : -1;
-    row[k] =
+    span.row[k] =
         edge_function(e.ax, e.ay, e.bx, e.by, pixel_centre(first_x), pixel_centre(first_y)) + bias;
-    step_x[k] = -(e.by - e.ay) * kSubpixelScale;
-    step_y[k] = (e.bx - e.ax) * kSubpixelScale;
+    span.step_x[k] = -(e.by - e.ay) * kSubpixelScale;
+    span.step_y[k] = (e.bx - e.ax) * kSubpixelScale;
   }
 
   const float x0 = t.x0_pixels();
@@ -315,7 +317,6 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   if (forms == nullptr && coverage == nullptr) {
     // A triangle at most 64 pixels across (most of a mesh's) is drawn in 32-bit lanes, a
     // larger one in 64-bit lanes where it spans enough of the tile's columns.
-    const SpanDraw span{first_x, last_x, first_y, last_y, x0_, y0_, row, step_x, step_y};
     if (fits_int32(t)) {
       raster_internal::draw_small(t, span, depth_.data(), winner_.data(), stats);
       return;
@@ -327,6 +328,8 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
       return;
     }
   }
+  std::array<int64_t, 3> row = span.row;
+  const std::array<int64_t, 3> step_x = span.step_x, step_y = span.step_y;
   // Counted locally, added once: the counters must not cost a store per fragment.
   uint64_t rasterized = 0, depth_passed = 0, clip_tested = 0, clip_discarded = 0;
   for (int y = first_y; y <= last_y; ++y) {
