@@ -49,8 +49,17 @@ void NearestLevelsKernel(const NearestLevelSteps& steps, const float* footprints
     hn::StoreU(levels_of(d, thresholds, steps, bits), d, levels + i);
   }
   if (i == n) return;
-  // The last part vector through a whole one of our own: reading past the caller's footprints
-  // could leave their allocation.
+  if (n >= lanes) {
+    // The last whole vector, ending at n: the lanes before i again, with the same levels.
+    // Copied into a buffer of our own, the part vector was read back before its stores had
+    // landed, and waited for them.
+    const std::size_t last = n - lanes;
+    const V bits = hn::BitCast(d, hn::LoadU(df, footprints + last));
+    hn::StoreU(levels_of(d, thresholds, steps, bits), d, levels + last);
+    return;
+  }
+  // Fewer than a vector: through a whole one of our own, since reading past the caller's
+  // footprints could leave their allocation.
   constexpr std::size_t kMaxLanes = HWY_MAX_BYTES / sizeof(int32_t);
   HWY_ALIGN float part[kMaxLanes] = {};
   HWY_ALIGN int32_t out[kMaxLanes];
