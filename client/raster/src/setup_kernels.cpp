@@ -107,7 +107,7 @@ struct CornerPlanes {
   const std::array<SetupLanes::Lanes<double>, 3>& texture;
   const std::array<SetupLanes::Lanes<float>, 3>& normal;
   std::array<SetupLanes::Lanes<float>, 3>& offset;
-  std::array<SetupLanes::Lanes<float>, 3>& unit;
+  std::array<SetupLanes::Lanes<float>, 3>& corner_normal;
 };
 
 void corner_lanes(const SetupLanes& s, const CornerPlanes& p, std::size_t n) {
@@ -123,9 +123,9 @@ void corner_lanes(const SetupLanes& s, const CornerPlanes& p, std::size_t n) {
     const float n0 = p.normal[0][l], n1 = p.normal[1][l], n2 = p.normal[2][l];
     const float normal_1 = (0.0f * n0 + 1.0f * n1) + 0.0f * n2;
     const float normal_2 = (0.0f * n0 + 0.0f * n1) + 1.0f * n2;
-    p.unit[0][l] = (1.0f * n0 + 0.0f * n1) + 0.0f * n2;
-    p.unit[1][l] = back ? normal_1 : normal_2;
-    p.unit[2][l] = back ? normal_2 : normal_1;
+    p.corner_normal[0][l] = (1.0f * n0 + 0.0f * n1) + 0.0f * n2;
+    p.corner_normal[1][l] = back ? normal_1 : normal_2;
+    p.corner_normal[2][l] = back ? normal_2 : normal_1;
   }
 }
 
@@ -133,9 +133,9 @@ void corner_lanes(const SetupLanes& s, const CornerPlanes& p, std::size_t n) {
 void inverse_w_lanes(SetupLanes& s, std::size_t n) {
   for (std::size_t l = 0; l < n; ++l) {
     const bool back = s.back_face[l] != 0;
-    s.q[0][l] = s.inv_w[0][l];
-    s.q[1][l] = back ? s.inv_w[1][l] : s.inv_w[2][l];
-    s.q[2][l] = back ? s.inv_w[2][l] : s.inv_w[1][l];
+    s.corner_inv_w[0][l] = s.inv_w[0][l];
+    s.corner_inv_w[1][l] = back ? s.inv_w[1][l] : s.inv_w[2][l];
+    s.corner_inv_w[2][l] = back ? s.inv_w[2][l] : s.inv_w[1][l];
   }
 }
 
@@ -147,10 +147,12 @@ void set_up_lanes_target(SetupLanes& s, int width, int height) {
   // Per component: the texture positions' x with the normals' x, and so on.
   const std::array<std::array<SetupLanes::Lanes<double>, 3>*, 3> texture = {&s.tx, &s.ty, &s.tz};
   const std::array<std::array<SetupLanes::Lanes<float>, 3>*, 3> normal = {&s.nx, &s.ny, &s.nz};
-  const std::array<std::array<SetupLanes::Lanes<float>, 3>*, 3> offset = {&s.ox, &s.oy, &s.oz};
-  const std::array<std::array<SetupLanes::Lanes<float>, 3>*, 3> unit = {&s.mx, &s.my, &s.mz};
+  const std::array<std::array<SetupLanes::Lanes<float>, 3>*, 3> offset = {&s.offset_x, &s.offset_y,
+                                                                          &s.offset_z};
+  const std::array<std::array<SetupLanes::Lanes<float>, 3>*, 3> corner_normal = {
+      &s.normal_x, &s.normal_y, &s.normal_z};
   for (std::size_t c = 0; c < 3; ++c) {
-    corner_lanes(s, CornerPlanes{*texture[c], *normal[c], *offset[c], *unit[c]}, n);
+    corner_lanes(s, CornerPlanes{*texture[c], *normal[c], *offset[c], *corner_normal[c]}, n);
   }
 }
 

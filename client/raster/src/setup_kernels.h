@@ -7,10 +7,10 @@
 #include "transformed_vertices.h"
 
 // Triangle set-up of the common case in vector lanes: a triangle whose three vertices are
-// valid and inside the guard band, of an object with no clip-plane work and with vertex
-// normals, needs no clipping and no face normal, so what TriangleSetup::emit() computes for
-// it is the same arithmetic for every such triangle. Runtime-dispatched to the widest vector
-// target the CPU has (setup_kernels.cpp); every target gives emit()'s bits.
+// valid, inside the guard band and carry a normal, and which straddles no user clip plane,
+// needs no clipping, no clip forms and no face normal, so what TriangleSetup::emit() computes
+// for it is the same arithmetic for every such triangle. Runtime-dispatched to the widest
+// vector target the CPU has (setup_kernels.cpp); every target gives emit()'s bits.
 namespace soltex::raster_internal {
 
 struct SetupLanes {
@@ -36,7 +36,8 @@ struct SetupLanes {
   alignas(64) Lanes<double> double_area;  // an integer below 2^51 in magnitude
   alignas(64) Lanes<int32_t> min_px, min_py, max_px, max_py;
   alignas(64) Lanes<float> depth_at_vertex0, depth_per_x, depth_per_y;
-  alignas(64) std::array<Lanes<float>, 3> q, ox, oy, oz, mx, my, mz;
+  alignas(64) std::array<Lanes<float>, 3> corner_inv_w, offset_x, offset_y, offset_z;
+  alignas(64) std::array<Lanes<float>, 3> normal_x, normal_y, normal_z;
 
   std::size_t count = 0;
 

@@ -451,6 +451,8 @@ std::array<float*, kAttributeSlots> attribute_planes(SurfaceLanes& s) {
   return planes;
 }
 
+static_assert(SurfaceLanes::kCapacity % 4 == 0);  // groups of four lanes write up to it
+
 void gather_surface_lanes_target(const ScreenTriangle* const* triangles, const int* x, const int* y,
                                  std::size_t count, SurfaceLanes& s) {
 #if HWY_TARGET == HWY_SCALAR

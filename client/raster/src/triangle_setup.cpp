@@ -140,11 +140,13 @@ void TriangleSetup::setup(const ObjectFrame& object, uint32_t object_index,
   finish(object, vertices, c, triangles, clip_forms, stats);
 }
 
-void TriangleSetup::setup_range(const ObjectFrame& object, uint32_t object_index,
-                                const TransformedVertices& vertices,
-                                std::span<const uint32_t> indices, std::size_t first,
-                                std::size_t end, SetupLanes& lanes, ScreenTriangles& triangles,
-                                std::vector<AffineForm>& clip_forms, RasterStats& stats) const {
+std::size_t TriangleSetup::setup_range(
+    const ObjectFrame& object, uint32_t object_index, const TransformedVertices& vertices,
+    std::span<const uint32_t> indices, std::size_t first, std::size_t end, SetupLanes& lanes,
+    ScreenTriangles& triangles, std::vector<AffineForm>& clip_forms, RasterStats& stats) const {
+  // Left over only if an earlier call threw (an allocation): stale triangles, never emitted.
+  lanes.count = 0;
+  std::size_t in_lanes = 0;
   for (std::size_t i = first; i < end; ++i) {
     Classified c;
     if (!classify(object, object_index, vertices,
@@ -154,6 +156,7 @@ void TriangleSetup::setup_range(const ObjectFrame& object, uint32_t object_index
     const TransformedVertex &v0 = *c.vertex[0], &v1 = *c.vertex[1], &v2 = *c.vertex[2];
     if (c.outside == 0 && c.source.straddling_planes == 0 && has_vertex_normals(v0, v1, v2)) {
       lanes.add(v0, v1, v2, object_index);
+      ++in_lanes;
       if (lanes.count == SetupLanes::kCapacity) flush(lanes, triangles, stats);
       continue;
     }
@@ -162,6 +165,7 @@ void TriangleSetup::setup_range(const ObjectFrame& object, uint32_t object_index
     finish(object, vertices, c, triangles, clip_forms, stats);
   }
   flush(lanes, triangles, stats);
+  return in_lanes;
 }
 
 void TriangleSetup::flush(SetupLanes& lanes, ScreenTriangles& triangles, RasterStats& stats) const {
@@ -194,9 +198,10 @@ void TriangleSetup::flush(SetupLanes& lanes, ScreenTriangles& triangles, RasterS
     t.object = lanes.object[l];
     t.back_face = lanes.back_face[l] != 0;
     for (std::size_t k = 0; k < 3; ++k) {
-      t.inv_w[k] = lanes.q[k][l];
-      t.texture_offset[k] = glm::vec3(lanes.ox[k][l], lanes.oy[k][l], lanes.oz[k][l]);
-      t.normal[k] = glm::vec3(lanes.mx[k][l], lanes.my[k][l], lanes.mz[k][l]);
+      t.inv_w[k] = lanes.corner_inv_w[k][l];
+      t.texture_offset[k] =
+          glm::vec3(lanes.offset_x[k][l], lanes.offset_y[k][l], lanes.offset_z[k][l]);
+      t.normal[k] = glm::vec3(lanes.normal_x[k][l], lanes.normal_y[k][l], lanes.normal_z[k][l]);
     }
     t.texture_origin = glm::dvec3(lanes.tx[0][l], lanes.ty[0][l], lanes.tz[0][l]);
     ++stats.triangles_rasterized;

@@ -43,7 +43,8 @@ class TriangleSetup {
                              TransformedVertices& vertices) const;
 
   // Appends the screen triangles of the object's triangle (i0, i1, i2) to `triangles`, their
-  // clip-plane forms to `clip_forms`, and counts what it did.
+  // clip-plane forms to `clip_forms`, and counts what it did: one triangle at a time, the
+  // definition that setup_range(), what a frame runs, is checked against.
   void setup(const ObjectFrame& object, uint32_t object_index, const TransformedVertices& vertices,
              uint32_t i0, uint32_t i1, uint32_t i2, ScreenTriangles& triangles,
              std::vector<AffineForm>& clip_forms, RasterStats& stats) const;
@@ -52,11 +53,12 @@ class TriangleSetup {
   // same triangles in the same order with the same counts: those that need neither clipping
   // nor clip forms nor a face normal (most of a mesh's) set up together in `lanes`
   // (set_up_lanes()), the rest one at a time as setup() does, after what the lanes hold.
-  void setup_range(const ObjectFrame& object, uint32_t object_index,
-                   const TransformedVertices& vertices, std::span<const uint32_t> indices,
-                   std::size_t first, std::size_t end, SetupLanes& lanes,
-                   ScreenTriangles& triangles, std::vector<AffineForm>& clip_forms,
-                   RasterStats& stats) const;
+  // Returns how many went through the lanes. Whatever `lanes` held before is dropped.
+  std::size_t setup_range(const ObjectFrame& object, uint32_t object_index,
+                          const TransformedVertices& vertices, std::span<const uint32_t> indices,
+                          std::size_t first, std::size_t end, SetupLanes& lanes,
+                          ScreenTriangles& triangles, std::vector<AffineForm>& clip_forms,
+                          RasterStats& stats) const;
 
  private:
   using ProjectedVertex = ScreenVertex;
