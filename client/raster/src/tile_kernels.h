@@ -131,34 +131,21 @@ struct SurfaceLanes {
   // Lane l's inputs: pixel (x, y) of triangle t. The definition that gather_surface_lanes()
   // computes for many lanes at once.
   void set_lane(std::size_t l, const ScreenTriangle& t, int x, int y) {
-    set_edges(l, t, x, y);
-    set_attributes(l, t);
-  }
-
-  // Lane l's edge numerators and steps and the double area: integers, exact as float where
-  // they fit in 24 bits, rounded to nearest beyond.
-  void set_edges(std::size_t l, const ScreenTriangle& t, int x, int y) {
+    const TriangleTerms terms = triangle_terms(t);
     const std::array<int64_t, 3> numerators = edge_numerators(t, x, y);
     for (std::size_t k = 0; k < 3; ++k) {
-      const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
       edge[k][l] = static_cast<float>(numerators[k]);
-      edge_dy[k][l] = static_cast<float>(int64_t{t.y[b]} - int64_t{t.y[a]});
-      edge_dx[k][l] = static_cast<float>(int64_t{t.x[b]} - int64_t{t.x[a]});
+      edge_dy[k][l] = terms.edge_dy[k];
+      edge_dx[k][l] = terms.edge_dx[k];
+      q[k][l] = terms.q[k];
+      ox[k][l] = terms.ox[k];
+      oy[k][l] = terms.oy[k];
+      oz[k][l] = terms.oz[k];
+      nx[k][l] = terms.nx[k];
+      ny[k][l] = terms.ny[k];
+      nz[k][l] = terms.nz[k];
     }
-    area[l] = static_cast<float>(t.double_area);
-  }
-
-  // Lane l's vertex attributes: 1/w, texture offsets and normals, copied.
-  void set_attributes(std::size_t l, const ScreenTriangle& t) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      q[k][l] = t.inv_w[k];
-      ox[k][l] = t.texture_offset[k].x;
-      oy[k][l] = t.texture_offset[k].y;
-      oz[k][l] = t.texture_offset[k].z;
-      nx[k][l] = t.normal[k].x;
-      ny[k][l] = t.normal[k].y;
-      nz[k][l] = t.normal[k].z;
-    }
+    area[l] = terms.area;
   }
 
   // Receives the floats a block read past the normals (gather_surface_lanes()).
@@ -166,9 +153,10 @@ struct SurfaceLanes {
 };
 
 // set_lane(l, *triangles[l], x[l], y[l]) for every lane l < count (count <= kCapacity): the
-// same bits. The attributes move four lanes at a time, a block of four floats read from each
-// of four triangles and transposed, instead of 21 loads and stores per lane; lanes from count
-// up to the next multiple of four may be written too (interpolate_surfaces() ignores them).
+// same bits, four lanes at a time. Each triangle's positions, area and attributes are read as
+// blocks of four values and transposed, instead of loaded and stored one by one, and the edge
+// numerators are computed in lanes; lanes from count up to the next multiple of four may be
+// written too (interpolate_surfaces() ignores them).
 void gather_surface_lanes(const ScreenTriangle* const* triangles, const int* x, const int* y,
                           std::size_t count, SurfaceLanes& lanes);
 void interpolate_surfaces(SurfaceLanes& lanes, std::size_t count);
