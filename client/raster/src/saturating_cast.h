@@ -4,12 +4,14 @@
 #include <limits>
 
 // double -> float without the undefined behaviour of an out-of-range conversion: values past
-// float's range become +-FLT_MAX (NaN stays NaN).
+// float's range become +-FLT_MAX (NaN stays NaN: both comparisons are false for it). Selects
+// rather than branches, so that a loop calling it runs in vector lanes (setup_kernels.cpp).
 namespace soltex::raster_internal {
 
 inline float to_float_saturated(double value) {
   constexpr double kMax = std::numeric_limits<float>::max();
-  return static_cast<float>(value != value ? value : std::clamp(value, -kMax, kMax));
+  const double low = value < -kMax ? -kMax : value;
+  return static_cast<float>(kMax < value ? kMax : low);
 }
 
 // A non-negative size (a footprint) as float: past float's range, or NaN (an unbounded

@@ -16,20 +16,12 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 
+#include "saturating_cast.h"
 #include "screen_triangle.h"
 
 HWY_BEFORE_NAMESPACE();
 namespace soltex::raster_internal::HWY_NAMESPACE {
-
-// to_float_saturated() (saturating_cast.h) as selects: std::clamp's comparisons, which pass a
-// NaN through.
-inline float saturate_to_float(double value) {
-  constexpr double kMax = std::numeric_limits<float>::max();
-  const double low = value < -kMax ? -kMax : value;
-  return static_cast<float>(kMax < value ? kMax : low);
-}
 
 // Orientation, the screen triangle's corners and bounds, and what emit() decides.
 void orient_lanes(SetupLanes& s, std::size_t n, int width, int height) {
@@ -92,9 +84,9 @@ void depth_lanes(SetupLanes& s, std::size_t n) {
     const double v2 = back ? s.depth[2][l] : s.depth[1][l];
     const double d1 = v1 - v0;
     const double d2 = v2 - v0;
-    s.depth_at_vertex0[l] = saturate_to_float(v0);
-    s.depth_per_x[l] = saturate_to_float((d1 * y2 - d2 * y1) / area);
-    s.depth_per_y[l] = saturate_to_float((d2 * x1 - d1 * x2) / area);
+    s.depth_at_vertex0[l] = to_float_saturated(v0);
+    s.depth_per_x[l] = to_float_saturated((d1 * y2 - d2 * y1) / area);
+    s.depth_per_y[l] = to_float_saturated((d2 * x1 - d1 * x2) / area);
   }
 }
 
@@ -115,9 +107,9 @@ void corner_lanes(const SetupLanes& s, const CornerPlanes& p, std::size_t n) {
     const bool back = s.back_face[l] != 0;
     const double d1 = p.texture[1][l] - p.texture[0][l];
     const double d2 = p.texture[2][l] - p.texture[0][l];
-    const float offset_1 = saturate_to_float(1.0 * d1 + 0.0 * d2);  // weights (0, 1, 0)
-    const float offset_2 = saturate_to_float(0.0 * d1 + 1.0 * d2);  // weights (0, 0, 1)
-    p.offset[0][l] = saturate_to_float(0.0 * d1 + 0.0 * d2);
+    const float offset_1 = to_float_saturated(1.0 * d1 + 0.0 * d2);  // weights (0, 1, 0)
+    const float offset_2 = to_float_saturated(0.0 * d1 + 1.0 * d2);  // weights (0, 0, 1)
+    p.offset[0][l] = to_float_saturated(0.0 * d1 + 0.0 * d2);
     p.offset[1][l] = back ? offset_1 : offset_2;
     p.offset[2][l] = back ? offset_2 : offset_1;
     const float n0 = p.normal[0][l], n1 = p.normal[1][l], n2 = p.normal[2][l];
