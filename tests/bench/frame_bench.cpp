@@ -6,6 +6,10 @@
 //   BM_Raster          the rasterizer alone on the same view and meshes (mesh_for_view()), into
 //                      tile-sized G-buffers as FrameRenderer draws (its raster part, without
 //                      shading); /1/5 and /1/6 the spheres on one thread
+//   BM_SpherePair      the warm frames of the two spheres (5 and 6 below) in turn, in
+//                      alternating order: counters fine_ms and coarse_ms (medians of each
+//                      frame's process CPU time) and ratio (median of each pair's ratio,
+//                      target 4); the one argument is the thread count
 //   BM_ReferenceFrame  FrameRenderer::render_reference: the texture evaluated per pixel
 //   BM_ColdFrame       FrameRenderer::render with nothing resident (a client's first frame):
 //                      every pixel misses, and the frame lists every brick it wants
@@ -41,6 +45,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <ctime>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <stdexcept>
@@ -125,17 +130,19 @@ struct WarmScene {
   double psnr = 0.0;
 };
 
-WarmScene& warm_scene(const benchmark::State& state) {
+WarmScene& warm_scene(int threads, int variant) {
   constexpr int kThreadCounts = 3, kVariants = 8;  // threads 0..2, variants 0..7
   static std::unique_ptr<WarmScene> scenes[kThreadCounts][kVariants];
-  const auto threads = static_cast<int>(state.range(0));
-  const auto variant = static_cast<int>(state.range(1));
   if (threads < 0 || threads >= kThreadCounts || variant < 0 || variant >= kVariants) {
     throw std::out_of_range("frame_bench: no scene slot for these arguments");
   }
   auto& s = scenes[threads][variant];
   if (!s) s = std::make_unique<WarmScene>(threads, variant);
   return *s;
+}
+
+WarmScene& warm_scene(const benchmark::State& state) {
+  return warm_scene(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
 }
 
 void BM_WarmFrame(benchmark::State& state) {
@@ -157,6 +164,49 @@ void BM_WarmFrame(benchmark::State& state) {
   state.counters["covered"] = static_cast<double>(covered);
   state.counters["triangles"] = static_cast<double>(triangles);
   state.counters["psnr_db"] = w.psnr;
+}
+
+double process_cpu_ms() {
+  timespec now{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+  return static_cast<double>(now.tv_sec) * 1e3 + static_cast<double>(now.tv_nsec) * 1e-6;
+}
+
+double median(std::vector<double> values) {
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// Target 4 as one figure: the fine and the coarse sphere's warm frames rendered in turn, in
+// alternating order, each pair's CPU-time ratio taken at once. A shared machine's load changes
+// over seconds; within a pair both frames meet the same load, so the median of the pairs'
+// ratios is far steadier than a ratio of two benchmarks' medians measured seconds apart.
+void BM_SpherePair(benchmark::State& state) {
+  const auto threads = static_cast<int>(state.range(0));
+  std::array<WarmScene*, 2> scenes = {&warm_scene(threads, 5), &warm_scene(threads, 6)};
+  std::array<std::vector<double>, 2> cpu_ms;
+  std::vector<double> ratio;
+  bool fine_first = true;
+  for (auto _ : state) {
+    std::array<double, 2> spent{};
+    for (int k = 0; k < 2; ++k) {
+      const int which = fine_first ? k : 1 - k;
+      WarmScene& w = *scenes[static_cast<std::size_t>(which)];
+      const double start = process_cpu_ms();
+      soltex::Frame frame = w.renderer->render(w.prepared, w.scene.camera, kWidth, kHeight);
+      spent[static_cast<std::size_t>(which)] = process_cpu_ms() - start;
+      if (!frame.complete()) state.SkipWithError("warm frame missed a brick");
+      benchmark::DoNotOptimize(frame.image);
+    }
+    fine_first = !fine_first;
+    cpu_ms[0].push_back(spent[0]);
+    cpu_ms[1].push_back(spent[1]);
+    ratio.push_back(spent[0] / spent[1]);
+  }
+  state.counters["fine_ms"] = median(cpu_ms[0]);
+  state.counters["coarse_ms"] = median(cpu_ms[1]);
+  state.counters["ratio"] = median(ratio);
 }
 
 void BM_Raster(benchmark::State& state) {
@@ -434,6 +484,8 @@ BENCHMARK(BM_WarmFrame)
     ->Args({2, 6})
     ->Args({2, 7})
     ->Apply(wall_and_process_cpu_ms);
+// Each iteration is a pair of frames: its time is theirs together.
+BENCHMARK(BM_SpherePair)->Args({1})->Args({2})->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_Raster)->Args({1, 0})->Args({2, 0})->Args({2, 1})->Args({1, 5})->Args({1, 6})->Apply(
     wall_and_process_cpu_ms);
 BENCHMARK(BM_ColdFrame)
