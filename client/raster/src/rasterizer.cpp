@@ -352,16 +352,11 @@ RasterStats Rasterizer::draw(const RasterView& view, std::span<const RasterObjec
     tiles.begin(x0, y0, x1, y1);
     for (std::size_t c = 0; c < chunk_count; ++c) {
       const SetupChunk& chunk = impl.chunks[c];
-      const uint32_t end = chunk.bin_start[tile + 1];
-      for (uint32_t k = chunk.bin_start[tile]; k < end; ++k) {
-        // A tile's triangles lie scattered over the chunk: ask for the line drawing reads a
-        // few triangles ahead.
-        if (k + kPrefetchAhead < end) {
-          __builtin_prefetch(&chunk.triangles[chunk.bin_items[k + kPrefetchAhead]]);
-        }
-        tiles.draw(chunk.triangles[chunk.bin_items[k]], chunk.clip_forms, coverage, view.width,
-                   stats);
-      }
+      const uint32_t begin = chunk.bin_start[tile], end = chunk.bin_start[tile + 1];
+      if (begin == end) continue;
+      tiles.draw_bin(chunk.triangles.data(),
+                     std::span<const uint32_t>(chunk.bin_items).subspan(begin, end - begin),
+                     chunk.clip_forms, coverage, view.width, stats);
     }
     if (frame_target != nullptr) {
       tiles.resolve(tile_frame, *frame_target, 0, 0, stats);

@@ -1,11 +1,11 @@
 // Runtime dispatch of the tile's per-pixel loops (tile_kernels.h). Highway compiles this file
 // once per target (hwy/foreach_target.h re-includes it) and HWY_DYNAMIC_DISPATCH calls the
-// widest one the CPU supports, once per triangle drawn into a tile and once per batch of
-// resolved runs of pixels. Most loops are plain per-lane code, written with selects rather than
+// widest one the CPU supports, once per chunk's bin of triangles drawn into a tile (and per
+// large triangle drawn) and once per batch of resolved runs of pixels. Most loops are plain per-lane code, written with selects rather than
 // branches so that the compiler runs them in vector lanes; a target only widens the lanes
 // (AVX2: 8 floats, AVX-512: 16, against 4 in the baseline build, whose lack of 64-bit vector
-// compares keeps draw_unclipped_target scalar). draw_small_target, run_starts_target and
-// gather_surface_lanes_target are written in Highway's operations. The same IEEE operations
+// compares keeps draw_unclipped_target scalar). The small triangles' draw (draw_small_span),
+// run_starts_target and gather_surface_lanes_target are written in Highway's operations. The same IEEE operations
 // in the same order per lane, and no contraction (-ffp-contract=off holds for every target):
 // the same bits on every target.
 #undef HWY_TARGET_INCLUDE
@@ -111,11 +111,28 @@ void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float*
   stats.fragments_depth_passed += depth_passed;
 }
 
-void draw_small_target(const ScreenTriangle& t, const SpanDraw& span, float* depth_plane,
-                       const ScreenTriangle** winner_plane, RasterStats& stats) {
-  // draw_unclipped_target()'s tests and depth, a tile's column of up to kSmallLanes pixels at a
-  // time over the triangle's rows, in 32-bit lanes (twice as many to a vector as 64-bit ones)
-  // and without a branch per pixel, whose outcome a small triangle's edges make random.
+// draw_unclipped_target()'s tests and depth, a tile's column of up to kSmallLanes pixels at a
+// time over the triangle's rows, in 32-bit lanes (twice as many to a vector as 64-bit ones) and
+// without a branch per pixel, whose outcome a small triangle's edges make random. The edge
+// functions as draw() sets them up (SpanDraw), narrowed: exact in int32 (fits_int32()).
+struct SmallEdges {
+  std::array<int32_t, 3> row, step_x, step_y;
+};
+
+HWY_INLINE SmallEdges narrowed(const SpanDraw& span) {
+  SmallEdges e;
+  for (std::size_t k = 0; k < 3; ++k) {
+    e.row[k] = static_cast<int32_t>(span.row[k]);
+    e.step_x[k] = static_cast<int32_t>(span.step_x[k]);
+    e.step_y[k] = static_cast<int32_t>(span.step_y[k]);
+  }
+  return e;
+}
+
+HWY_INLINE void draw_small_span(const ScreenTriangle& t, const SpanDraw& span,
+                                const SmallEdges& edges, float* depth_plane,
+                                const ScreenTriangle** winner_plane, uint64_t& rasterized,
+                                uint64_t& depth_passed) {
   namespace hn = hwy::HWY_NAMESPACE;
   const hn::CappedTag<int32_t, kSmallLanes> di;
   const hn::Rebind<float, decltype(di)> df;
@@ -127,13 +144,9 @@ void draw_small_target(const ScreenTriangle& t, const SpanDraw& span, float* dep
   const int pointer_lanes = static_cast<int>(hn::Lanes(dw));
   const int count = span.last_x - span.first_x + 1;
   assert(count >= 1 && count <= kTileSize);
-  // Exact in int32 (fits_int32()), narrowed here: in registers, not through the caller's stack.
-  std::array<int32_t, 3> row{}, step_x{}, step_y{};
-  for (std::size_t k = 0; k < 3; ++k) {
-    row[k] = static_cast<int32_t>(span.row[k]);
-    step_x[k] = static_cast<int32_t>(span.step_x[k]);
-    step_y[k] = static_cast<int32_t>(span.step_y[k]);
-  }
+  const std::array<int32_t, 3>& row = edges.row;
+  const std::array<int32_t, 3>& step_x = edges.step_x;
+  const std::array<int32_t, 3>& step_y = edges.step_y;
   // Edge k's function j pixels right of a column's first: its value there plus lane j of this.
   const auto along = [&](std::size_t k) {
     return hn::Mul(hn::Iota(di, 0), hn::Set(di, step_x[k]));
@@ -144,7 +157,6 @@ void draw_small_target(const ScreenTriangle& t, const SpanDraw& span, float* dep
   const auto self = hn::Set(dw, static_cast<uint64_t>(reinterpret_cast<uintptr_t>(&t)));
   auto* winners = reinterpret_cast<uint64_t*>(winner_plane);
   const auto far = hn::Set(df, kFarDepth);
-  uint64_t rasterized = 0, depth_passed = 0;
   for (int c = 0; c < count; c += lanes) {
     const auto columns = hn::RebindMask(df, hn::FirstN(di, static_cast<std::size_t>(count - c)));
     auto e0 = hn::Add(hn::Set(di, row[0] + step_x[0] * c), along0);
@@ -181,6 +193,32 @@ void draw_small_target(const ScreenTriangle& t, const SpanDraw& span, float* dep
       e1 = hn::Add(e1, hn::Set(di, step_y[1]));
       e2 = hn::Add(e2, hn::Set(di, step_y[2]));
     }
+  }
+}
+
+void draw_small_target(const ScreenTriangle& t, const SpanDraw& span, float* depth_plane,
+                       const ScreenTriangle** winner_plane, RasterStats& stats) {
+  uint64_t rasterized = 0, depth_passed = 0;
+  draw_small_span(t, span, narrowed(span), depth_plane, winner_plane, rasterized, depth_passed);
+  stats.fragments_rasterized += rasterized;
+  stats.fragments_depth_passed += depth_passed;
+}
+
+void draw_bin_target(const BinDraw& bin, float* depth_plane, const ScreenTriangle** winner_plane,
+                     RasterStats& stats) {
+  uint64_t rasterized = 0, depth_passed = 0;
+  for (std::size_t k = 0; k < bin.count; ++k) {
+    if (k + kBinPrefetchAhead < bin.count) {
+      __builtin_prefetch(&bin.triangles[bin.items[k + kBinPrefetchAhead]]);
+    }
+    const ScreenTriangle& t = bin.triangles[bin.items[k]];
+    SpanDraw span;
+    if (!span_of(t, bin.tile_x0, bin.tile_y0, bin.tile_x1, bin.tile_y1, span)) continue;
+    if (t.clip_mask != 0 || !fits_int32(t)) {
+      bin.other(bin.context, t);
+      continue;
+    }
+    draw_small_span(t, span, narrowed(span), depth_plane, winner_plane, rasterized, depth_passed);
   }
   stats.fragments_rasterized += rasterized;
   stats.fragments_depth_passed += depth_passed;
@@ -528,6 +566,7 @@ namespace soltex::raster_internal {
 
 HWY_EXPORT(draw_unclipped_target);
 HWY_EXPORT(draw_small_target);
+HWY_EXPORT(draw_bin_target);
 HWY_EXPORT(resolve_surface_runs_target);
 HWY_EXPORT(interpolate_surfaces_target);
 HWY_EXPORT(gather_surface_lanes_target);
@@ -541,6 +580,10 @@ void draw_unclipped(const ScreenTriangle& t, const SpanDraw& span, float* depth,
 void draw_small(const ScreenTriangle& t, const SpanDraw& span, float* depth,
                 const ScreenTriangle** winner, RasterStats& stats) {
   HWY_DYNAMIC_DISPATCH(draw_small_target)(t, span, depth, winner, stats);
+}
+
+void draw_bin(const BinDraw& bin, float* depth, const ScreenTriangle** winner, RasterStats& stats) {
+  HWY_DYNAMIC_DISPATCH(draw_bin_target)(bin, depth, winner, stats);
 }
 
 uint64_t run_starts(const ScreenTriangle* const* winners, int count) {

@@ -38,6 +38,33 @@ inline constexpr int kSmallLanes = 8;
 void draw_small(const ScreenTriangle& t, const SpanDraw& span, float* depth,
                 const ScreenTriangle** winner, RasterStats& stats);
 
+// The pixels of the tile [tile_x0, tile_x1) x [tile_y0, tile_y1) that `t` may cover, and its edge
+// functions at the first of them, as TileRasterizer::draw() steps them; false when its bounds
+// miss the tile.
+inline bool span_of(const ScreenTriangle& t, int tile_x0, int tile_y0, int tile_x1, int tile_y1,
+                    SpanDraw& span) {
+  span.first_x = std::max(t.min_px, tile_x0);
+  span.last_x = std::min(t.max_px, tile_x1 - 1);
+  span.first_y = std::max(t.min_py, tile_y0);
+  span.last_y = std::min(t.max_py, tile_y1 - 1);
+  if (span.first_x > span.last_x || span.first_y > span.last_y) return false;
+  span.tile_x0 = tile_x0;
+  span.tile_y0 = tile_y0;
+  const int64_t px = int64_t{span.first_x} * kSubpixelScale + kSubpixelScale / 2;
+  const int64_t py = int64_t{span.first_y} * kSubpixelScale + kSubpixelScale / 2;
+  for (std::size_t k = 0; k < 3; ++k) {
+    // Edge k, opposite vertex k; the top-left rule as a bias: a centre on a top or left edge
+    // (value 0) is in, on any other edge it is out.
+    const std::size_t a = (k + 1) % 3, b = (k + 2) % 3;
+    const int64_t ax = t.x[a], ay = t.y[a], bx = t.x[b], by = t.y[b];
+    const int64_t bias = is_top_left(ax, ay, bx, by) ? 0 : -1;
+    span.row[k] = edge_function(ax, ay, bx, by, px, py) + bias;
+    span.step_x[k] = -(by - ay) * kSubpixelScale;
+    span.step_y[k] = (bx - ax) * kSubpixelScale;
+  }
+  return true;
+}
+
 // Whether every edge function of `t` (with its top-left bias) stays within int32 at the pixel
 // centres of its bounds and up to kSmallLanes - 1 pixels right of them: each is a sum of two
 // products of coordinate differences, each within the triangle's extent (or that extent and
@@ -52,6 +79,21 @@ inline bool fits_int32(const ScreenTriangle& t) {
   const auto [min_y, max_y] = std::minmax({t.y[0], t.y[1], t.y[2]});
   return int64_t{max_x} - min_x <= kSmallExtent && int64_t{max_y} - min_y <= kSmallExtent;
 }
+
+// A tile's bin of one chunk: triangles[items[0 .. count)], drawn in that order as
+// TileRasterizer::draw() draws each (without coverage counts); those draw_small() cannot take
+// (a clip form to test, or too large for int32 edges) go to other(context, triangle).
+struct BinDraw {
+  const ScreenTriangle* triangles;
+  const uint32_t* items;
+  std::size_t count;
+  int tile_x0, tile_y0, tile_x1, tile_y1;
+  void (*other)(void* context, const ScreenTriangle& t);
+  void* context;
+};
+// Triangles ahead whose first line is asked for: a tile's triangles lie scattered over the chunk.
+inline constexpr std::size_t kBinPrefetchAhead = 8;
+void draw_bin(const BinDraw& bin, float* depth, const ScreenTriangle** winner, RasterStats& stats);
 
 // The G-buffer's planes as raw pointers, taken once per tile: a store through uint8_t* (the
 // flags) may alias anything, so through the vectors every store would reload every data pointer.

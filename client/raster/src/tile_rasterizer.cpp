@@ -18,21 +18,6 @@ constexpr float kFarDepth = 1.0f;
 // loop.
 constexpr int kVectorColumns = 8;
 
-// Edge k is the edge opposite vertex k; its edge function, over the double area, is vertex
-// k's barycentric weight.
-struct Edge {
-  int64_t ax, ay, bx, by;
-};
-
-std::array<Edge, 3> edges_of(const ScreenTriangle& t) {
-  return {Edge{t.x[1], t.y[1], t.x[2], t.y[2]}, Edge{t.x[2], t.y[2], t.x[0], t.y[0]},
-          Edge{t.x[0], t.y[0], t.x[1], t.y[1]}};
-}
-
-int64_t pixel_centre(int pixel) {
-  return static_cast<int64_t>(pixel) * kSubpixelScale + kSubpixelScale / 2;
-}
-
 // Pixels [i, i + count) of one row: nothing drawn.
 void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) {
   std::fill_n(target.depth + i, count, std::numeric_limits<float>::infinity());
@@ -290,26 +275,13 @@ void TileRasterizer::begin(int x0, int y0, int x1, int y1) {
 
 void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> clip_forms,
                           uint32_t* coverage, int coverage_stride, RasterStats& stats) {
-  const int first_x = std::max(t.min_px, x0_);
-  const int last_x = std::min(t.max_px, x1_ - 1);
-  const int first_y = std::max(t.min_py, y0_);
-  const int last_y = std::min(t.max_py, y1_ - 1);
-  if (first_x > last_x || first_y > last_y) return;
-
-  // Edge functions at the first pixel centre, stepped exactly in integers. The top-left rule
-  // as a bias: a centre on a top or left edge (value 0) is in, on any other edge it is out.
-  // Written where the kernels read them: copied into a SpanDraw, the 64-bit values were read
-  // back two to a vector before their stores had landed, and waited for them.
-  SpanDraw span{first_x, last_x, first_y, last_y, x0_, y0_, {}, {}, {}};
-  const std::array<Edge, 3> edges = edges_of(t);
-  for (std::size_t k = 0; k < 3; ++k) {
-    const Edge& e = edges[k];
-    const int64_t bias = is_top_left(e.ax, e.ay, e.bx, e.by) ? 0 : -1;
-    span.row[k] =
-        edge_function(e.ax, e.ay, e.bx, e.by, pixel_centre(first_x), pixel_centre(first_y)) + bias;
-    span.step_x[k] = -(e.by - e.ay) * kSubpixelScale;
-    span.step_y[k] = (e.bx - e.ax) * kSubpixelScale;
-  }
+  // Edge functions at the first pixel centre, stepped exactly in integers. Written where the
+  // kernels read them: copied into a SpanDraw, the 64-bit values were read back two to a
+  // vector before their stores had landed, and waited for them.
+  SpanDraw span;
+  if (!span_of(t, x0_, y0_, x1_, y1_, span)) return;
+  const int first_x = span.first_x, last_x = span.last_x;
+  const int first_y = span.first_y, last_y = span.last_y;
 
   const float x0 = t.x0_pixels();
   const float y0 = t.y0_pixels();
@@ -375,6 +347,35 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   stats.fragments_depth_passed += depth_passed;
   stats.fragments_clip_tested += clip_tested;
   stats.fragments_clip_discarded += clip_discarded;
+}
+
+void TileRasterizer::draw_bin(const ScreenTriangle* triangles, std::span<const uint32_t> items,
+                              std::span<const AffineForm> clip_forms, uint32_t* coverage,
+                              int coverage_stride, RasterStats& stats) {
+  if (coverage != nullptr) {
+    for (const uint32_t item : items) {
+      draw(triangles[item], clip_forms, coverage, coverage_stride, stats);
+    }
+    return;
+  }
+  struct Other {
+    TileRasterizer& tiles;
+    std::span<const AffineForm> clip_forms;
+    RasterStats& stats;
+  } other{*this, clip_forms, stats};
+  const BinDraw bin{triangles,
+                    items.data(),
+                    items.size(),
+                    x0_,
+                    y0_,
+                    x1_,
+                    y1_,
+                    [](void* context, const ScreenTriangle& t) {
+                      auto& o = *static_cast<Other*>(context);
+                      o.tiles.draw(t, o.clip_forms, nullptr, 0, o.stats);
+                    },
+                    &other};
+  raster_internal::draw_bin(bin, depth_.data(), winner_.data(), stats);
 }
 
 void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origin_x, int origin_y,

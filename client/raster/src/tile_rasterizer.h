@@ -40,6 +40,13 @@ class TileRasterizer {
   void draw(const ScreenTriangle& triangle, std::span<const AffineForm> clip_forms,
             uint32_t* coverage, int coverage_stride, RasterStats& stats);
 
+  // draw() of triangles[items[k]] for each k in order: a tile's bin of one chunk. The small
+  // triangles of a fine mesh are drawn in one dispatched loop, without draw()'s call and
+  // set-up per triangle.
+  void draw_bin(const ScreenTriangle* triangles, std::span<const uint32_t> items,
+                std::span<const AffineForm> clip_forms, uint32_t* coverage, int coverage_stride,
+                RasterStats& stats);
+
   // Writes every pixel of the tile to `target`, whose pixel (x, y) of the frame is at
   // target.index(x - origin_x, y - origin_y): the frame's G-buffer (origin 0, 0), or a
   // tile-sized one (origin x0, y0).

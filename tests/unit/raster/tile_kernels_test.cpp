@@ -55,9 +55,10 @@ TEST(RunStarts, EveryTargetFindsTheRunsOfARow) {
 }
 
 // Triangles from under a pixel to several tiles wide (so both the 32-bit and 64-bit lanes draw),
-// at random depths and facing both ways, overlapping: drawn in vector lanes on each target, they
-// leave the G-buffer and fragment counts that counting coverage gives, which draws every
-// fragment one at a time.
+// at random depths and facing both ways, overlapping: drawn in vector lanes on each target (a
+// tile's bin at a time, the large ones handed back to TileRasterizer::draw()), they leave the
+// G-buffer and fragment counts that counting coverage gives, which draws every fragment one
+// at a time.
 TEST(DrawKernels, EveryTargetDrawsWhatTheFragmentLoopDraws) {
   const std::vector<int64_t> targets =
       test::targets_to_run(raster_internal::tile_kernels_compiled_targets());
