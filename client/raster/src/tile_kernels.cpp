@@ -1,13 +1,13 @@
 // Runtime dispatch of the tile's per-pixel loops (tile_kernels.h). Highway compiles this file
 // once per target (hwy/foreach_target.h re-includes it) and HWY_DYNAMIC_DISPATCH calls the
 // widest one the CPU supports, once per chunk's bin of triangles drawn into a tile (and per
-// large triangle drawn) and once per batch of resolved runs of pixels. Most loops are plain per-lane code, written with selects rather than
-// branches so that the compiler runs them in vector lanes; a target only widens the lanes
-// (AVX2: 8 floats, AVX-512: 16, against 4 in the baseline build, whose lack of 64-bit vector
-// compares keeps draw_unclipped_target scalar). The small triangles' draw (draw_small_span),
-// run_starts_target and gather_surface_lanes_target are written in Highway's operations. The same IEEE operations
-// in the same order per lane, and no contraction (-ffp-contract=off holds for every target):
-// the same bits on every target.
+// large triangle drawn) and once per batch of resolved runs of pixels. Most loops are plain
+// per-lane code, written with selects rather than branches so that the compiler runs them in vector
+// lanes; a target only widens the lanes (AVX2: 8 floats, AVX-512: 16, against 4 in the baseline
+// build, whose lack of 64-bit vector compares keeps draw_unclipped_target scalar). The small
+// triangles' draw (draw_small_span), run_starts_target and gather_surface_lanes_target are written
+// in Highway's operations. The same IEEE operations in the same order per lane, and no contraction
+// (-ffp-contract=off holds for every target): the same bits on every target.
 #undef HWY_TARGET_INCLUDE
 #define HWY_TARGET_INCLUDE "tile_kernels.cpp"
 #include "tile_kernels.h"
