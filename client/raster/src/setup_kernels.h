@@ -14,7 +14,9 @@
 namespace soltex::raster_internal {
 
 struct SetupLanes {
-  static constexpr std::size_t kCapacity = 64;
+  // Sixteen: a block of 64 (about 21 KB of planes) crowded the screen triangles being written
+  // and the vertices being read out of the 32 KB first-level cache, and set-up ran slower.
+  static constexpr std::size_t kCapacity = 16;
   template <typename T>
   using Lanes = std::array<T, kCapacity>;
 
