@@ -32,6 +32,32 @@ struct TriangleSetup::Classified {
 
 namespace {
 
+// Prefetches for writing the places of triangles appended to a chunk's storage, as far as its
+// capacity goes (never past it: nothing is reserved here).
+class WriteAhead {
+ public:
+  static constexpr std::size_t kTriangles = 4;  // ahead of the one being written
+
+  WriteAhead(const ScreenTriangles& triangles, std::size_t count)
+      : next_(triangles.data() + triangles.size()),
+        count_(std::min(count, triangles.capacity() - triangles.size())) {
+    for (std::size_t k = 0; k < kTriangles; ++k) prefetch(k);
+  }
+
+  // The place of the k-th triangle appended from here on.
+  void prefetch(std::size_t k) const {
+    if (k >= count_) return;
+    const auto* lines = reinterpret_cast<const char*>(next_ + k);
+    for (std::size_t line = 0; line < sizeof(ScreenTriangle); line += 64) {
+      __builtin_prefetch(lines + line, 1);
+    }
+  }
+
+ private:
+  const ScreenTriangle* next_;
+  std::size_t count_;
+};
+
 // The sides of the view volume a clip-space point is outside of, for trivial rejection.
 uint32_t frustum_outcode(const glm::vec4& c) {
   return (c.x < -c.w ? 1u : 0u) | (c.x > c.w ? 2u : 0u) | (c.y < -c.w ? 4u : 0u) |
@@ -171,7 +197,12 @@ std::size_t TriangleSetup::setup_range(
 void TriangleSetup::flush(SetupLanes& lanes, ScreenTriangles& triangles, RasterStats& stats) const {
   if (lanes.count == 0) return;
   set_up_lanes(lanes, width_, height_);
+  // Where the lanes' triangles will go, asked for ahead of their stores (while the storage
+  // kept from earlier frames has room): the stores write whole lines last touched a frame
+  // ago, and each waited for its line to be fetched.
+  const WriteAhead ahead(triangles, lanes.count);
   for (std::size_t l = 0; l < lanes.count; ++l) {
+    ahead.prefetch(l + WriteAhead::kTriangles);
     switch (lanes.outcome[l]) {
       case SetupLanes::kDegenerate:
         ++stats.triangles_degenerate;
