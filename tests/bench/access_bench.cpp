@@ -23,7 +23,6 @@
 // per-pixel reference as PNGs, to check that a change to either path keeps every byte.
 
 #include <benchmark/benchmark.h>
-#include <time.h>
 
 #include <algorithm>
 #include <array>
@@ -36,6 +35,7 @@
 #include <vector>
 
 #include "converge.h"
+#include "cpu_samples.h"
 #include "soltex/common/brick_cache.h"
 #include "soltex/net/local_brick_source.h"
 #include "soltex/render/frame_renderer.h"
@@ -76,12 +76,6 @@ std::string scene_json(const Kind& kind) {
          kind.texture + R"(, "specular": 0.3, "shininess": 32}}]})";
 }
 
-double thread_cpu_ns() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) * 1e9 + static_cast<double>(t.tv_nsec);
-}
-
 // One converged scene per kind, with a renderer per access, kept for the whole run.
 struct WarmObject {
   explicit WarmObject(const Kind& kind)
@@ -111,12 +105,6 @@ WarmObject& warm_object(std::size_t kind) {
   return *objects[kind];
 }
 
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
-
 struct Samples {
   std::vector<double> frame_ns, shade_ns;
 };
@@ -124,9 +112,9 @@ struct Samples {
 // Draws one warm frame and records its thread CPU time and shading time per covered pixel.
 void timed_frame(WarmObject& w, soltex::FrameRenderer& renderer, Samples& out,
                  benchmark::State& state) {
-  const double start = thread_cpu_ns();
+  const double start = cpu_clock_ns(CLOCK_THREAD_CPUTIME_ID);
   soltex::Frame frame = renderer.render(w.prepared, w.scene.camera, kWidth, kHeight);
-  const double ns = thread_cpu_ns() - start;
+  const double ns = cpu_clock_ns(CLOCK_THREAD_CPUTIME_ID) - start;
   if (!frame.complete()) state.SkipWithError("warm frame missed a brick");
   const auto covered = static_cast<double>(std::max<std::size_t>(1, frame.stats.covered_pixels));
   out.frame_ns.push_back(ns / covered);

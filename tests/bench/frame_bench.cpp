@@ -45,7 +45,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <ctime>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <stdexcept>
@@ -53,6 +52,7 @@
 #include <vector>
 
 #include "converge.h"
+#include "cpu_samples.h"
 #include "mesh_for_view.h"
 #include "soltex/common/brick_cache.h"
 #include "soltex/common/sampling_kernels.h"
@@ -166,18 +166,6 @@ void BM_WarmFrame(benchmark::State& state) {
   state.counters["psnr_db"] = w.psnr;
 }
 
-double process_cpu_ms() {
-  timespec now{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) * 1e3 + static_cast<double>(now.tv_nsec) * 1e-6;
-}
-
-double median(std::vector<double> values) {
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 // Target 4 as one figure: the fine and the coarse sphere's warm frames rendered in turn, in
 // alternating order, each pair's CPU-time ratio taken at once. A shared machine's load changes
 // over seconds; within a pair both frames meet the same load, so the median of the pairs'
@@ -193,9 +181,10 @@ void BM_SpherePair(benchmark::State& state) {
     for (int k = 0; k < 2; ++k) {
       const int which = fine_first ? k : 1 - k;
       WarmScene& w = *scenes[static_cast<std::size_t>(which)];
-      const double start = process_cpu_ms();
+      const double start = cpu_clock_ns(CLOCK_PROCESS_CPUTIME_ID);
       soltex::Frame frame = w.renderer->render(w.prepared, w.scene.camera, kWidth, kHeight);
-      spent[static_cast<std::size_t>(which)] = process_cpu_ms() - start;
+      spent[static_cast<std::size_t>(which)] =
+          (cpu_clock_ns(CLOCK_PROCESS_CPUTIME_ID) - start) * 1e-6;
       if (!frame.complete()) state.SkipWithError("warm frame missed a brick");
       benchmark::DoNotOptimize(frame.image);
     }
