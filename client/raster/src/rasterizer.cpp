@@ -15,6 +15,7 @@
 #include "edge_sampler.h"
 #include "object_frame.h"
 #include "screen_triangle.h"
+#include "tile_kernels.h"
 #include "tile_rasterizer.h"
 #include "transformed_vertices.h"
 #include "triangle_setup.h"
@@ -47,7 +48,6 @@ namespace {
 constexpr std::size_t kVerticesPerBlock = 4096;
 constexpr std::size_t kTrianglesPerChunk = 2048;
 constexpr int kMaxThreads = 256;
-constexpr uint32_t kPrefetchAhead = 8;  // triangles
 
 // The screen triangles of one chunk of submitted triangles, and their tile bins: the
 // triangles of tile t are bin_items[bin_start[t] .. bin_start[t + 1]), in submission order.
@@ -397,8 +397,9 @@ void Rasterizer::sample_edges(int x0, int y0, std::span<const glm::ivec2> pixels
     const SetupChunk& chunk = impl.chunks[c];
     const uint32_t end = chunk.bin_start[tile + 1];
     for (uint32_t k = chunk.bin_start[tile]; k < end; ++k) {
-      if (k + kPrefetchAhead < end) {
-        __builtin_prefetch(&chunk.triangles[chunk.bin_items[k + kPrefetchAhead]]);
+      if (k + raster_internal::kBinPrefetchAhead < end) {
+        __builtin_prefetch(
+            &chunk.triangles[chunk.bin_items[k + raster_internal::kBinPrefetchAhead]]);
       }
       sampler->draw(chunk.triangles[chunk.bin_items[k]], chunk.clip_forms);
     }
