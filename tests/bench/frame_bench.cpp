@@ -28,10 +28,11 @@
 // and its PSNR against the per-pixel reference (dB).
 //   BM_TexturePass     the texturing pass alone, one thread, over the covered pixels of the
 //                      bunny's warm G-buffer (raster and lighting excluded): third argument 0
-//                      the cached lookup as TileShader makes it (level from the footprint,
-//                      pixels grouped by level, TextureSampler's batch call per group), 1 the
-//                      texture evaluated over the footprint (as TextureAccess::evaluated), 2 the
-//                      cached lookup pixel by pixel (locate_rgb, trilinear_rgb a batch later)
+//                      the cached lookup as TileShader makes it (levels from the footprints
+//                      in vector lanes, pixels grouped by level, TextureSampler's batch call
+//                      per group), 1 the texture evaluated over the footprint (as
+//                      TextureAccess::evaluated), 2 the cached lookup pixel by pixel
+//                      (locate_rgb, trilinear_rgb a batch later)
 //   BM_EqualPsnr       the warm frame (third argument 0) and the per-pixel reference at K x K
 //                      sub-pixels (third argument K), each with its PSNR against the 8 x 8
 //                      reference (psnr_8x8_db): the reference's K that first reaches the warm
@@ -258,6 +259,9 @@ void BM_ColdFrame(benchmark::State& state) {
   state.counters["bricks_wanted"] = static_cast<double>(misses);
 }
 
+// The tile shader's tiles are 32 pixels on a side (LitTile::kSide, internal to the renderer).
+constexpr std::size_t kShadingTile = 32;
+
 // The covered pixels of one object in a warm G-buffer: what the texturing pass reads.
 struct TexturedPixels {
   std::vector<glm::dvec3> positions;
@@ -273,8 +277,8 @@ const TexturedPixels& bunny_pixels(WarmScene& w) {
                                 soltex::RenderOptions{.threads = 1, .keep_gbuffer = true});
   keeping.render(w.prepared, w.scene.camera, kWidth, kHeight);
   const soltex::GBuffer& g = keeping.last_gbuffer();
-  // In the tile shader's order: 32 x 32 tiles, rows within a tile.
-  constexpr int kTile = 32;
+  // In the tile shader's order: its tiles, rows within a tile.
+  constexpr int kTile = static_cast<int>(kShadingTile);
   for (int ty = 0; ty < kHeight; ty += kTile) {
     for (int tx = 0; tx < kWidth; tx += kTile) {
       for (int y = ty; y < std::min(kHeight, ty + kTile); ++y) {
@@ -315,12 +319,21 @@ void batched_pass(benchmark::State& state, WarmScene& w, const TexturedPixels& p
     }
     return sum;
   };
+  // Levels made in vector lanes, as TileShader makes them a tile row at a time; here 32
+  // covered pixels at a time (the shader's rows also hold uncovered pixels, 0 to 31 of them).
+  constexpr std::size_t kRow = kShadingTile;
+  std::array<int32_t, kRow> row_levels;
+  const std::size_t total = pixels.positions.size();
   for (auto _ : state) {
     float sum = 0.0f;
-    for (std::size_t i = 0; i < pixels.positions.size(); ++i) {
-      const auto level = static_cast<std::size_t>(table.level(pixels.footprints[i]));
-      groups[level][counts[level]++] = pixels.positions[i];
-      if (counts[level] == kBatch) sum += look_up(level);
+    for (std::size_t first = 0; first < total; first += kRow) {
+      const std::size_t n = std::min(kRow, total - first);
+      table.levels({&pixels.footprints[first], n}, row_levels.data());
+      for (std::size_t j = 0; j < n; ++j) {
+        const auto level = static_cast<std::size_t>(row_levels[j]);
+        groups[level][counts[level]++] = pixels.positions[first + j];
+        if (counts[level] == kBatch) sum += look_up(level);
+      }
     }
     for (std::size_t level = 0; level < kLevels; ++level) {
       if (counts[level] > 0) sum += look_up(level);
