@@ -65,6 +65,27 @@ using tile_kernels_detail::kAttributeFloats;
 using tile_kernels_detail::kAttributeSlots;
 using tile_kernels_detail::kFarDepth;
 
+// A row of draw_unclipped_target() whose pixels are all inside the triangle: the depth tests
+// alone, in float lanes as wide as the target has (no 64-bit edge lanes to keep pace with).
+// Returns how many passed.
+HWY_INLINE uint64_t draw_inside_row(const ScreenTriangle* self, int first_x, int count, float x0,
+                                    float depth_y, float* __restrict depth_row,
+                                    const ScreenTriangle** __restrict winner_row) {
+  const float at_vertex0 = self->depth.at_vertex0;
+  const float per_x = self->depth.per_x;
+  uint64_t depth_passed = 0;
+  for (int k = 0; k < count; ++k) {
+    const float dx = static_cast<float>(first_x + k) + 0.5f - x0;
+    const float depth = (at_vertex0 + per_x * dx) + depth_y;
+    const float old_depth = depth_row[k];
+    const bool pass = (depth < old_depth) & !(depth > kFarDepth);
+    depth_passed += pass ? 1 : 0;
+    depth_row[k] = pass ? depth : old_depth;
+    winner_row[k] = pass ? self : winner_row[k];
+  }
+  return depth_passed;
+}
+
 void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float* depth_plane,
                            const ScreenTriangle** winner_plane, RasterStats& stats) {
   // The loop of draw() without clip forms and coverage counts, written with selects instead
@@ -91,6 +112,19 @@ void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float*
     const ScreenTriangle** __restrict winner_row = winner_plane + row_start;
     const int64_t r0 = row[0], r1 = row[1], r2 = row[2];
     const int64_t s0 = step_x[0], s1 = step_x[1], s2 = step_x[2];
+    row[0] += step_y[0];
+    row[1] += step_y[1];
+    row[2] += step_y[2];
+    // Edge functions are affine along the row: its ends settle whether every pixel is inside
+    // (a large triangle's rows inside a tile mostly are) or none is.
+    const int64_t last = count - 1;
+    const int64_t f0 = r0 + s0 * last, f1 = r1 + s1 * last, f2 = r2 + s2 * last;
+    if (std::max(r0, f0) < 0 || std::max(r1, f1) < 0 || std::max(r2, f2) < 0) continue;
+    if (std::min({r0, f0, r1, f1, r2, f2}) >= 0) {
+      rasterized += static_cast<uint64_t>(count);
+      depth_passed += draw_inside_row(self, first_x, count, x0, depth_y, depth_row, winner_row);
+      continue;
+    }
     for (int k = 0; k < count; ++k) {
       const int64_t e0 = r0 + s0 * k, e1 = r1 + s1 * k, e2 = r2 + s2 * k;
       const bool inside = (e0 | e1 | e2) >= 0;
@@ -103,9 +137,6 @@ void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float*
       depth_row[k] = pass ? depth : old_depth;
       winner_row[k] = pass ? self : winner_row[k];
     }
-    row[0] += step_y[0];
-    row[1] += step_y[1];
-    row[2] += step_y[2];
   }
   stats.fragments_rasterized += rasterized;
   stats.fragments_depth_passed += depth_passed;
