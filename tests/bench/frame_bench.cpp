@@ -54,6 +54,7 @@
 
 #include "converge.h"
 #include "cpu_samples.h"
+#include "lit_pixels.h"
 #include "mesh_for_view.h"
 #include "soltex/common/brick_cache.h"
 #include "soltex/common/sampling_kernels.h"
@@ -259,8 +260,8 @@ void BM_ColdFrame(benchmark::State& state) {
   state.counters["bricks_wanted"] = static_cast<double>(misses);
 }
 
-// The tile shader's tiles are 32 pixels on a side (LitTile::kSide, internal to the renderer).
-constexpr std::size_t kShadingTile = 32;
+// The tile shader's tiles: pixels on a side.
+constexpr std::size_t kShadingTile = soltex::render::LitTile::kSide;
 
 // The covered pixels of one object in a warm G-buffer: what the texturing pass reads.
 struct TexturedPixels {

@@ -65,25 +65,31 @@ using tile_kernels_detail::kAttributeFloats;
 using tile_kernels_detail::kAttributeSlots;
 using tile_kernels_detail::kFarDepth;
 
-// A row of draw_unclipped_target() whose pixels are all inside the triangle: the depth tests
-// alone, in float lanes as wide as the target has (no 64-bit edge lanes to keep pace with).
-// Returns how many passed.
-HWY_INLINE uint64_t draw_inside_row(const ScreenTriangle* self, int first_x, int count, float x0,
-                                    float depth_y, float* __restrict depth_row,
-                                    const ScreenTriangle** __restrict winner_row) {
+// One row of draw_unclipped_target(), pixels first_x + k for k < count: inside(k) is the
+// pixel's edge test, and the depth, far-plane and winner updates follow it. Called with a
+// constant test for a row wholly inside, so that loop keeps only float lanes, as wide as the
+// target has, with no 64-bit edge lanes to keep pace with.
+template <class Inside>
+HWY_INLINE void draw_row(const ScreenTriangle* self, int first_x, int count, float x0,
+                         float depth_y, float* __restrict depth_row,
+                         const ScreenTriangle** __restrict winner_row, const Inside& inside,
+                         uint64_t& rasterized, uint64_t& depth_passed) {
   const float at_vertex0 = self->depth.at_vertex0;
   const float per_x = self->depth.per_x;
-  uint64_t depth_passed = 0;
+  uint64_t row_rasterized = 0, row_passed = 0;
   for (int k = 0; k < count; ++k) {
+    const bool in = inside(k);
     const float dx = static_cast<float>(first_x + k) + 0.5f - x0;
     const float depth = (at_vertex0 + per_x * dx) + depth_y;
     const float old_depth = depth_row[k];
-    const bool pass = (depth < old_depth) & !(depth > kFarDepth);
-    depth_passed += pass ? 1 : 0;
+    const bool pass = in & (depth < old_depth) & !(depth > kFarDepth);
+    row_rasterized += in ? 1 : 0;
+    row_passed += pass ? 1 : 0;
     depth_row[k] = pass ? depth : old_depth;
     winner_row[k] = pass ? self : winner_row[k];
   }
-  return depth_passed;
+  rasterized += row_rasterized;
+  depth_passed += row_passed;
 }
 
 void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float* depth_plane,
@@ -97,8 +103,6 @@ void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float*
   const std::array<int64_t, 3>& step_y = span.step_y;
   const float x0 = t.x0_pixels();
   const float y0 = t.y0_pixels();
-  const float at_vertex0 = t.depth.at_vertex0;
-  const float per_x = t.depth.per_x;
   const float per_y = t.depth.per_y;
   const ScreenTriangle* const self = &t;
   const int count = last_x - first_x + 1;
@@ -121,22 +125,17 @@ void draw_unclipped_target(const ScreenTriangle& t, const SpanDraw& span, float*
     const int64_t f0 = r0 + s0 * last, f1 = r1 + s1 * last, f2 = r2 + s2 * last;
     if (std::max(r0, f0) < 0 || std::max(r1, f1) < 0 || std::max(r2, f2) < 0) continue;
     if (std::min({r0, f0, r1, f1, r2, f2}) >= 0) {
-      rasterized += static_cast<uint64_t>(count);
-      depth_passed += draw_inside_row(self, first_x, count, x0, depth_y, depth_row, winner_row);
+      draw_row(
+          self, first_x, count, x0, depth_y, depth_row, winner_row, [](int) { return true; },
+          rasterized, depth_passed);
       continue;
     }
-    for (int k = 0; k < count; ++k) {
+    const auto edges_inside = [&](int k) {
       const int64_t e0 = r0 + s0 * k, e1 = r1 + s1 * k, e2 = r2 + s2 * k;
-      const bool inside = (e0 | e1 | e2) >= 0;
-      const float dx = static_cast<float>(first_x + k) + 0.5f - x0;
-      const float depth = (at_vertex0 + per_x * dx) + depth_y;
-      const float old_depth = depth_row[k];
-      const bool pass = inside & (depth < old_depth) & !(depth > kFarDepth);
-      rasterized += inside ? 1 : 0;
-      depth_passed += pass ? 1 : 0;
-      depth_row[k] = pass ? depth : old_depth;
-      winner_row[k] = pass ? self : winner_row[k];
-    }
+      return (e0 | e1 | e2) >= 0;
+    };
+    draw_row(self, first_x, count, x0, depth_y, depth_row, winner_row, edges_inside, rasterized,
+             depth_passed);
   }
   stats.fragments_rasterized += rasterized;
   stats.fragments_depth_passed += depth_passed;
