@@ -7,6 +7,7 @@
 #include <condition_variable>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -103,19 +104,21 @@ ServerSetup set_up_server(const LoadOptions& options) {
   return setup;
 }
 
-}  // namespace
-
-LoadResult run_load(LoadOptions options, const ProgressCallback& progress) {
-  resolve(options);
+std::vector<RecordedRequest> read_replay(const LoadOptions& options) {
+  if (options.mix != MixKind::replay) return {};
   std::vector<RecordedRequest> replay;
-  if (options.mix == MixKind::replay) {
-    try {
-      replay = read_request_log_file(options.replay_file);
-    } catch (const RequestLogError& e) {
-      throw LoadSetupError(e.what());
-    }
-    if (replay.empty()) throw LoadSetupError(options.replay_file + ": no requests to replay");
+  try {
+    replay = read_request_log_file(options.replay_file);
+  } catch (const RequestLogError& e) {
+    throw LoadSetupError(e.what());
   }
+  if (replay.empty()) throw LoadSetupError(options.replay_file + ": no requests to replay");
+  return replay;
+}
+
+// Open loop: a fixed rate, or the recorded times of a replay; closed loop: none.
+std::optional<OpenLoopSchedule> open_loop_schedule(const LoadOptions& options,
+                                                   const std::vector<RecordedRequest>& replay) {
   std::optional<OpenLoopSchedule> schedule;
   try {
     if (options.rate) schedule = OpenLoopSchedule::fixed_rate(*options.rate);
@@ -125,18 +128,10 @@ LoadResult run_load(LoadOptions options, const ProgressCallback& progress) {
   } catch (const std::invalid_argument& e) {
     throw LoadSetupError(options.replay_file + ": " + e.what());
   }
+  return schedule;
+}
 
-  const ServerSetup server = set_up_server(options);
-  const TextureShape& shape = server.shape;
-
-  MixSettings mix;
-  mix.kind = options.mix;
-  mix.hot_set = options.hot_set;
-  mix.replay = replay;
-  mix.invalid_fraction = options.invalid_fraction;
-  mix.seed = options.seed;
-  std::vector<std::unique_ptr<RequestMix>> mixes = make_request_mixes(mix, shape, options.streams);
-
+LoadStream::Settings stream_settings(const LoadOptions& options, const ServerSetup& server) {
   LoadStream::Settings settings;
   settings.in_flight = options.open_loop() ? 0 : options.in_flight;
   // 0: a server that states no limit; the server's own default then.
@@ -148,137 +143,208 @@ LoadResult run_load(LoadOptions options, const ProgressCallback& progress) {
   settings.security = &options.security;
   // Every stream carries its texture, so a balancer may send it to any replica.
   settings.texture = server.registration;
+  return settings;
+}
 
-  // ---- Run ---------------------------------------------------------------------------------
-  Signal signal;
-  const Clock::time_point start = Clock::now();
-  const Clock::time_point measure_from = start + seconds(options.warmup_seconds);
-  const Clock::time_point stop_at =
-      measure_from + seconds(options.duration_seconds.value_or(LoadBounds::kMaxSeconds));
-  LoadRecorder recorder(measure_from);
-  RequestBudget budget(options.count);
+// One load run against a set-up server: its streams, the open-loop scheduler if any, the
+// progress lines, and the drain at the end.
+class LoadRun {
+ public:
+  LoadRun(const LoadOptions& options, const ProgressCallback& progress)
+      : options_(options),
+        progress_(progress),
+        start_(Clock::now()),
+        measure_from_(start_ + seconds(options.warmup_seconds)),
+        stop_at_(measure_from_ +
+                 seconds(options.duration_seconds.value_or(LoadBounds::kMaxSeconds))),
+        recorder_(measure_from_),
+        budget_(options.count),
+        next_tick_(start_ + kProgressInterval),
+        last_tick_(start_) {}
 
-  std::vector<std::unique_ptr<LoadStream>> streams;
-  for (int s = 0; s < options.streams; ++s) {
-    streams.push_back(std::make_unique<LoadStream>(
-        *server.stream_stubs[static_cast<std::size_t>(s % options.connections)], settings,
-        std::move(mixes[static_cast<std::size_t>(s)]), recorder, budget, [&signal] {
-          std::lock_guard lock(signal.mutex);
-          ++signal.streams_done;
-          signal.changed.notify_all();
-        }));
-  }
-  for (auto& stream : streams) stream->start();
+  LoadRun(const LoadRun&) = delete;
+  LoadRun& operator=(const LoadRun&) = delete;
 
-  std::thread scheduler;
-  std::atomic<bool> stop_scheduler{false};
-  bool schedule_ran_out = false;  // written by the scheduler, read after joining it
-  Clock::duration max_send_lag{0};
-  if (schedule) {
-    // Request i goes to stream i mod S at its intended time; when the sender falls behind it
-    // sends at once, and the latency still counts from the intended time.
-    scheduler = std::thread([&] {
-      for (uint64_t i = 0;; ++i) {
-        const Clock::time_point intended = start + seconds(schedule->seconds(i));
-        if (intended >= stop_at) {
-          schedule_ran_out = true;
-          break;
-        }
-        // A plain sleep, not a condition variable: at tens of thousands of requests per
-        // second the futex traffic of a timed wait per request cost more than the sends.
-        // Sliced, so that a stop is seen within kStopCheck.
-        for (Clock::time_point now = Clock::now();
-             now < intended && !stop_scheduler.load(std::memory_order_relaxed);
-             now = Clock::now()) {
-          std::this_thread::sleep_until(std::min(intended, now + kStopCheck));
-        }
-        if (stop_scheduler.load(std::memory_order_relaxed)) break;
-        max_send_lag = std::max(max_send_lag, Clock::now() - intended);
-        LoadStream& stream = *streams[i % streams.size()];
-        if (!stream.issue(intended) && budget.exhausted()) break;
-      }
-      std::lock_guard lock(signal.mutex);
-      signal.scheduler_done = true;
-      signal.changed.notify_all();
-    });
+  ~LoadRun() {
+    stop_scheduler_ = true;
+    if (scheduler_.joinable()) scheduler_.join();
   }
 
-  Clock::time_point next_tick = start + kProgressInterval;
-  uint64_t last_bricks = 0;
-  Clock::time_point last_tick = start;
-  bool draining = false;
-  const auto report_progress = [&](Clock::time_point now) {
-    if (!progress) return;
-    const LoadRecorder::Progress p = recorder.progress();
-    ProgressLine line;
-    line.elapsed_seconds = std::chrono::duration<double>(now - start).count();
-    line.warmup = now < measure_from;
-    line.draining = draining;
-    line.bricks = p.bricks;
-    line.errors = p.errors;
-    const double interval = std::chrono::duration<double>(now - last_tick).count();
-    line.bricks_per_second =
-        interval > 0.0 ? static_cast<double>(p.bricks - last_bricks) / interval : 0.0;
-    last_bricks = p.bricks;
-    last_tick = now;
-    progress(line);
-  };
-  // Waits until `until`, printing progress on the way; true when `finished` came true.
-  const auto wait = [&](Clock::time_point until, const auto& finished) {
+  // One stream per mix.
+  LoadResult run(const ServerSetup& server, std::vector<std::unique_ptr<RequestMix>> mixes,
+                 std::optional<OpenLoopSchedule> schedule);
+
+ private:
+  void start_streams(const ServerSetup& server, std::vector<std::unique_ptr<RequestMix>> mixes);
+  void run_schedule(const OpenLoopSchedule& schedule);
+  Clock::time_point load_until_stop();
+  void drain();
+  void report_progress(Clock::time_point now);
+  bool all_done() const { return signal_.streams_done == static_cast<int>(streams_.size()); }
+
+  // Waits until `until`, printing progress on the way; true when `finished` came true
+  // (called with signal_.mutex held).
+  template <typename Finished>
+  bool wait(Clock::time_point until, const Finished& finished) {
     for (;;) {
       {
-        std::unique_lock lock(signal.mutex);
-        signal.changed.wait_until(lock, std::min(until, next_tick), [&] { return finished(); });
+        std::unique_lock lock(signal_.mutex);
+        signal_.changed.wait_until(lock, std::min(until, next_tick_), [&] { return finished(); });
         if (finished()) return true;
       }
       const Clock::time_point now = Clock::now();
-      if (now >= next_tick) {
+      if (now >= next_tick_) {
         report_progress(now);
-        next_tick += kProgressInterval;
+        next_tick_ += kProgressInterval;
       }
       if (now >= until) return false;
     }
-  };
-  const auto all_done = [&] { return signal.streams_done == static_cast<int>(streams.size()); };
-
-  // Load until the stop time, the count is spent (closed-loop streams close themselves; the
-  // open-loop scheduler ends) or every stream has ended.
-  wait(stop_at, [&] { return all_done() || signal.scheduler_done; });
-  stop_scheduler = true;
-  if (scheduler.joinable()) scheduler.join();
-  // The measured window: a count run ends with its last answer; a schedule that ran out
-  // offered load until the stop time; otherwise (the stop time, or every stream ended) now.
-  Clock::time_point window_end = measure_from;
-  if (!budget.exhausted()) {
-    window_end = schedule_ran_out ? stop_at : std::min(stop_at, Clock::now());
   }
 
-  // Drain: what was issued is still sent and answered, up to the drain timeout.
-  draining = true;
-  for (auto& stream : streams) stream->close();
-  if (!wait(Clock::now() + seconds(options.drain_timeout_seconds), all_done)) {
-    for (auto& stream : streams) {
-      if (!stream->done()) stream->cancel();
-    }
-    if (!wait(Clock::now() + kCancelGrace, all_done)) {
-      // A call that does not end after a cancel would be a gRPC fault; its stream object
-      // must outlive gRPC's reference to it, so it is left allocated rather than freed early.
-      for (auto& stream : streams) {
-        if (!stream->done()) (void)stream.release();
-      }
-    }
+  const LoadOptions& options_;
+  const ProgressCallback& progress_;
+  const Clock::time_point start_, measure_from_, stop_at_;
+  Signal signal_;
+  LoadRecorder recorder_;
+  RequestBudget budget_;
+  // After what they refer to (signal_, recorder_, budget_), so destroyed before them.
+  std::vector<std::unique_ptr<LoadStream>> streams_;
+  std::thread scheduler_;
+  std::atomic<bool> stop_scheduler_{false};
+  bool schedule_ran_out_ = false;  // written by the scheduler, read after joining it
+  Clock::duration max_send_lag_{0};
+  Clock::time_point next_tick_, last_tick_;
+  uint64_t last_bricks_ = 0;
+  bool draining_ = false;
+};
+
+LoadResult LoadRun::run(const ServerSetup& server, std::vector<std::unique_ptr<RequestMix>> mixes,
+                        std::optional<OpenLoopSchedule> schedule) {
+  start_streams(server, std::move(mixes));
+  if (schedule) {
+    scheduler_ = std::thread([this, s = std::move(*schedule)] { run_schedule(s); });
   }
+  const Clock::time_point window_end = load_until_stop();
+  drain();
   const Clock::time_point end = Clock::now();
 
   LoadResult result;
-  result.options = options;
+  result.options = options_;
   result.texture_id = server.handle.id();
-  result.texture_levels = shape.level_count;
+  result.texture_levels = server.shape.level_count;
   result.server_workers = static_cast<int>(server.info.worker_threads());
-  result.elapsed_seconds = std::chrono::duration<double>(std::max(end, window_end) - start).count();
-  result.max_send_lag_seconds = std::chrono::duration<double>(max_send_lag).count();
-  recorder.fill(result, window_end);
+  result.elapsed_seconds =
+      std::chrono::duration<double>(std::max(end, window_end) - start_).count();
+  result.max_send_lag_seconds = std::chrono::duration<double>(max_send_lag_).count();
+  recorder_.fill(result, window_end);
   return result;
+}
+
+void LoadRun::start_streams(const ServerSetup& server,
+                            std::vector<std::unique_ptr<RequestMix>> mixes) {
+  const LoadStream::Settings settings = stream_settings(options_, server);
+  for (std::size_t i = 0; i < mixes.size(); ++i) {
+    BrickStreamStub& stub = *server.stream_stubs[i % server.stream_stubs.size()];
+    streams_.push_back(std::make_unique<LoadStream>(stub, settings, std::move(mixes[i]), recorder_,
+                                                    budget_, [this] {
+                                                      std::lock_guard lock(signal_.mutex);
+                                                      ++signal_.streams_done;
+                                                      signal_.changed.notify_all();
+                                                    }));
+  }
+  for (auto& stream : streams_) stream->start();
+}
+
+// Request i goes to stream i mod S at its intended time; when the sender falls behind it
+// sends at once, and the latency still counts from the intended time.
+void LoadRun::run_schedule(const OpenLoopSchedule& schedule) {
+  for (uint64_t i = 0;; ++i) {
+    const Clock::time_point intended = start_ + seconds(schedule.seconds(i));
+    if (intended >= stop_at_) {
+      schedule_ran_out_ = true;
+      break;
+    }
+    // A plain sleep, not a condition variable: at tens of thousands of requests per second
+    // the futex traffic of a timed wait per request cost more than the sends. Sliced, so that
+    // a stop is seen within kStopCheck.
+    for (Clock::time_point now = Clock::now();
+         now < intended && !stop_scheduler_.load(std::memory_order_relaxed); now = Clock::now()) {
+      std::this_thread::sleep_until(std::min(intended, now + kStopCheck));
+    }
+    if (stop_scheduler_.load(std::memory_order_relaxed)) break;
+    max_send_lag_ = std::max(max_send_lag_, Clock::now() - intended);
+    LoadStream& stream = *streams_[i % streams_.size()];
+    if (!stream.issue(intended) && budget_.exhausted()) break;
+  }
+  std::lock_guard lock(signal_.mutex);
+  signal_.scheduler_done = true;
+  signal_.changed.notify_all();
+}
+
+// Loads until the stop time, the count is spent (closed-loop streams close themselves; the
+// open-loop scheduler ends) or every stream has ended; returns the end of the measured window.
+Clock::time_point LoadRun::load_until_stop() {
+  wait(stop_at_, [&] { return all_done() || signal_.scheduler_done; });
+  stop_scheduler_ = true;
+  if (scheduler_.joinable()) scheduler_.join();
+  // A count run ends with its last answer; a schedule that ran out offered load until the
+  // stop time; otherwise (the stop time, or every stream ended) now.
+  if (budget_.exhausted()) return measure_from_;
+  return schedule_ran_out_ ? stop_at_ : std::min(stop_at_, Clock::now());
+}
+
+// What was issued is still sent and answered, up to the drain timeout.
+void LoadRun::drain() {
+  draining_ = true;
+  for (auto& stream : streams_) stream->close();
+  if (wait(Clock::now() + seconds(options_.drain_timeout_seconds), [&] { return all_done(); })) {
+    return;
+  }
+  for (auto& stream : streams_) {
+    if (!stream->done()) stream->cancel();
+  }
+  if (wait(Clock::now() + kCancelGrace, [&] { return all_done(); })) return;
+  // A call that does not end after a cancel would be a gRPC fault; its stream object must
+  // outlive gRPC's reference to it, so it is left allocated rather than freed early.
+  for (auto& stream : streams_) {
+    if (!stream->done()) (void)stream.release();
+  }
+}
+
+void LoadRun::report_progress(Clock::time_point now) {
+  if (!progress_) return;
+  const LoadRecorder::Progress p = recorder_.progress();
+  ProgressLine line;
+  line.elapsed_seconds = std::chrono::duration<double>(now - start_).count();
+  line.warmup = now < measure_from_;
+  line.draining = draining_;
+  line.bricks = p.bricks;
+  line.errors = p.errors;
+  const double interval = std::chrono::duration<double>(now - last_tick_).count();
+  line.bricks_per_second =
+      interval > 0.0 ? static_cast<double>(p.bricks - last_bricks_) / interval : 0.0;
+  last_bricks_ = p.bricks;
+  last_tick_ = now;
+  progress_(line);
+}
+
+}  // namespace
+
+LoadResult run_load(LoadOptions options, const ProgressCallback& progress) {
+  resolve(options);
+  const std::vector<RecordedRequest> replay = read_replay(options);
+  std::optional<OpenLoopSchedule> schedule = open_loop_schedule(options, replay);
+  const ServerSetup server = set_up_server(options);
+  MixSettings mix;
+  mix.kind = options.mix;
+  mix.hot_set = options.hot_set;
+  mix.replay = replay;
+  mix.invalid_fraction = options.invalid_fraction;
+  mix.seed = options.seed;
+  std::vector<std::unique_ptr<RequestMix>> mixes =
+      make_request_mixes(mix, server.shape, options.streams);
+  LoadRun run(options, progress);
+  return run.run(server, std::move(mixes), std::move(schedule));
 }
 
 }  // namespace soltex::load
