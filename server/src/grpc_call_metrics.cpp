@@ -1,9 +1,11 @@
 #include "grpc_call_metrics.h"
 
+#include <google/protobuf/descriptor.h>
 #include <grpcpp/grpcpp.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <string_view>
 
 namespace soltex::server {
 namespace {
@@ -97,6 +99,23 @@ class Factory final : public grpc::experimental::ServerInterceptorFactoryInterfa
   const std::vector<std::string> callback_services_;
 };
 
+// "/package.Service/Method" split at its last slash; an empty service when there is none.
+std::pair<std::string, std::string> split_method(const std::string& full_method) {
+  const std::size_t slash = full_method.rfind('/');
+  const std::size_t begin = full_method.starts_with('/') ? 1 : 0;
+  if (slash == std::string::npos || slash < begin) return {std::string(), full_method};
+  return {full_method.substr(begin, slash - begin), full_method.substr(slash + 1)};
+}
+
+// Whether the binary has the method's definition: its services' and reflection's are in the
+// protobuf pool; gRPC's health service is built without it, so its two are named here. Every
+// other name is a client's invention and would otherwise become series of its own.
+bool defined_method(const std::string& service, const std::string& method) {
+  if (service == "grpc.health.v1.Health") return method == "Check" || method == "Watch";
+  return google::protobuf::DescriptorPool::generated_pool()->FindMethodByName(service + "." +
+                                                                              method) != nullptr;
+}
+
 }  // namespace
 
 const char* grpc_code_name(int code) {
@@ -107,15 +126,22 @@ MethodCallCounters& GrpcCallMetrics::counters(const std::string& full_method,
                                               ServerRpcInfo::Type type) {
   std::lock_guard lock(mutex_);
   if (auto it = by_name_.find(full_method); it != by_name_.end()) return *it->second;
+  auto [service, method] = split_method(full_method);
+  if (!defined_method(service, method)) {
+    // One series for all of them, whatever the names: a client must not be able to grow the
+    // page (and the server's memory) by calling methods that do not exist.
+    if (unknown_ == nullptr) {
+      unknown_ = &methods_.emplace_back();
+      unknown_->type = type_label(type);
+      unknown_->service = kUnknownName;
+      unknown_->method = kUnknownName;
+    }
+    return *unknown_;
+  }
   MethodCallCounters& added = methods_.emplace_back();
   added.type = type_label(type);
-  // "/soltex.v1.BrickService/StreamBricks" -> service and method.
-  const std::size_t slash = full_method.rfind('/');
-  const std::size_t begin = full_method.starts_with('/') ? 1 : 0;
-  added.service = slash == std::string::npos || slash < begin
-                      ? std::string()
-                      : full_method.substr(begin, slash - begin);
-  added.method = slash == std::string::npos ? full_method : full_method.substr(slash + 1);
+  added.service = std::move(service);
+  added.method = std::move(method);
   by_name_.emplace(full_method, &added);
   return added;
 }

@@ -36,7 +36,8 @@ struct MethodCallCounters {
 // ran or its status was sent, which the handlers themselves never see.
 class GrpcCallMetrics {
  public:
-  // The counters of `full_method` ("/package.Service/Method"), created on first use. The
+  // The counters of `full_method` ("/package.Service/Method"), created on first use; a
+  // method the binary does not define shares one entry, service and method "unknown". The
   // reference stays valid for the life of this object.
   MethodCallCounters& counters(const std::string& full_method,
                                grpc::experimental::ServerRpcInfo::Type type);
@@ -60,7 +61,10 @@ class GrpcCallMetrics {
  private:
   mutable std::mutex mutex_;
   std::deque<MethodCallCounters> methods_;  // a deque: references stay valid as it grows
-  std::unordered_map<std::string, MethodCallCounters*> by_name_;
+  std::unordered_map<std::string, MethodCallCounters*> by_name_;  // defined methods only
+  MethodCallCounters* unknown_ = nullptr;  // every undefined method's calls, once one came
+
+  static constexpr const char* kUnknownName = "unknown";
 };
 
 // The canonical name of a gRPC status code ("RESOURCE_EXHAUSTED"), "UNKNOWN" past 16.

@@ -7,6 +7,7 @@
 #include <boost/beast/http.hpp>
 #include <memory>
 #include <stdexcept>
+#include <string_view>
 
 namespace soltex::server {
 namespace {
@@ -31,11 +32,16 @@ class Session : public std::enable_shared_from_this<Session> {
   void respond() {
     response_.version(request_.version());
     response_.keep_alive(false);
-    if (request_.method() != http::verb::get) {
+    const bool head = request_.method() == http::verb::head;
+    // The query is ignored: scrapers may add parameters (Prometheus' `params`).
+    const std::string_view target(request_.target().data(), request_.target().size());
+    const std::string_view path = target.substr(0, target.find('?'));
+    if (request_.method() != http::verb::get && !head) {
       response_.result(http::status::method_not_allowed);
+      response_.set(http::field::allow, "GET, HEAD");
       response_.set(http::field::content_type, "text/plain");
-      response_.body() = "only GET is supported\n";
-    } else if (request_.target() != "/metrics") {
+      response_.body() = "only GET and HEAD are supported\n";
+    } else if (path != "/metrics") {
       response_.result(http::status::not_found);
       response_.set(http::field::content_type, "text/plain");
       response_.body() = "not found: try GET /metrics\n";
@@ -43,6 +49,7 @@ class Session : public std::enable_shared_from_this<Session> {
       render_page();
     }
     response_.prepare_payload();
+    if (head) response_.body().clear();  // the length stays the page's
     http::async_write(socket_, response_,
                       [self = shared_from_this()](beast::error_code, std::size_t) {
                         beast::error_code ignored;

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "brick_test_client.h"
+#include "http_test_client.h"
 #include "soltexd_process.h"
 
 namespace soltex {
@@ -186,6 +187,55 @@ TEST(MetricsPage, ParsesAfterRealTrafficAndCountsWhatWasRefused) {
   if (run("command -v promtool", output) == 0) {
     EXPECT_EQ(run("promtool check metrics < " + file, output), 0) << output;
   }
+}
+
+TEST(MetricsPage, MethodsThatDoNotExistShareOneSeries) {
+  SoltexdProcess server({"--threads", "1"});
+  // Names a client made up, one of them in soltex's own service: each is UNIMPLEMENTED, and
+  // none may add series of its own (the page and the server's memory would grow per name).
+  const std::vector<std::string> invented = {"/made.Up/Method0", "/made.Up/Method1",
+                                             "/soltex.v1.BrickService/NoSuchMethod", "/x"};
+  for (const std::string& method : invented) {
+    EXPECT_EQ(raw_unary_call(server, method, "", nullptr).error_code(),
+              grpc::StatusCode::UNIMPLEMENTED)
+        << method;
+  }
+  EXPECT_EQ(health_of(server, ""), 1);  // a defined method keeps its own series
+  const std::string unknown =
+      R"(grpc_type="bidi_stream",grpc_service="unknown",grpc_method="unknown")";
+  const std::string page = metrics_when(server, [&](const std::string& m) {
+    return metric_value(
+               m, "grpc_server_handled_total{" + unknown + R"(,grpc_code="UNIMPLEMENTED"})") == 4.0;
+  });
+  EXPECT_EQ(metric_value(page, "grpc_server_started_total{" + unknown + "}"), 4.0) << page;
+  EXPECT_EQ(
+      metric_value(page, "grpc_server_handled_total{" + unknown + R"(,grpc_code="UNIMPLEMENTED"})"),
+      4.0)
+      << page;
+  for (const char* name : {"made.Up", "Method0", "NoSuchMethod"}) {
+    EXPECT_EQ(page.find(name), std::string::npos) << name << "\n" << page;
+  }
+  EXPECT_EQ(metric_value(page, R"(grpc_server_started_total{grpc_type="unary",)"
+                               R"(grpc_service="grpc.health.v1.Health",grpc_method="Check"})"),
+            1.0)
+      << page;
+}
+
+TEST(MetricsPage, AnswersHeadAndIgnoresAScrapersQuery) {
+  SoltexdProcess server({"--threads", "1"});
+  const int port = server.metrics_port();
+  // Prometheus' `params` add a query; the page is the same.
+  const testing::HttpReply queried = testing::http_request(port, "GET", "/metrics?module=soltex");
+  EXPECT_EQ(queried.status, 200);
+  EXPECT_NE(queried.body.find("# TYPE soltex_build_info gauge"), std::string::npos);
+  const testing::HttpReply head = testing::http_request(port, "HEAD", "/metrics");
+  EXPECT_EQ(head.status, 200);
+  EXPECT_EQ(head.body, "");
+  EXPECT_GT(std::stoul(head.header("content-length")), 1000u);
+  const testing::HttpReply post = testing::http_request(port, "POST", "/metrics");
+  EXPECT_EQ(post.status, 405);
+  EXPECT_EQ(post.header("allow"), "GET, HEAD");
+  EXPECT_EQ(testing::http_request(port, "GET", "/metric").status, 404);
 }
 
 }  // namespace
