@@ -138,6 +138,10 @@ Daemon::Daemon(const ServerConfig& config)
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
+  (void)parse_host_port(config.listen);  // a clear error for a bad address (port over 65535)
+  // Otherwise gRPC sets SO_REUSEPORT, and a second soltexd given a port in use would share it
+  // with the first, each taking some of the new connections, instead of failing to start.
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.AddListeningPort(
       config.listen, tls_ ? tls_->credentials() : grpc::InsecureServerCredentials(), &grpc_port_);
   builder.RegisterService(service_.get());

@@ -27,12 +27,22 @@ void write_ready_file(const std::string& path, int grpc_port, int metrics_port, 
   std::filesystem::rename(temporary, path);
 }
 
+// `address` (HOST:PORT) with the port the daemon bound, which port 0 leaves to the system.
+std::string bound_address(const std::string& address, int port) {
+  const std::string host = soltex::server::parse_host_port(address).host;
+  return (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" +
+         std::to_string(port);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   ServerConfig config;
   CLI::App app{"soltexd: procedural solid-texture brick server (gRPC)"};
   app.set_config("--config", "", "read options from a TOML or INI file");
+  // A key soltexd does not know (a misspelt option, a section) is an error, as on the command
+  // line, not a setting silently left at its default.
+  app.allow_config_extras(CLI::config_extras_mode::error);
   soltex::cli::add_common_options(app, "soltexd", config.log_level);
   soltex::server::add_soltexd_options(app, config);
 
@@ -61,9 +71,9 @@ int main(int argc, char** argv) {
     spdlog::critical("{}", e.what());
     return soltex::cli::kExitFailure;
   }
-  spdlog::info("soltexd {} listening on {} (gRPC port {}), metrics on http://{}/metrics (port {})",
-               SOLTEX_VERSION, config.listen, daemon->grpc_port(), config.metrics_listen,
-               daemon->metrics_port());
+  spdlog::info("soltexd {} listening on {} (gRPC port {}), metrics on http://{}/metrics",
+               SOLTEX_VERSION, config.listen, daemon->grpc_port(),
+               bound_address(config.metrics_listen, daemon->metrics_port()));
   if (daemon->http_port() != 0) {
     spdlog::info("HTTP bricks on {} (port {})", config.http_listen, daemon->http_port());
   }

@@ -4,12 +4,30 @@ namespace soltex::server {
 
 namespace {
 
+// HOST:PORT as the daemon reads it (parse_host_port()), refused at parse time with its
+// message; `allow_empty`: an endpoint that an empty address turns off.
+CLI::Validator host_port(bool allow_empty) {
+  return CLI::Validator(
+      [allow_empty](std::string& text) -> std::string {
+        if (allow_empty && text.empty()) return {};
+        try {
+          (void)parse_host_port(text);
+          return {};
+        } catch (const std::invalid_argument& e) {
+          return e.what();
+        }
+      },
+      "HOST:PORT");
+}
+
 // Where soltexd listens and how it makes, caches and sends bricks.
 void add_serving_options(CLI::App& app, ServerConfig& config) {
   app.add_option("--listen", config.listen, "gRPC address HOST:PORT (port 0: any free port)")
+      ->check(host_port(false))
       ->capture_default_str();
   app.add_option("--metrics-listen", config.metrics_listen,
                  "Prometheus metrics address HOST:PORT, served at GET /metrics")
+      ->check(host_port(false))
       ->capture_default_str();
   app.add_option("--cache-mb", config.cache_mb, "encoded-brick cache budget in MiB")
       ->check(CLI::Range(1, 1 << 20))
@@ -58,7 +76,8 @@ void add_serving_options(CLI::App& app, ServerConfig& config) {
 void add_http_options(CLI::App& app, ServerConfig& config) {
   auto* web = app.add_option_group("http", "bricks over HTTP/1.1 (docs/PROTOCOL.md, HTTP)");
   web->add_option("--http-listen", config.http_listen,
-                  "HTTP brick address HOST:PORT (port 0: any free port); empty: off");
+                  "HTTP brick address HOST:PORT (port 0: any free port); empty: off")
+      ->check(host_port(true));
   web->add_option("--http-max-connections", config.http_max_connections,
                   "open HTTP connections; one more is answered 503 and closed")
       ->check(CLI::Range(1u, 1u << 20))

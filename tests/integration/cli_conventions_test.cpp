@@ -21,7 +21,7 @@
 
 #if !defined(SOLTEXD_BINARY) || !defined(SOLTEX_VIEW_BINARY) || !defined(SOLTEX_LOAD_BINARY) || \
     !defined(SOLTEX_BENCH_BINARY) || !defined(SOLTEX_GALLERY_BINARY) ||                         \
-    !defined(SOLTEX_EXPECTED_VERSION)
+    !defined(SOLTEX_EXPECTED_VERSION) || !defined(SOLTEX_EXAMPLE_CONFIG)
 #error "the five tools' paths and the project version must be defined"
 #endif
 
@@ -264,6 +264,69 @@ TEST_F(SoltexdCli, AValueFromTheEnvironmentIsValidatedLikeTheOption) {
   const ToolRun r = run_tool(SOLTEXD_BINARY, {}, {{"SOLTEX_CACHE_MB", "0"}});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--cache-mb"), std::string::npos) << r.err;
+}
+
+TEST_F(SoltexdCli, AnAddressOutsideHostPortExits2NamingTheBound) {
+  for (const std::string option : {"--listen", "--metrics-listen", "--http-listen"}) {
+    for (const std::string address : {"127.0.0.1:70000", "127.0.0.1", "127.0.0.1:-1"}) {
+      const ToolRun r = run_tool(SOLTEXD_BINARY, {option, address});
+      EXPECT_EQ(r.exit_code, 2) << option << " " << address << ": " << r.err;
+      EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
+      EXPECT_TRUE(r.err.find("[0, 65535]") != std::string::npos ||
+                  r.err.find("must be HOST:PORT") != std::string::npos)
+          << option << " " << address << ": " << r.err;
+    }
+  }
+}
+
+TEST_F(SoltexdCli, AConfigFileKeyItDoesNotKnowExits2) {
+  // A misspelt key, a section, and a file in another format: none may be skipped silently.
+  for (const std::string text :
+       {"cach-mb = 1\n", "[server]\ncache-mb = 1\n", "{\"cache-mb\": 1}\n"}) {
+    const std::filesystem::path file = directory_ / "soltexd.toml";
+    std::ofstream(file) << text;
+    const ToolRun r = run_tool(SOLTEXD_BINARY, {"--config", file.string()});
+    EXPECT_EQ(r.exit_code, 2) << text << r.err;
+  }
+  // The same file with the key spelt right is read.
+  const std::filesystem::path file = directory_ / "soltexd.toml";
+  std::ofstream(file) << "cache-mb = 0\n";
+  const ToolRun r = run_tool(SOLTEXD_BINARY, {"--config", file.string()});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--cache-mb"), std::string::npos) << r.err;
+}
+
+TEST_F(SoltexdCli, TheExampleConfigFileIsReadWhole) {
+  const std::filesystem::path ready = directory_ / "ready";
+  ToolProcess soltexd(SOLTEXD_BINARY,
+                      {"--config", SOLTEX_EXAMPLE_CONFIG, "--listen", "127.0.0.1:0",
+                       "--metrics-listen", "127.0.0.1:0", "--ready-file", ready.string()},
+                      {}, directory_);
+  ASSERT_TRUE(wait_for_file(ready)) << "soltexd refused deploy/config/soltexd.toml";
+  soltexd.signal(SIGTERM);
+  const ToolRun r = soltexd.finish();
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST_F(SoltexdCli, APortAnotherSoltexdHoldsIsRefused) {
+  const std::filesystem::path ready = directory_ / "ready";
+  const std::filesystem::path first_output = directory_ / "first";  // the second's is directory_
+  std::filesystem::create_directories(first_output);
+  ToolProcess first(SOLTEXD_BINARY,
+                    {"--listen", "127.0.0.1:0", "--metrics-listen", "127.0.0.1:0", "--ready-file",
+                     ready.string(), "--shutdown-grace-s", "0"},
+                    {}, first_output);
+  ASSERT_TRUE(wait_for_file(ready));
+  const std::string text = file_text(ready);
+  const std::string grpc_port = text.substr(5, text.find('\n') - 5);  // "grpc=PORT\n..."
+  // Sharing the port (SO_REUSEPORT) would split new connections between the two servers.
+  const ToolRun second = run_tool(
+      SOLTEXD_BINARY, {"--listen", "127.0.0.1:" + grpc_port, "--metrics-listen", "127.0.0.1:0"});
+  EXPECT_EQ(second.exit_code, 1) << second.err;
+  EXPECT_NE(second.err.find("cannot listen for gRPC on 127.0.0.1:" + grpc_port), std::string::npos)
+      << second.err;
+  first.signal(SIGTERM);
+  EXPECT_EQ(first.finish().exit_code, 0);
 }
 
 using ViewCliConventions = ToolTest;
