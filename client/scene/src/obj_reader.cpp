@@ -108,31 +108,65 @@ void read_face(std::string_view rest, std::size_t line_number, const std::string
   out.face_lines.push_back(line_number);
 }
 
+// The next line of `text`, advancing past it: lines end in "\n", "\r\n" or a lone "\r".
+std::string_view next_line(std::string_view& text) {
+  const std::size_t end = text.find_first_of("\r\n");
+  const std::string_view line = text.substr(0, end);
+  std::size_t consumed = end == std::string_view::npos ? text.size() : end + 1;
+  if (end != std::string_view::npos && text[end] == '\r' && end + 1 < text.size() &&
+      text[end + 1] == '\n') {
+    ++consumed;
+  }
+  text.remove_prefix(consumed);
+  return line;
+}
+
+// What a line states: without its comment ('#' to the end) and the blanks around the rest.
+std::string_view statement_of(std::string_view line) {
+  line = line.substr(0, line.find('#'));
+  while (!line.empty() && is_blank(line.front())) line.remove_prefix(1);
+  while (!line.empty() && is_blank(line.back())) line.remove_suffix(1);
+  return line;
+}
+
+void read_statement(std::string_view statement, std::size_t line_number, const std::string& name,
+                    ObjText& out) {
+  std::string_view rest = statement;
+  const std::string_view keyword = next_token(rest);
+  // A "v" with too few numbers is still a vertex: later indices keep counting it, and a face
+  // that uses it is refused.
+  if (keyword == "v") {
+    read_vertex(statement, rest, line_number, out);
+  } else if (keyword == "f") {
+    read_face(rest, line_number, name, out);
+  }
+}
+
 }  // namespace
 
 ObjText read_obj_text(std::string_view text, const std::string& name_for_errors) {
   ObjText out;
+  // A byte-order mark, which some Windows tools write: the first statement starts after it.
+  constexpr std::string_view kUtf8Bom = "\xEF\xBB\xBF";
+  if (text.starts_with(kUtf8Bom)) text.remove_prefix(kUtf8Bom.size());
   std::size_t line_number = 0;
+  std::string joined;  // a statement continued over lines, each but the last ending in '\\'
   while (!text.empty()) {
-    // Lines end in "\n", "\r\n" or a lone "\r".
-    const std::size_t end = text.find_first_of("\r\n");
-    std::string_view line = text.substr(0, end);
-    std::size_t consumed = end == std::string_view::npos ? text.size() : end + 1;
-    if (end != std::string_view::npos && text[end] == '\r' && end + 1 < text.size() &&
-        text[end + 1] == '\n') {
-      ++consumed;
+    std::string_view statement = statement_of(next_line(text));
+    const std::size_t first_line = ++line_number;
+    if (statement.ends_with('\\')) {
+      joined.assign(statement.substr(0, statement.size() - 1));
+      bool continued = true;
+      while (continued && !text.empty()) {
+        std::string_view more = statement_of(next_line(text));
+        ++line_number;
+        continued = more.ends_with('\\');
+        if (continued) more.remove_suffix(1);
+        joined.append(" ").append(more);
+      }
+      statement = statement_of(joined);
     }
-    text.remove_prefix(consumed);
-    ++line_number;
-
-    while (!line.empty() && is_blank(line.front())) line.remove_prefix(1);
-    while (!line.empty() && is_blank(line.back())) line.remove_suffix(1);
-    if (line.size() < 2 || !is_blank(line[1])) continue;  // not "v ..." or "f ..."
-    if (line[0] == 'v') {
-      read_vertex(line, line.substr(2), line_number, out);
-    } else if (line[0] == 'f') {
-      read_face(line.substr(2), line_number, name_for_errors, out);
-    }
+    read_statement(statement, first_line, name_for_errors, out);
   }
   return out;
 }

@@ -181,6 +181,29 @@ class EarClipper {
   std::vector<std::vector<uint32_t>> grid_;
 };
 
+// The polygon's vertices relative to its first, scaled by a power of two (exact, whatever the
+// size) that brings the largest coordinate near 1: the cross products of the ear test then
+// neither overflow at 1e300 nor underflow at 1e-300.
+std::vector<glm::dvec3> scaled_from_first(std::span<const glm::dvec3> positions,
+                                          std::span<const uint32_t> polygon) {
+  double largest = 0.0;
+  for (uint32_t i : polygon) {
+    const glm::dvec3 a = glm::abs(positions[i]);
+    largest = std::max({largest, a.x, a.y, a.z});
+  }
+  const int exponent = largest > 0.0 && std::isfinite(largest) ? std::ilogb(largest) : 0;
+  const glm::dvec3 origin = positions[polygon[0]];
+  std::vector<glm::dvec3> scaled(polygon.size());
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    // Each scaled first: the difference of two values near DBL_MAX overflows.
+    const glm::dvec3 p = positions[polygon[k]];
+    for (int axis = 0; axis < 3; ++axis) {
+      scaled[k][axis] = std::ldexp(p[axis], -exponent) - std::ldexp(origin[axis], -exponent);
+    }
+  }
+  return scaled;
+}
+
 }  // namespace
 
 void triangulate_polygon(std::span<const glm::dvec3> positions, std::span<const uint32_t> polygon,
@@ -190,12 +213,12 @@ void triangulate_polygon(std::span<const glm::dvec3> positions, std::span<const 
   if (n == 3) return fan(polygon, triangles);
 
   // Relative to the first vertex, so a polygon far from the origin is as exact as one near it.
-  const glm::dvec3 origin = positions[polygon[0]];
+  const std::vector<glm::dvec3> relative = scaled_from_first(positions, polygon);
   // Newell's normal: robust for non-planar and non-convex polygons.
   glm::dvec3 normal(0.0);
   for (std::size_t i = 0; i < n; ++i) {
-    const glm::dvec3 a = positions[polygon[i]] - origin;
-    const glm::dvec3 b = positions[polygon[(i + 1) % n]] - origin;
+    const glm::dvec3& a = relative[i];
+    const glm::dvec3& b = relative[(i + 1) % n];
     normal +=
         glm::dvec3((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
   }
@@ -206,19 +229,18 @@ void triangulate_polygon(std::span<const glm::dvec3> positions, std::span<const 
   } else if (std::abs(normal.y) >= std::abs(normal.z)) {
     drop = 1;
   }
-  if (!(normal[drop] != 0.0)) return fan(polygon, triangles);  // no area (or not finite)
+  if (!(normal[drop] != 0.0) || !std::isfinite(normal[drop])) {
+    return fan(polygon, triangles);  // no area, or not finite
+  }
   int u = (drop + 1) % 3, v = (drop + 2) % 3;
   if (normal[drop] < 0.0) std::swap(u, v);
 
   std::vector<glm::dvec2> points(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const glm::dvec3 p = positions[polygon[i]] - origin;
-    points[i] = {p[u], p[v]};
-  }
+  for (std::size_t i = 0; i < n; ++i) points[i] = {relative[i][u], relative[i][v]};
   std::vector<uint32_t> local;
   EarClipper clipper(std::move(points));
   const std::vector<uint32_t> rest = clipper.clip(local);
-  triangles.reserve(triangles.size() + local.size() + 3 * rest.size());
+  // No reserve here: an exact one per polygon would copy the whole array for every quad.
   for (uint32_t i : local) triangles.push_back(polygon[i]);
   if (!rest.empty()) {
     std::vector<uint32_t> rest_indices;

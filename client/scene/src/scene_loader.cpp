@@ -418,7 +418,20 @@ void check_volume(const SceneObject& object, std::size_t index, const std::strin
   try {
     (void)texture_volume(object, object.material.volume.finest_level_log2.value_or(8));
   } catch (const SpecError& e) {
-    throw SceneError::from_spec_error(file, field, e);
+    const bool made_around_object =
+        !object.material.volume.box &&
+        (e.field().starts_with("volume.min") || e.field().starts_with("volume.max"));
+    if (!made_around_object) throw SceneError::from_spec_error(file, field, e);
+    // The scene has no volume to name: the object's extent is what broke the bound.
+    const BoundingBox bounds = texture_space_bounds(object);
+    const bool world = object.material.space == TextureSpace::world;
+    throw SceneError(file, field,
+                     "spans " + format_box(glm::dvec3(bounds.min), glm::dvec3(bounds.max)) +
+                         " in " + (world ? "world" : "object") +
+                         " space, so the texture volume made around it has " + e.field() + " = " +
+                         e.value() + ", which " + e.bound() +
+                         ": scale the object down, set its OBJ mesh's \"normalize\", or give "
+                         "material.volume");
   }
   if (!explicit_volume_contains_object(object)) {
     const BoundingBox bounds = texture_space_bounds(object);

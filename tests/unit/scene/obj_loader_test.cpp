@@ -174,6 +174,42 @@ TEST(ParseObj, NormalizesToTheUnitBoxWhenAsked) {
   EXPECT_EQ(raw.mesh.bounds.min, glm::vec3(10.0f, 20.0f, 30.0f));
 }
 
+TEST(ParseObj, SkipsAByteOrderMarkAndCommentsWhereverTheyStart) {
+  const std::string plain = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nv 0 3 0\nf 1 2 3\nf 1 3 4\n";
+  const LoadedObj reference = parse_obj(plain, "square.obj");
+  ASSERT_EQ(reference.mesh.triangle_count(), 2u);
+  // A mark before the first vertex would otherwise hide it and shift every index after it.
+  const LoadedObj marked = parse_obj("\xEF\xBB\xBF" + plain, "bom.obj");
+  EXPECT_EQ(marked.mesh.positions, reference.mesh.positions);
+  EXPECT_EQ(marked.mesh.indices, reference.mesh.indices);
+  const LoadedObj commented = parse_obj(
+      "v -1 -1 0 # corner\nv 1 -1 0#no blank\nv 1 1 0\nv -1 1 0\nv 0 3 0\n"
+      "f 1 2 3 # first\nf 1 3 4\t#second\n# f 1 2 5\n",
+      "commented.obj");
+  EXPECT_EQ(commented.mesh.positions, reference.mesh.positions);
+  EXPECT_EQ(commented.mesh.indices, reference.mesh.indices);
+}
+
+TEST(ParseObj, JoinsLinesEndingInABackslash) {
+  const LoadedObj reference =
+      parse_obj("v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n", "square.obj");
+  const LoadedObj continued =
+      parse_obj("v -1 -1 \\\n 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 \\\n3 \\\r\n4\n", "cont.obj");
+  EXPECT_EQ(continued.mesh.positions, reference.mesh.positions);
+  EXPECT_EQ(continued.mesh.indices, reference.mesh.indices);
+}
+
+TEST(ParseObj, AVertexWithoutNumbersStillCountsInTheIndices) {
+  // Unused, it is ignored; faces after it still find vertices 2 to 5 where they were written.
+  const LoadedObj obj =
+      parse_obj("v\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 2 3 4\nf 2 4 5\n", "bare.obj");
+  EXPECT_EQ(obj.mesh.triangle_count(), 2u);
+  EXPECT_EQ(obj.mesh.bounds.min, glm::vec3(-1.0f, -1.0f, 0.0f));
+  EXPECT_EQ(obj.mesh.bounds.max, glm::vec3(1.0f, 1.0f, 0.0f));
+  // Used, the face is refused naming the vertex's line.
+  EXPECT_THAT(obj_error_of("v\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").what(), HasSubstr("line 1"));
+}
+
 TEST(ParseObjErrors, NameTheFileAndTheProblem) {
   const ObjError range = obj_error_of("v 0 0 0\nv 1 0 0\nf 1 2 3\n", "two.obj");
   EXPECT_EQ(range.file(), "two.obj");
@@ -392,6 +428,31 @@ TEST(ParseObjPolygons, LargestFaceLoadsAndOneMoreIsRefusedWithTheBound) {
   EXPECT_THAT(
       obj_error_of(text + "\n", "huge.obj").what(),
       AllOf(HasSubstr("huge.obj"), HasSubstr("line 4: face 1"), HasSubstr("more than 16384")));
+}
+
+// An L (a 2 x 2 square less its 1 x 1 top right), its reflex corner at (1, 1), every
+// coordinate times `scale`.
+std::string l_shape_obj(double scale) {
+  std::string text;
+  for (const auto& [x, y] : {std::pair{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}) {
+    char line[96];
+    std::snprintf(line, sizeof line, "v %.17g %.17g 0\n", x * scale, y * scale);
+    text += line;
+  }
+  return text + "f 1 2 3 4 5 6\n";
+}
+
+TEST(ParseObjPolygons, AConcavePolygonKeepsItsShapeAtAnyScale) {
+  // Near DBL_MAX the corners' differences overflow, and near 1e155 their cross products: the
+  // reflex corner must still be seen, or the notch would be filled.
+  const LoadedObj unit = parse_obj(l_shape_obj(1.0), "l.obj", {.normalize = true});
+  double area = 0.0;
+  for (std::size_t t = 0; t < unit.mesh.triangle_count(); ++t) area += triangle_area(unit.mesh, t);
+  for (const double scale : {1e-150, 1e155, 1e300, 8e307}) {
+    SCOPED_TRACE(scale);
+    const LoadedObj obj = parse_obj(l_shape_obj(scale), "l.obj", {.normalize = true});
+    expect_covers_exactly(obj, area, 6);
+  }
 }
 
 TEST(ParseObjPolygons, StraightAndDoubledBackCornersAddNoTriangles) {

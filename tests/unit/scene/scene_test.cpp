@@ -514,6 +514,22 @@ TEST_F(SceneFolder, ObjPathsAreRelativeToTheSceneFileAndShared) {
   EXPECT_EQ(0.5 * (volume.min + volume.max), glm::dvec3(12.0, 1.0, -9.5));
 }
 
+TEST_F(SceneFolder, AnObjectTooLargeForItsVolumeIsNamedNotAVolumeTheSceneLacks) {
+  write("models/huge.obj", "v -1e30 -1e30 0\nv 1e30 -1e30 0\nv 0 1e30 0\nf 1 2 3\n");
+  write("scene.json", R"({"objects": [
+      {"mesh": {"obj": {"path": "models/huge.obj", "normalize": false}},
+       "material": {"texture": {"wood": {}}}}]})");
+  try {
+    (void)load_scene(folder_ / "scene.json");
+    FAIL() << "expected a SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.field(), "objects[0]");
+    EXPECT_THAT(e.what(),
+                AllOf(HasSubstr("spans [-1"), HasSubstr("volume.min.x"),
+                      HasSubstr("[-1000000000000, 1000000000000]"), HasSubstr("normalize")));
+  }
+}
+
 TEST_F(SceneFolder, ObjErrorsNameTheSceneFieldAndTheObjFile) {
   write("models/bad.obj", "v 0 0 0\nf 1 2 3\n");
   write("scene.json", R"({"objects": [
