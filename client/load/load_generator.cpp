@@ -165,9 +165,12 @@ class LoadRun {
   LoadRun(const LoadRun&) = delete;
   LoadRun& operator=(const LoadRun&) = delete;
 
+  // Normally after run(); after an exception in it, the streams still open are cancelled
+  // first, so that no gRPC callback reaches a freed stream.
   ~LoadRun() {
     stop_scheduler_ = true;
     if (scheduler_.joinable()) scheduler_.join();
+    if (!drained_) abandon_streams();
   }
 
   // One stream per mix.
@@ -179,11 +182,12 @@ class LoadRun {
   void run_schedule(const OpenLoopSchedule& schedule);
   Clock::time_point load_until_stop();
   void drain();
+  void abandon_streams();
   void report_progress(Clock::time_point now);
   bool all_done() const { return signal_.streams_done == static_cast<int>(streams_.size()); }
 
-  // Waits until `until`, printing progress on the way; true when `finished` came true
-  // (called with signal_.mutex held).
+  // Waits until `until`, printing progress on the way; true when `finished` came true.
+  // `finished` runs with signal_.mutex held, so the caller must not hold it.
   template <typename Finished>
   bool wait(Clock::time_point until, const Finished& finished) {
     for (;;) {
@@ -216,6 +220,7 @@ class LoadRun {
   Clock::time_point next_tick_, last_tick_;
   uint64_t last_bricks_ = 0;
   bool draining_ = false;
+  bool drained_ = false;  // drain() ran to its end: every stream is done or let go
 };
 
 LoadResult LoadRun::run(const ServerSetup& server, std::vector<std::unique_ptr<RequestMix>> mixes,
@@ -243,16 +248,19 @@ LoadResult LoadRun::run(const ServerSetup& server, std::vector<std::unique_ptr<R
 void LoadRun::start_streams(const ServerSetup& server,
                             std::vector<std::unique_ptr<RequestMix>> mixes) {
   const LoadStream::Settings settings = stream_settings(options_, server);
+  const auto on_done = [this] {
+    std::lock_guard lock(signal_.mutex);
+    ++signal_.streams_done;
+    signal_.changed.notify_all();
+  };
   for (std::size_t i = 0; i < mixes.size(); ++i) {
     BrickStreamStub& stub = *server.stream_stubs[i % server.stream_stubs.size()];
     streams_.push_back(std::make_unique<LoadStream>(stub, settings, std::move(mixes[i]), recorder_,
-                                                    budget_, [this] {
-                                                      std::lock_guard lock(signal_.mutex);
-                                                      ++signal_.streams_done;
-                                                      signal_.changed.notify_all();
-                                                    }));
+                                                    budget_, on_done));
+    // Started at once, so that every stream in streams_ is one gRPC knows of (what
+    // abandon_streams() relies on).
+    streams_.back()->start();
   }
-  for (auto& stream : streams_) stream->start();
 }
 
 // Request i goes to stream i mod S at its intended time; when the sender falls behind it
@@ -297,13 +305,21 @@ Clock::time_point LoadRun::load_until_stop() {
 void LoadRun::drain() {
   draining_ = true;
   for (auto& stream : streams_) stream->close();
-  if (wait(Clock::now() + seconds(options_.drain_timeout_seconds), [&] { return all_done(); })) {
-    return;
+  if (!wait(Clock::now() + seconds(options_.drain_timeout_seconds), [&] { return all_done(); })) {
+    abandon_streams();
   }
+  drained_ = true;
+}
+
+// Cancels the streams still open and waits a grace period for gRPC to end them.
+void LoadRun::abandon_streams() {
   for (auto& stream : streams_) {
     if (!stream->done()) stream->cancel();
   }
-  if (wait(Clock::now() + kCancelGrace, [&] { return all_done(); })) return;
+  {
+    std::unique_lock lock(signal_.mutex);
+    if (signal_.changed.wait_for(lock, kCancelGrace, [&] { return all_done(); })) return;
+  }
   // A call that does not end after a cancel would be a gRPC fault; its stream object must
   // outlive gRPC's reference to it, so it is left allocated rather than freed early.
   for (auto& stream : streams_) {

@@ -138,7 +138,8 @@ Daemon::Daemon(const ServerConfig& config)
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
-  (void)parse_host_port(config.listen);  // a clear error for a bad address (port over 65535)
+  // A clear error for a bad address (a port over 65535); gRPC checks unix-socket paths itself.
+  if (!is_unix_socket_address(config.listen)) (void)parse_host_port(config.listen);
   // Otherwise gRPC sets SO_REUSEPORT, and a second soltexd given a port in use would share it
   // with the first, each taking some of the new connections, instead of failing to start.
   builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);

@@ -24,4 +24,8 @@ HostPort parse_host_port(const std::string& text) {
   return {host, static_cast<uint16_t>(port)};
 }
 
+bool is_unix_socket_address(const std::string& address) {
+  return address.starts_with("unix:") || address.starts_with("unix-abstract:");
+}
+
 }  // namespace soltex::server

@@ -66,4 +66,8 @@ struct HostPort {
 };
 HostPort parse_host_port(const std::string& text);
 
+// Whether `address` names a unix-domain socket as gRPC writes one (unix:PATH,
+// unix-abstract:NAME): soltexd's gRPC listener accepts these besides HOST:PORT.
+bool is_unix_socket_address(const std::string& address);
+
 }  // namespace soltex::server

@@ -5,11 +5,13 @@ namespace soltex::server {
 namespace {
 
 // HOST:PORT as the daemon reads it (parse_host_port()), refused at parse time with its
-// message; `allow_empty`: an endpoint that an empty address turns off.
-CLI::Validator host_port(bool allow_empty) {
+// message; `allow_empty`: an endpoint that an empty address turns off; `allow_unix`: gRPC's
+// unix-socket addresses (`unix:PATH`, `unix-abstract:NAME`), which gRPC checks itself.
+CLI::Validator host_port(bool allow_empty, bool allow_unix = false) {
   return CLI::Validator(
-      [allow_empty](std::string& text) -> std::string {
+      [allow_empty, allow_unix](std::string& text) -> std::string {
         if (allow_empty && text.empty()) return {};
+        if (allow_unix && is_unix_socket_address(text)) return {};
         try {
           (void)parse_host_port(text);
           return {};
@@ -22,8 +24,9 @@ CLI::Validator host_port(bool allow_empty) {
 
 // Where soltexd listens and how it makes, caches and sends bricks.
 void add_serving_options(CLI::App& app, ServerConfig& config) {
-  app.add_option("--listen", config.listen, "gRPC address HOST:PORT (port 0: any free port)")
-      ->check(host_port(false))
+  app.add_option("--listen", config.listen,
+                 "gRPC address HOST:PORT (port 0: any free port), or unix:PATH")
+      ->check(host_port(false, true))
       ->capture_default_str();
   app.add_option("--metrics-listen", config.metrics_listen,
                  "Prometheus metrics address HOST:PORT, served at GET /metrics")

@@ -279,6 +279,20 @@ TEST_F(SoltexdCli, AnAddressOutsideHostPortExits2NamingTheBound) {
   }
 }
 
+TEST_F(SoltexdCli, TheGrpcAddressMayBeAUnixSocket) {
+  const std::filesystem::path ready = directory_ / "ready";
+  const std::filesystem::path socket = directory_ / "soltexd.sock";
+  ToolProcess soltexd(SOLTEXD_BINARY,
+                      {"--listen", "unix:" + socket.string(), "--metrics-listen", "127.0.0.1:0",
+                       "--ready-file", ready.string()},
+                      {}, directory_);
+  ASSERT_TRUE(wait_for_file(ready)) << "soltexd refused --listen unix:PATH";
+  EXPECT_TRUE(std::filesystem::is_socket(socket));
+  soltexd.signal(SIGTERM);
+  const ToolRun r = soltexd.finish();
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 TEST_F(SoltexdCli, AConfigFileKeyItDoesNotKnowExits2) {
   // A misspelt key, a section, and a file in another format: none may be skipped silently.
   for (const std::string text :

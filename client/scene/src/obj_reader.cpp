@@ -138,6 +138,8 @@ void read_statement(std::string_view statement, std::size_t line_number, const s
   if (keyword == "v") {
     read_vertex(statement, rest, line_number, out);
   } else if (keyword == "f") {
+    std::string_view probe = rest;
+    if (next_token(probe).empty()) return;  // an "f" with no vertex is no face
     read_face(rest, line_number, name, out);
   }
 }

@@ -181,25 +181,24 @@ class EarClipper {
   std::vector<std::vector<uint32_t>> grid_;
 };
 
-// The polygon's vertices relative to its first, scaled by a power of two (exact, whatever the
-// size) that brings the largest coordinate near 1: the cross products of the ear test then
-// neither overflow at 1e300 nor underflow at 1e-300.
+// The polygon's vertices relative to its first, scaled by a power of two (exact) that brings
+// the largest of those differences near 1: the cross products of the ear test then neither
+// overflow at 1e300 nor underflow for a polygon 1e-100 across, wherever it lies.
 std::vector<glm::dvec3> scaled_from_first(std::span<const glm::dvec3> positions,
                                           std::span<const uint32_t> polygon) {
+  // Halved first: the difference of two values near DBL_MAX would overflow. Halving is exact,
+  // so each difference is the unhalved one's rounding, halved.
+  const glm::dvec3 origin = 0.5 * positions[polygon[0]];
+  std::vector<glm::dvec3> scaled(polygon.size());
   double largest = 0.0;
-  for (uint32_t i : polygon) {
-    const glm::dvec3 a = glm::abs(positions[i]);
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    scaled[k] = 0.5 * positions[polygon[k]] - origin;
+    const glm::dvec3 a = glm::abs(scaled[k]);
     largest = std::max({largest, a.x, a.y, a.z});
   }
   const int exponent = largest > 0.0 && std::isfinite(largest) ? std::ilogb(largest) : 0;
-  const glm::dvec3 origin = positions[polygon[0]];
-  std::vector<glm::dvec3> scaled(polygon.size());
-  for (std::size_t k = 0; k < polygon.size(); ++k) {
-    // Each scaled first: the difference of two values near DBL_MAX overflows.
-    const glm::dvec3 p = positions[polygon[k]];
-    for (int axis = 0; axis < 3; ++axis) {
-      scaled[k][axis] = std::ldexp(p[axis], -exponent) - std::ldexp(origin[axis], -exponent);
-    }
+  for (glm::dvec3& p : scaled) {
+    for (int axis = 0; axis < 3; ++axis) p[axis] = std::ldexp(p[axis], -exponent);
   }
   return scaled;
 }

@@ -199,6 +199,14 @@ TEST(ParseObj, JoinsLinesEndingInABackslash) {
   EXPECT_EQ(continued.mesh.indices, reference.mesh.indices);
 }
 
+TEST(ParseObj, AFaceWithoutVerticesIsNoFace) {
+  // Not counted either: the faces after it keep their numbers in messages.
+  const LoadedObj obj = parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf\nf # empty\nf 1 2 3\n", "f.obj");
+  EXPECT_EQ(obj.stats.faces_read, 1u);
+  EXPECT_EQ(obj.mesh.triangle_count(), 1u);
+  EXPECT_THAT(obj_error_of("v 0 0 0\nf\nf 1 2 3\n").what(), HasSubstr("line 3: face 1"));
+}
+
 TEST(ParseObj, AVertexWithoutNumbersStillCountsInTheIndices) {
   // Unused, it is ignored; faces after it still find vertices 2 to 5 where they were written.
   const LoadedObj obj =
@@ -430,13 +438,13 @@ TEST(ParseObjPolygons, LargestFaceLoadsAndOneMoreIsRefusedWithTheBound) {
       AllOf(HasSubstr("huge.obj"), HasSubstr("line 4: face 1"), HasSubstr("more than 16384")));
 }
 
-// An L (a 2 x 2 square less its 1 x 1 top right), its reflex corner at (1, 1), every
-// coordinate times `scale`.
-std::string l_shape_obj(double scale) {
+// An L (a 2 x 2 square less its 1 x 1 top right), its reflex corner at (1, 1), every x and y
+// times `scale`, in the plane z = `z`.
+std::string l_shape_obj(double scale, double z = 0.0) {
   std::string text;
   for (const auto& [x, y] : {std::pair{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}}) {
-    char line[96];
-    std::snprintf(line, sizeof line, "v %.17g %.17g 0\n", x * scale, y * scale);
+    char line[128];
+    std::snprintf(line, sizeof line, "v %.17g %.17g %.17g\n", x * scale, y * scale, z);
     text += line;
   }
   return text + "f 1 2 3 4 5 6\n";
@@ -453,6 +461,9 @@ TEST(ParseObjPolygons, AConcavePolygonKeepsItsShapeAtAnyScale) {
     const LoadedObj obj = parse_obj(l_shape_obj(scale), "l.obj", {.normalize = true});
     expect_covers_exactly(obj, area, 6);
   }
+  // Small and far: its size, not its distance from the origin, must set the scale.
+  const LoadedObj far = parse_obj(l_shape_obj(1e-100, 1e100), "far.obj", {.normalize = true});
+  expect_covers_exactly(far, area, 6);
 }
 
 TEST(ParseObjPolygons, StraightAndDoubledBackCornersAddNoTriangles) {
