@@ -14,6 +14,23 @@ class RefusedStream final : public BrickStream::ServerReactor {
   void OnDone() override { delete this; }
 };
 
+// `bytes` as a `Message`, or INVALID_ARGUMENT naming the type it is not.
+template <typename Message>
+grpc::Status parse_request(const grpc::ByteBuffer& bytes, Message& message) {
+  grpc::ByteBuffer copy(bytes);  // shares the slices: Deserialize consumes its buffer
+  const grpc::Status parsed = grpc::SerializationTraits<Message>::Deserialize(&copy, &message);
+  if (parsed.ok()) return parsed;
+  return {grpc::StatusCode::INVALID_ARGUMENT, "request message is not a " +
+                                                  Message::descriptor()->full_name() + " (" +
+                                                  parsed.error_message() + ")"};
+}
+
+void write_response(const google::protobuf::Message& message, grpc::ByteBuffer& bytes) {
+  bool own_buffer = false;
+  (void)grpc::SerializationTraits<google::protobuf::Message>::Serialize(message, &bytes,
+                                                                        &own_buffer);
+}
+
 }  // namespace
 
 BrickServiceImpl::BrickServiceImpl(BrickStream::Context context, ClientAccess& access,
@@ -32,19 +49,21 @@ grpc::Status BrickServiceImpl::admit(const grpc::CallbackServerContext& context,
 }
 
 grpc::ServerUnaryReactor* BrickServiceImpl::GetServerInfo(grpc::CallbackServerContext* context,
-                                                          const v1::GetServerInfoRequest*,
-                                                          v1::ServerInfo* response) {
+                                                          const grpc::ByteBuffer* request,
+                                                          grpc::ByteBuffer* response) {
   auto* reactor = context->DefaultReactor();
   std::string client;
-  const grpc::Status admitted = admit(*context, client);
-  if (admitted.ok()) *response = info_;
-  reactor->Finish(admitted);
+  grpc::Status status = admit(*context, client);
+  v1::GetServerInfoRequest parsed;
+  if (status.ok()) status = parse_request(*request, parsed);
+  if (status.ok()) write_response(info_, *response);
+  reactor->Finish(status);
   return reactor;
 }
 
-grpc::ServerUnaryReactor* BrickServiceImpl::RegisterTexture(
-    grpc::CallbackServerContext* context, const v1::RegisterTextureRequest* request,
-    v1::TextureHandle* response) {
+grpc::ServerUnaryReactor* BrickServiceImpl::RegisterTexture(grpc::CallbackServerContext* context,
+                                                            const grpc::ByteBuffer* request,
+                                                            grpc::ByteBuffer* response) {
   auto* reactor = context->DefaultReactor();
   std::string client;
   if (grpc::Status admitted = admit(*context, client); !admitted.ok()) {
@@ -52,9 +71,16 @@ grpc::ServerUnaryReactor* BrickServiceImpl::RegisterTexture(
     return reactor;
   }
   context_.metrics.register_requests.fetch_add(1, std::memory_order_relaxed);
+  v1::RegisterTextureRequest parsed;
+  if (grpc::Status status = parse_request(*request, parsed); !status.ok()) {
+    context_.metrics.count_error(static_cast<int>(status.error_code()));
+    reactor->Finish(status);
+    return reactor;
+  }
   try {
     // Not used by a stream yet: the pin goes at once and the texture is the most recent.
-    *response = texture_handle(*register_texture(context_.registry, *request, client).texture());
+    write_response(texture_handle(*register_texture(context_.registry, parsed, client).texture()),
+                   *response);
   } catch (const RegistrationError& e) {
     context_.metrics.count_error(static_cast<int>(e.code()));
     if (e.code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {

@@ -12,11 +12,13 @@
 namespace soltex::server {
 
 // The gRPC service (callback API): server info, texture registration and brick streams,
-// each call admitted by ClientAccess (token, per-client stream bound) first. StreamBricks is
-// a raw method: its messages are bytes, so that bricks go out as their cached serialized
-// entries (EncodedBrick) rather than through a protobuf message.
-using BrickServiceBase = v1::BrickService::WithCallbackMethod_GetServerInfo<
-    v1::BrickService::WithCallbackMethod_RegisterTexture<
+// each call admitted by ClientAccess (token, per-client stream bound) first. Every method is
+// raw, its messages bytes: StreamBricks so that bricks go out as their cached serialized
+// entries (EncodedBrick) rather than through a protobuf message; the unary ones so that a
+// request that does not parse is answered INVALID_ARGUMENT saying so (gRPC's callback API
+// would answer UNIMPLEMENTED with no message, as if the method did not exist).
+using BrickServiceBase = v1::BrickService::WithRawCallbackMethod_GetServerInfo<
+    v1::BrickService::WithRawCallbackMethod_RegisterTexture<
         v1::BrickService::WithRawCallbackMethod_StreamBricks<v1::BrickService::Service>>>;
 
 class BrickServiceImpl final : public BrickServiceBase {
@@ -24,11 +26,11 @@ class BrickServiceImpl final : public BrickServiceBase {
   BrickServiceImpl(BrickStream::Context context, ClientAccess& access, v1::ServerInfo info);
 
   grpc::ServerUnaryReactor* GetServerInfo(grpc::CallbackServerContext* context,
-                                          const v1::GetServerInfoRequest* request,
-                                          v1::ServerInfo* response) override;
+                                          const grpc::ByteBuffer* request,
+                                          grpc::ByteBuffer* response) override;
   grpc::ServerUnaryReactor* RegisterTexture(grpc::CallbackServerContext* context,
-                                            const v1::RegisterTextureRequest* request,
-                                            v1::TextureHandle* response) override;
+                                            const grpc::ByteBuffer* request,
+                                            grpc::ByteBuffer* response) override;
   BrickStream::ServerReactor* StreamBricks(grpc::CallbackServerContext* context) override;
 
   // Finishes every open stream (UNAVAILABLE) once its current write is done.

@@ -221,6 +221,31 @@ TEST(MetricsPage, MethodsThatDoNotExistShareOneSeries) {
       << page;
 }
 
+TEST(MetricsPage, AUnaryRequestThatDoesNotParseIsInvalidArgumentNamingItsType) {
+  SoltexdProcess server({"--threads", "1"});
+  // A varint that never ends, and a field of wire type 5 cut short.
+  for (const std::string bytes : {std::string("\xff\xff\xff\xff\x0f"), std::string("\x0d\x00")}) {
+    for (const std::string type : {"RegisterTextureRequest", "GetServerInfoRequest"}) {
+      const std::string method =
+          type == "RegisterTextureRequest" ? "RegisterTexture" : "GetServerInfo";
+      const grpc::Status status =
+          raw_unary_call(server, "/soltex.v1.BrickService/" + method, bytes, nullptr);
+      EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << method;
+      EXPECT_NE(status.error_message().find("is not a soltex.v1." + type), std::string::npos)
+          << status.error_message();
+    }
+  }
+  // The server goes on: a well-formed call still answers.
+  auto stub = connect(server);
+  EXPECT_GT(register_texture(*stub, marble_request()).id(), 0u);
+  const std::string page = metrics(server);
+  EXPECT_EQ(metric_value(page, R"(grpc_server_handled_total{grpc_type="unary",)"
+                               R"(grpc_service="soltex.v1.BrickService",)"
+                               R"(grpc_method="RegisterTexture",grpc_code="INVALID_ARGUMENT"})"),
+            2.0)
+      << page;
+}
+
 TEST(MetricsPage, AnswersHeadAndIgnoresAScrapersQuery) {
   SoltexdProcess server({"--threads", "1"});
   const int port = server.metrics_port();
