@@ -266,6 +266,30 @@ TEST(BrickFetcher, SurvivesAServerRestart) {
   EXPECT_TRUE(cache.contains({id, 1, {3, 3, 3}}));
 }
 
+TEST(BrickFetcher, AServerBackOnItsPortIsReachedBeforeTheBackoffEnds) {
+  const int port = testing::free_port();
+  std::optional<SoltexdProcess> server(std::in_place, std::vector<std::string>{}, port);
+  BrickCache cache(64 << 20);
+  // A backoff far longer than the wait below: the reconnect must come from the channel
+  // connecting again, not from the backoff running out.
+  net::FetcherOptions options;
+  options.initial_backoff = std::chrono::seconds(120);
+  options.max_backoff = std::chrono::seconds(120);
+  net::BrickFetcher fetcher("127.0.0.1:" + std::to_string(port), cache, options);
+  const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  fetcher.want(level(id, 2, 2));
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
+
+  server->kill_now();
+  server.reset();
+  fetcher.want(level(id, 1, 4));
+  server.emplace(std::vector<std::string>{}, port);
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(60)))
+      << "not reconnected: waiting out the 120 s backoff";
+  EXPECT_GE(fetcher.stats().reconnects, 1u);
+  EXPECT_TRUE(cache.contains({id, 1, {3, 3, 3}}));
+}
+
 TEST(BrickFetcher, CorruptBricksAreFetchedAgain) {
   FetcherAgainstServer setup({"--fault-corrupt-every", "5"});
   auto& [server, cache, fetcher, id] = setup;

@@ -16,6 +16,12 @@
 #include "soltex/v1/brick_service.grpc.pb.h"
 
 namespace soltex::net {
+namespace {
+
+// How soon a waiting supervisor sees that the fetcher is stopping.
+constexpr auto kStopCheck = std::chrono::milliseconds(50);
+
+}  // namespace
 
 struct BrickFetcher::Channel {
   std::shared_ptr<grpc::Channel> channel;
@@ -141,9 +147,32 @@ void BrickFetcher::supervise() {
       }
     }
     first = false;
-    std::unique_lock lock(mutex_);
-    changed_.wait_for(lock, backoff, [this] { return stopping_; });
+    if (!wait_to_reconnect(backoff)) return;
     backoff = std::min(backoff * 2, options_.max_backoff);
+  }
+}
+
+bool BrickFetcher::wait_to_reconnect(std::chrono::milliseconds backoff) {
+  // Waiting on the channel rather than a timer: it asks gRPC to connect and returns as soon
+  // as it has, so a restarted server is reached at once. After a sleep instead, a fail-fast
+  // call found the channel still failing (gRPC's own reconnect waits for a call to ask for
+  // it) and every retry failed until the backoff was seconds long.
+  // A server that is up but ended the stream (refused it, or shut down gracefully) gets the
+  // whole backoff: reconnecting at once would spin.
+  if (channel_->channel->GetState(false) == GRPC_CHANNEL_READY) {
+    std::unique_lock lock(mutex_);
+    return !changed_.wait_for(lock, backoff, [this] { return stopping_; });
+  }
+  const auto deadline = std::chrono::system_clock::now() + backoff;
+  for (;;) {
+    {
+      std::lock_guard lock(mutex_);
+      if (stopping_) return false;
+    }
+    const auto now = std::chrono::system_clock::now();
+    if (now >= deadline) return true;
+    // In slices, so that a stop is seen within kStopCheck.
+    if (channel_->channel->WaitForConnected(std::min(deadline, now + kStopCheck))) return true;
   }
 }
 

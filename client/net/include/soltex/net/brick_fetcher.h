@@ -93,8 +93,10 @@ class BrickFetcher final : public BrickSource {
   struct Channel;
   struct Stream;
 
-  void supervise();   // connect, re-register, read until the stream breaks, back off, repeat
-  void write_loop();  // sends wants and cancellations as they come
+  void supervise();  // connect, re-register, read until the stream breaks, back off, repeat
+  // Up to `backoff` for the channel to connect; false when the fetcher is stopping.
+  bool wait_to_reconnect(std::chrono::milliseconds backoff);
+  void write_loop();                     // sends wants and cancellations as they come
   void on_batch(v1::BrickBatch& batch);  // its bricks decoded and cached, its errors recorded
   void receive(const std::vector<std::pair<BrickKey, std::string>>& payloads);
   // Appends to waiting_ unless the key waits already; true if it was added.
