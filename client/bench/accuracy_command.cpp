@@ -9,6 +9,7 @@
 #include "accuracy_report.h"
 #include "accuracy_run.h"
 #include "accuracy_sweep.h"
+#include "soltex/cli/tool_cli.h"
 #include "soltex/scene/default_scene.h"
 #include "soltex/scene/scene_error.h"
 #include "soltex/scene/scene_loader.h"
@@ -73,7 +74,7 @@ CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommandOptions& options) {
   command
       ->add_option("--max-converge-s,--max-converge-seconds", options.max_converge_seconds,
                    "give up on a setting whose frame has not converged after this long")
-      ->check(CLI::Range(1.0, 3600.0))
+      ->check(soltex::cli::NumberIn(1.0, 3600.0))
       ->capture_default_str();
   command
       ->add_option("--front-clock", options.front_clock,

@@ -5,6 +5,8 @@
 #include <map>
 #include <vector>
 
+#include "soltex/cli/tool_cli.h"
+
 namespace soltex::load {
 
 const char* mix_name(MixKind mix) {
@@ -154,7 +156,9 @@ void add_load_options(CLI::App& app, LoadOptions& o) {
 
   // --target, --duration, --warmup and --drain-timeout are the old names, kept for scripts:
   // every tool now calls the server --server and names a flag's unit at its end.
-  app.add_option("--server,--target", o.target, "soltexd gRPC address HOST:PORT")->required();
+  app.add_option("--server,--target", o.target, "soltexd gRPC address HOST:PORT")
+      ->check(soltex::cli::ServerAddress())
+      ->required();
   app.add_flag("--http", o.http,
                "load soltexd's HTTP bricks (--http-listen, or a cache in front) instead of gRPC: "
                "--connections keep-alive connections, one request at a time each");

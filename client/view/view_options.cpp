@@ -1,11 +1,14 @@
 #include "view_options.h"
 
+#include "soltex/cli/tool_cli.h"
+
 namespace soltex::view {
 namespace {
 
 // Where bricks and the scene come from.
 void add_source_options(CLI::App& app, ViewOptions& o) {
-  app.add_option("--server", o.server, "soltexd address HOST:PORT");
+  app.add_option("--server", o.server, "soltexd address HOST:PORT")
+      ->check(soltex::cli::ServerAddress());
   app.add_flag("--local", o.local, "evaluate bricks in this process instead of fetching them");
   app.add_option("--scene", o.scene_path, "scene file (JSON); default: the built-in scene")
       ->check(CLI::ExistingFile);
@@ -35,7 +38,7 @@ void add_run_options(CLI::App& app, ViewOptions& o) {
       ->capture_default_str();
   app.add_option("--max-time-s,--max-seconds", o.max_seconds,
                  "give up converging after this many seconds (exit 3; --max-seconds: old name)")
-      ->check(CLI::Range(0.1, 3600.0))
+      ->check(soltex::cli::NumberIn(0.1, 3600.0))
       ->capture_default_str();
   app.add_flag("--timeline", o.print_timeline,
                "headless: print when each step of the start happened (probes, frames, requests, "
@@ -74,7 +77,7 @@ void add_picture_options(CLI::App& app, ViewOptions& o) {
       ->check(CLI::IsMember({0, 2, 3, 4, 5, 6, 7, 8}))
       ->capture_default_str();
   app.add_option("--level-bias", o.level_bias, "added to every pixel's level (negative: finer)")
-      ->check(CLI::Range(-8.0, 8.0));
+      ->check(soltex::cli::NumberIn(-8.0, 8.0));
   app.add_flag("--false-colour", o.false_colour, "show each pixel's level in false colour");
   app.add_option("--threads", o.threads, "render threads (0: one per core)")
       ->check(CLI::Range(0, 256));

@@ -1,5 +1,7 @@
 #include "soltexd_options.h"
 
+#include "soltex/cli/tool_cli.h"
+
 namespace soltex::server {
 
 namespace {
@@ -70,7 +72,7 @@ void add_serving_options(CLI::App& app, ServerConfig& config) {
       ->capture_default_str();
   app.add_option("--shutdown-grace-s,--shutdown-grace", config.shutdown_grace_seconds,
                  "seconds open calls get to finish on SIGINT/SIGTERM (--shutdown-grace: old name)")
-      ->check(CLI::Range(0.0, 600.0))
+      ->check(soltex::cli::NumberIn(0.0, 600.0))
       ->capture_default_str();
   app.add_option("--ready-file", config.ready_file,
                  "once listening, write 'grpc=PORT', 'metrics=PORT' (and 'http=PORT') lines here");
@@ -88,7 +90,7 @@ void add_http_options(CLI::App& app, ServerConfig& config) {
   web->add_option("--http-timeout-s", config.http_timeout_seconds,
                   "seconds a request may take to arrive, a response to be written, or a "
                   "keep-alive connection to idle")
-      ->check(CLI::Range(0.1, 3600.0))
+      ->check(soltex::cli::NumberIn(0.1, 3600.0))
       ->capture_default_str();
   web->add_option("--http-threads", config.http_threads,
                   "HTTP I/O threads (bricks are made on the brick workers)")

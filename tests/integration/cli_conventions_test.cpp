@@ -363,6 +363,20 @@ TEST_F(ViewCliConventions, RunsFromTheEnvironmentWithResultsOnStdoutAndLogsOnStd
   EXPECT_FALSE(has_info_line(quiet.err, "soltex-view")) << quiet.err;
 }
 
+TEST_F(ViewCliConventions, NotANumberAndABadServerAddressExit2) {
+  const std::vector<std::vector<std::string>> bad = {{"--max-time-s", "nan"},
+                                                     {"--level-bias", "nan"},
+                                                     {"--server", "127.0.0.1:99999"},
+                                                     {"--server", "127.0.0.1"}};
+  for (std::vector<std::string> args : bad) {
+    const std::string option = args[0];
+    args.insert(args.end(), {"--headless", "--out", (directory_ / "x.png").string()});
+    const ToolRun r = run_tool(SOLTEX_VIEW_BINARY, args);
+    EXPECT_EQ(r.exit_code, 2) << args[0] << " " << args[1] << ": " << r.err;
+    EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
+  }
+}
+
 TEST_F(ViewCliConventions, TheOldNameOfMaxTimeStillWorks) {
   const ToolRun r = run_tool(SOLTEX_VIEW_BINARY,
                              {"--headless", "--local", "--width", "32", "--height", "18",
@@ -397,6 +411,15 @@ TEST_F(LoadCliConventions, ADurationFromTheEnvironmentIsChecked) {
       run_tool(SOLTEX_LOAD_BINARY, {"--server", "127.0.0.1:1"}, {{"SOLTEX_DURATION_S", "0"}});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--duration-s 0"), std::string::npos) << r.err;
+}
+
+TEST_F(LoadCliConventions, AServerAddressOutsideHostPortExits2) {
+  // gRPC would dial port 99999 - 65536 and port 0 without a word.
+  for (const std::string address : {"127.0.0.1:99999", "127.0.0.1", ":7447", "127.0.0.1:0"}) {
+    const ToolRun r = run_tool(SOLTEX_LOAD_BINARY, {"--server", address, "--count", "1"});
+    EXPECT_EQ(r.exit_code, 2) << address << ": " << r.err;
+    EXPECT_NE(r.err.find("--server"), std::string::npos) << r.err;
+  }
 }
 
 using BenchCliConventions = ToolTest;

@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cctype>
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
@@ -95,6 +96,40 @@ void keep_freed_memory() {
   // 32 MiB is glibc's largest mmap threshold; blocks above it are rare and long-lived here.
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
+}
+
+CLI::Validator NumberIn(double min, double max) {
+  const std::string range =
+      "[" + CLI::detail::to_string(min) + ", " + CLI::detail::to_string(max) + "]";
+  return CLI::Validator(
+      [min, max, range](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value)) return "Value " + text + " is not a number";
+        if (!(value >= min && value <= max)) return "Value " + text + " not in range " + range;
+        return {};
+      },
+      "NUMBER in " + range);
+}
+
+CLI::Validator ServerAddress() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        for (const char* scheme : {"unix:", "unix-abstract:", "dns:", "ipv4:", "ipv6:"}) {
+          if (text.starts_with(scheme)) return {};
+        }
+        const std::size_t colon = text.rfind(':');
+        if (colon == std::string::npos || colon == 0) {
+          return "address '" + text + "' must be HOST:PORT";
+        }
+        unsigned port = 0;
+        const char* end = text.data() + text.size();
+        const auto [last, error] = std::from_chars(text.data() + colon + 1, end, port);
+        if (error != std::errc() || last != end || port < 1 || port > 65535) {
+          return "address '" + text + "': port must be in [1, 65535]";
+        }
+        return {};
+      },
+      "HOST:PORT");
 }
 
 }  // namespace soltex::cli

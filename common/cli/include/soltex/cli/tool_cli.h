@@ -41,6 +41,16 @@ struct DeprecatedEnvironmentName {
 std::optional<int> parse(CLI::App& app, const std::string& tool, int argc, char** argv,
                          std::initializer_list<DeprecatedEnvironmentName> deprecated = {});
 
+// A number in [min, max] as CLI::Range checks one, except that NaN is refused too (every
+// comparison with NaN is false, so CLI::Range lets it through). For floating-point options.
+CLI::Validator NumberIn(double min, double max);
+
+// A server to dial: HOST:PORT (a name, an IPv4 address or a bracketed IPv6 one, the port in
+// [1, 65535]) or a gRPC target with a scheme (unix:PATH, dns:///HOST:PORT, ...), which gRPC
+// parses itself. Refused at parse time: gRPC would wrap a port over 65535 round, and dial
+// port 0 for a missing one.
+CLI::Validator ServerAddress();
+
 // The environment variable an option's long name maps to: "--max-time-s" -> "SOLTEX_MAX_TIME_S".
 std::string environment_name(const std::string& long_name);
 
