@@ -1,18 +1,34 @@
 #include "soltex/common/text_file.h"
 
+#include <array>
 #include <cctype>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 namespace soltex {
 
+std::optional<std::string> read_at_most(std::istream& in, std::size_t max_bytes) {
+  std::string text;
+  std::array<char, 1 << 16> chunk;
+  while (in) {
+    in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
+    const auto got = static_cast<std::size_t>(in.gcount());
+    if (text.size() + got > max_bytes) return std::nullopt;
+    text.append(chunk.data(), got);
+  }
+  return text;
+}
+
 std::string read_text_file(const std::string& path, const std::string& what) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error("cannot read the " + what + " file '" + path + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  std::optional<std::string> text = read_at_most(in, kMaxTextFileBytes);
+  if (!text) {
+    throw std::runtime_error("the " + what + " file '" + path + "' holds more than " +
+                             std::to_string(kMaxTextFileBytes) + " bytes, the most it may");
+  }
+  if (in.bad()) throw std::runtime_error("cannot read the " + what + " file '" + path + "'");
+  return std::move(*text);
 }
 
 std::string read_trimmed_text_file(const std::string& path, const std::string& what) {

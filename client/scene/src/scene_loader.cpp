@@ -12,6 +12,7 @@
 
 #include "json_reader.h"
 #include "soltex/common/spec_error.h"
+#include "soltex/common/text_file.h"
 #include "soltex/scene/mesh_lod.h"
 #include "soltex/scene/mesh_order.h"
 #include "soltex/scene/obj_loader.h"
@@ -540,9 +541,15 @@ Scene load_scene(const std::filesystem::path& path) {
     throw SceneError(path.string(), "",
                      std::string("cannot open: ") + (in ? "is a directory" : std::strerror(errno)));
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_scene(text.str(), path.string(), path.parent_path());
+  const std::optional<std::string> text = read_at_most(in, kMaxTextFileBytes);
+  if (!text) {
+    throw SceneError(path.string(), "",
+                     "holds more than " + std::to_string(kMaxTextFileBytes) +
+                         " bytes, the most a scene file may");
+  }
+  if (in.bad())
+    throw SceneError(path.string(), "", std::string("cannot read: ") + std::strerror(errno));
+  return parse_scene(*text, path.string(), path.parent_path());
 }
 
 }  // namespace soltex

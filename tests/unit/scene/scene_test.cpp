@@ -460,6 +460,21 @@ TEST(SceneErrors, NonFiniteNumbersInTextureJsonAreRefused) {
   }
 }
 
+TEST(LoadScene, AFileThatNeverEndsIsRefusedAtTheBound) {
+  // /dev/zero read whole would fill memory; the bound stops it, for the scene itself and
+  // for a MaterialX document a scene names.
+  EXPECT_THAT([] { (void)load_scene("/dev/zero"); },
+              ::testing::ThrowsMessage<SceneError>(
+                  AllOf(HasSubstr("/dev/zero"), HasSubstr("holds more than 67108864 bytes"))));
+  nlohmann::json scene = minimal_scene();
+  first_object(scene)["material"]["texture"] = {
+      {"materialx", {{"path", "/dev/zero"}, {"nodegraph", "g"}, {"output", "out"}}}};
+  EXPECT_THAT(
+      [&] { (void)parse_scene(scene.dump(), "zero.json"); },
+      ::testing::ThrowsMessage<SceneError>(AllOf(
+          HasSubstr("materialx.path"), HasSubstr("'/dev/zero' holds more than 67108864 bytes"))));
+}
+
 TEST(LoadScene, MissingFileIsNamed) {
   EXPECT_THAT([] { (void)load_scene("/nonexistent/scene.json"); },
               ::testing::ThrowsMessage<SceneError>(
