@@ -111,6 +111,12 @@ std::string format_text(const LoadResult& r) {
                        r.megabytes_per_second());
   out << printf_string("  Errors:        %llu\n",
                        static_cast<unsigned long long>(r.measured_errors()));
+  if (o.verify) {
+    // Answers, so in Bricks above, but wrong ones: a reader of the summary must see them.
+    out << printf_string("  Corrupt:       %llu bricks failed --verify (their checksum)%s\n",
+                         static_cast<unsigned long long>(r.checksum_failures),
+                         r.checksum_failures > 0 ? ", counted in Bricks above" : "");
+  }
   if (o.open_loop()) {
     out << printf_string("  Send lag:      %.3f ms at most behind the schedule\n",
                          r.max_send_lag_seconds * 1e3);
@@ -122,8 +128,12 @@ std::string format_text(const LoadResult& r) {
                                                  {"p50", double(l.p50)}, {"p90", double(l.p90)},
                                                  {"p99", double(l.p99)}, {"p99.9", double(l.p999)},
                                                  {"max", double(l.max)}};
-  for (const auto& [name, value] : rows) {
-    out << printf_string("  %-6s %10.3f ms\n", name, ms(value));
+  if (r.bricks == 0) {
+    out << "  (no bricks answered)\n";  // zeros would read as instant answers
+  } else {
+    for (const auto& [name, value] : rows) {
+      out << printf_string("  %-6s %10.3f ms\n", name, ms(value));
+    }
   }
 
   out << "\nLatency histogram (log-spaced bins, labelled by their upper edge):\n";

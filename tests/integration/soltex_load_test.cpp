@@ -154,6 +154,39 @@ TEST(SoltexLoad, InvalidKeysAreCountedByStatusCode) {
   EXPECT_NE(format_text(result).find("OUT_OF_RANGE"), std::string::npos);
 }
 
+TEST(SoltexLoad, CorruptBricksShowInTheSummaryBesideTheErrors) {
+  SoltexdProcess server({"--fault-corrupt-every", "3"});
+  LoadOptions options = options_for(server);
+  options.mix = MixKind::uniform;
+  options.count = 300;
+  options.verify = true;
+
+  const LoadResult result = run_load(options);
+
+  EXPECT_EQ(static_cast<double>(result.checksum_failures),
+            metric(server, "soltex_faults_corrupted_total"));
+  EXPECT_GE(result.checksum_failures, 300u / 3 - 1);
+  const std::string text = format_text(result);
+  EXPECT_NE(text.find("Corrupt:       " + std::to_string(result.checksum_failures) +
+                      " bricks failed --verify"),
+            std::string::npos)
+      << text;
+}
+
+TEST(SoltexLoad, NoAnswerPrintsNoLatencies) {
+  SoltexdProcess server({"--fault-delay-ms", "5000"});
+  LoadOptions options = options_for(server);
+  options.duration_seconds = 0.3;
+  options.drain_timeout_seconds = 0.2;
+
+  const LoadResult result = run_load(options);
+
+  ASSERT_EQ(result.bricks, 0u);
+  const std::string text = format_text(result);
+  EXPECT_NE(text.find("(no bricks answered)"), std::string::npos) << text;
+  EXPECT_EQ(text.find("p50"), std::string::npos) << text;
+}
+
 // Above saturation an open-loop client keeps sending on schedule, so the server's queue
 // grows and each brick's latency, counted from its intended send time, includes the wait.
 TEST(SoltexLoad, OpenLoopLatencyIncludesQueueingAboveSaturation) {
