@@ -122,11 +122,49 @@ graph::Node read_node(const Document& doc, const pugi::xml_node& node) {
 pugi::xml_node find_nodegraph(const Document& doc) {
   const pugi::xml_node root = doc.xml().child("materialx");
   if (!root) doc.fail(0, "no <materialx> element");
-  const auto graph =
-      root.find_child_by_attribute("nodegraph", "name", doc.source().nodegraph.c_str());
-  if (!graph)
-    doc.fail(root.offset_debug(), "no nodegraph named \"" + doc.source().nodegraph + "\"");
+  const std::string& wanted = doc.source().nodegraph;
+  const auto graph = root.find_child_by_attribute("nodegraph", "name", wanted.c_str());
+  if (!graph) doc.fail(root.offset_debug(), "no nodegraph named \"" + wanted + "\"");
+  // Which one was meant is not for the reader to guess.
+  for (auto other = graph.next_sibling("nodegraph"); other;
+       other = other.next_sibling("nodegraph")) {
+    if (wanted == other.attribute("name").value()) {
+      doc.fail(other.offset_debug(), "a second nodegraph named \"" + wanted +
+                                         "\" (the first is on line " +
+                                         std::to_string(doc.line_of(graph.offset_debug())) + ")");
+    }
+  }
   return graph;
+}
+
+// Whether a nodegraph's child is one of its nodes (read_node() reads it), not its output or
+// an editor's note.
+bool is_graph_node(const pugi::xml_node& child) {
+  const std::string name = child.name();
+  return child.type() == pugi::node_element && name != "output" && name != "backdrop";
+}
+
+// The element a compile() error's field is about: "graph.nodes[NAME]..." the node of that
+// name, "graph.nodes[I]..." (a name that is no use, such as one too long) the I-th node,
+// "graph.outputs..." the output asked for; otherwise the nodegraph itself.
+pugi::xml_node element_of_field(const pugi::xml_node& nodegraph, const std::string& field,
+                                const std::string& output) {
+  if (field.starts_with("graph.outputs")) {
+    const auto out = nodegraph.find_child_by_attribute("output", "name", output.c_str());
+    return out ? out : nodegraph;
+  }
+  const std::size_t open = field.find('['), close = field.find(']');
+  if (!field.starts_with("graph.nodes[") || close == std::string::npos) return nodegraph;
+  const std::string key = field.substr(open + 1, close - open - 1);
+  for (const pugi::xml_node& child : nodegraph.children()) {
+    if (is_graph_node(child) && key == child.attribute("name").value()) return child;
+  }
+  std::size_t index = 0;
+  for (const pugi::xml_node& child : nodegraph.children()) {
+    if (!is_graph_node(child)) continue;
+    if (key == std::to_string(index++)) return child;
+  }
+  return nodegraph;
 }
 
 }  // namespace
@@ -153,7 +191,7 @@ graph::TextureGraph read_nodegraph(const MaterialxSource& source) {
       }
       continue;
     }
-    if (name == "backdrop") continue;  // a note for editors
+    if (!is_graph_node(child)) continue;  // a backdrop: a note for editors
     result.nodes.push_back(read_node(doc, child));
   }
   if (!found) {
@@ -168,19 +206,10 @@ std::shared_ptr<const graph::CompiledGraph> compile_nodegraph(const MaterialxSou
   try {
     return graph::compile(std::move(g));
   } catch (const SpecError& e) {
-    // "graph.nodes[<name>]...": point at the node's line.
+    // Pointed at the line of the node or output the error is about.
     const Document doc(source);
     const pugi::xml_node nodegraph = find_nodegraph(doc);
-    const std::string& field = e.field();
-    const std::size_t open = field.find('['), close = field.find(']');
-    std::ptrdiff_t offset = nodegraph.offset_debug();
-    if (open != std::string::npos && close != std::string::npos) {
-      const std::string name = field.substr(open + 1, close - open - 1);
-      for (const pugi::xml_node& child : nodegraph.children()) {
-        if (name == child.attribute("name").value()) offset = child.offset_debug();
-      }
-    }
-    doc.fail(offset, e.what());
+    doc.fail(element_of_field(nodegraph, e.field(), source.output).offset_debug(), e.what());
   }
 }
 

@@ -120,6 +120,22 @@ TEST(GraphValidation, NamesAndReferences) {
   EXPECT_EQ(error_of(grey({node("a", "position")}, "ghost")).field(), "graph.outputs.colour");
 }
 
+TEST(GraphValidation, NamesAreAtMost64BytesOfWellFormedUtf8) {
+  // 32 two-byte letters fill the bound; one more, or a byte that is not UTF-8, does not fit.
+  std::string cyrillic;
+  for (int i = 0; i < 32; ++i) cyrillic += "\xd1\x8f";
+  EXPECT_NO_THROW(compile(grey({node(cyrillic, "position")}, cyrillic)));
+  EXPECT_EQ(error_of(grey({node(cyrillic + "\xd1\x8f", "position")}, "a")).field(),
+            "graph.nodes[0].name");
+  for (const std::string bad :
+       {"\xff\xfe", "a\xc0\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80", "\xe2\x82"}) {
+    const SpecError e = error_of(grey({node(bad, "position")}, bad));
+    EXPECT_EQ(e.field(), "graph.nodes[0].name");
+    EXPECT_EQ(e.value(), "(not UTF-8)");
+    EXPECT_NE(e.bound().find("bytes of UTF-8"), std::string::npos) << e.what();
+  }
+}
+
 TEST(GraphValidation, OutputTypes) {
   const SpecError e = error_of(grey({node("n", "noise3d")}, "n"));
   EXPECT_EQ(e.field(), "graph.outputs.colour");

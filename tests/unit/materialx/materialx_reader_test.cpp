@@ -16,6 +16,7 @@
 namespace soltex::materialx {
 namespace {
 
+using ::testing::AllOf;
 using ::testing::HasSubstr;
 
 MaterialxSource source(std::string text, std::string graph = "g", std::string output = "out") {
@@ -84,6 +85,33 @@ TEST(MaterialxReader, GraphErrorsPointAtTheNodesLine) {
   wrong_type.replace(wrong_type.find(colour_mix), colour_mix.size(),
                      "<mix name=\"c\" type=\"vector3\"");
   EXPECT_THAT(error_of(source(wrong_type)), HasSubstr("must be color3"));
+}
+
+TEST(MaterialxReader, NameAndOutputErrorsPointAtTheirElementsLine) {
+  // kNoise's lines: 4 position "p", 5 multiply "p4", 9 noise3d "n", 14 mix "c", 19 output.
+  std::string long_name = kNoise;
+  long_name.replace(long_name.find("name=\"n\""), 8, "name=\"" + std::string(65, 'n') + "\"");
+  long_name.replace(long_name.find("nodename=\"n\""), 12,
+                    "nodename=\"" + std::string(65, 'n') + "\"");
+  EXPECT_THAT(error_of(source(long_name)),
+              AllOf(HasSubstr("hand.mtlx:9: graph.nodes[2].name"), HasSubstr("1 to 64 bytes")));
+  std::string not_utf8 = kNoise;
+  not_utf8.replace(not_utf8.find("name=\"n\""), 8, "name=\"\xff\xfe\"");
+  EXPECT_THAT(error_of(source(not_utf8)), AllOf(HasSubstr("hand.mtlx:9:"), HasSubstr("UTF-8")));
+  std::string to_nothing = kNoise;
+  to_nothing.replace(to_nothing.find("nodename=\"c\""), 12, "nodename=\"zz\"");
+  EXPECT_THAT(error_of(source(to_nothing)),
+              AllOf(HasSubstr("hand.mtlx:19: graph.outputs.colour"), HasSubstr("names no node")));
+}
+
+TEST(MaterialxReader, TwoNodegraphsOfTheNameAskedForAreRefused) {
+  std::string twice = kNoise;
+  const std::size_t end = twice.find("</materialx>");
+  const std::size_t first = twice.find("  <nodegraph");
+  twice.insert(end, twice.substr(first, end - first));
+  EXPECT_THAT(error_of(source(twice)),
+              AllOf(HasSubstr("hand.mtlx:21: a second nodegraph named \"g\""),
+                    HasSubstr("the first is on line 3")));
 }
 
 TEST(MaterialxReader, DocumentProblems) {
