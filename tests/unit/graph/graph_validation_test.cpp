@@ -124,7 +124,8 @@ TEST(GraphValidation, NamesAreAtMost64BytesOfWellFormedUtf8) {
   // 32 two-byte letters fill the bound; one more, or a byte that is not UTF-8, does not fit.
   std::string cyrillic;
   for (int i = 0; i < 32; ++i) cyrillic += "\xd1\x8f";
-  EXPECT_NO_THROW(compile(grey({node(cyrillic, "position")}, cyrillic)));
+  EXPECT_NO_THROW(compile(
+      grey({node(cyrillic, "constant", {{"value", glm::dvec3(1.0)}}, "color3")}, cyrillic)));
   EXPECT_EQ(error_of(grey({node(cyrillic + "\xd1\x8f", "position")}, "a")).field(),
             "graph.nodes[0].name");
   for (const std::string bad :
