@@ -46,11 +46,14 @@ void print_outcome(const ViewOptions& options, const Scene& scene, const ViewSet
   std::printf(
       "time:       %.1f ms drawing %d frames, %.1f ms waiting for bricks; %.1f ms of CPU here\n",
       result.drawing_ms, result.frames, result.waiting_ms, result.cpu_ms);
+  // fallback_pixels counts the empty ones too: a pixel with no level at all did not get a
+  // coarser one.
+  const FrameStats& last = result.last_stats;
   std::printf(
       "last frame: %.2f ms (raster %.2f, shade %.2f), %zu pixels covered, %zu from a "
-      "coarser level\n",
-      result.last_frame_ms, result.last_stats.raster_ms, result.last_stats.shade_ms,
-      result.last_stats.covered_pixels, result.last_stats.fallback_pixels);
+      "coarser level, %zu with no texture yet\n",
+      result.last_frame_ms, last.raster_ms, last.shade_ms, last.covered_pixels,
+      last.fallback_pixels - std::min(last.empty_pixels, last.fallback_pixels), last.empty_pixels);
 }
 
 void print_traffic(const PreparedScene& prepared, const net::SourceStats& fetched,
