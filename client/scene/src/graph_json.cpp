@@ -37,6 +37,12 @@ graph::InputValue read_input(const JsonValue& value) {
     return ref;
   }
   if (j.is_array() && !j.empty() && j.front().is_object()) return read_keys(value);
+  // Neither a vector nor keys: say what an empty list might have meant.
+  if (j.is_array() && j.empty()) {
+    value.fail(
+        "an empty list: expected ramp keys ([{\"position\": .., \"colour\": ..}, ...]) "
+        "or a [x, y, z] vector");
+  }
   value.expect(j.is_array(),
                "a number, a boolean, a [x, y, z] vector, a choice, {\"node\": ...} "
                "or ramp keys");

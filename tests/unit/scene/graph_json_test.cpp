@@ -62,5 +62,19 @@ TEST(GraphJson, RefusesARampBesideAGraph) {
   EXPECT_THROW((void)texture_spec_from_json(text, "scene.json", "texture"), SceneError);
 }
 
+TEST(GraphJson, AnEmptyListSaysWhatItMightHaveBeen) {
+  const json text = json::parse(R"({"graph": {
+      "nodes": [{"name": "r", "category": "ramp", "inputs": {"keys": []}}],
+      "outputs": {"colour": "r"}}})");
+  try {
+    (void)texture_spec_from_json(text, "scene.json", "texture");
+    FAIL() << "accepted an empty list";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.field(), "texture.graph.nodes[0].inputs.keys") << e.what();
+    EXPECT_NE(std::string(e.what()).find("an empty list: expected ramp keys"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace soltex
