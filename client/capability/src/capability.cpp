@@ -6,6 +6,7 @@
 #include <fstream>
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
@@ -52,12 +53,17 @@ CapabilityOverride parse_override(const std::string& text) {
   CapabilityOverride o;
   std::stringstream items(text);
   std::string item;
+  std::set<std::string> seen;
   while (std::getline(items, item, ',')) {
     const auto eq = item.find('=');
     if (eq == std::string::npos) {
       throw std::invalid_argument("--capability item '" + item + "' must be NAME=VALUE");
     }
     const std::string name = item.substr(0, eq), value = item.substr(eq + 1);
+    // Which of two values was meant is not for the reader to guess.
+    if (!seen.insert(name).second) {
+      throw std::invalid_argument("--capability: item '" + name + "' is given twice");
+    }
     if (name == "cpu") {
       o.cpu_factor = parse_number(name, value, 1e-3, 1e3);
     } else if (name == "mem") {

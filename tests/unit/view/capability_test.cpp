@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
+#include <string>
 
 #include "soltex/scene/default_scene.h"
 
@@ -22,6 +24,19 @@ Capability strong_machine() {
 LinkTiming timing(double bricks, double latency_s, double bytes_per_second) {
   const double bytes = bricks * 2500.0;
   return {bricks, bytes, latency_s + bytes / bytes_per_second};
+}
+
+TEST(ParseOverride, ReadsEachItemAndRefusesOneGivenTwice) {
+  const CapabilityOverride o = parse_override("cpu=0.5,mem=512,bandwidth=2");
+  EXPECT_EQ(o.cpu_factor, 0.5);
+  EXPECT_EQ(o.memory_mb, 512u);
+  EXPECT_EQ(o.bandwidth_mb_per_s, 2.0);
+  try {
+    (void)parse_override("cpu=1,cpu=2");
+    FAIL() << "accepted cpu twice";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("'cpu' is given twice"), std::string::npos) << e.what();
+  }
 }
 
 TEST(FitLink, TellsLatencyFromBandwidth) {
