@@ -14,6 +14,7 @@
 #include "soltex/spec_proto/brick_proto.h"
 #include "soltex/spec_proto/spec_from_proto.h"
 #include "soltex/v1/brick_service.grpc.pb.h"
+#include "warning_throttle.h"
 
 namespace soltex::net {
 namespace {
@@ -21,7 +22,25 @@ namespace {
 // How soon a waiting supervisor sees that the fetcher is stopping.
 constexpr auto kStopCheck = std::chrono::milliseconds(50);
 
+// `line` through `throttle`, with how many like it were held back before it.
+template <typename... Args>
+void throttled_warning(WarningThrottle& throttle, fmt::format_string<Args...> line,
+                       Args&&... args) {
+  uint64_t held_back = 0;
+  if (!throttle.allow(held_back)) return;
+  const std::string text = fmt::format(line, std::forward<Args>(args)...);
+  if (held_back == 0) {
+    spdlog::warn("{}", text);
+  } else {
+    spdlog::warn("{} ({} more like it not logged)", text, held_back);
+  }
+}
+
 }  // namespace
+
+struct BrickFetcher::Warnings {
+  WarningThrottle refused, corrupt;
+};
 
 struct BrickFetcher::Channel {
   std::shared_ptr<grpc::Channel> channel;
@@ -39,6 +58,7 @@ BrickFetcher::BrickFetcher(std::string server_address, BrickCache& cache, Fetche
       cache_(cache),
       options_(options),
       channel_(std::make_unique<Channel>()),
+      warnings_(std::make_unique<Warnings>()),
       codec_(options.codec) {
   grpc::ChannelArguments args;
   args.SetMaxReceiveMessageSize(64 << 20);
@@ -62,6 +82,12 @@ BrickFetcher::~BrickFetcher() {
   changed_.notify_all();
   writer_.join();
   supervisor_.join();
+  for (auto [throttle, kind] : {std::pair{&warnings_->refused, "refusal"},
+                                std::pair{&warnings_->corrupt, "corrupt-brick"}}) {
+    if (const uint64_t n = throttle->take_held_back(); n > 0) {
+      spdlog::warn("{} more {} warnings from {} were not logged", n, kind, address_);
+    }
+  }
 }
 
 uint64_t BrickFetcher::register_texture(const TextureSpec& spec, const Volume& volume,
@@ -191,11 +217,11 @@ void BrickFetcher::on_batch(v1::BrickBatch& batch) {
       in_flight_.erase(key);
       failed_.insert(key);
       ++stats_.errors;
-      spdlog::warn("brick refused: {}", error.message());
+      throttled_warning(warnings_->refused, "brick refused: {}", error.message());
     }
     for (const auto& error : batch.request_errors()) {
       ++stats_.errors;
-      spdlog::warn("request refused: {}", error.message());
+      throttled_warning(warnings_->refused, "request refused: {}", error.message());
     }
   }
   changed_.notify_all();
@@ -219,7 +245,7 @@ void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& 
       codec = static_cast<uint8_t>(payload[7]);
       decoded_bytes = decoded.samples.size();
     } catch (const CodecError& e) {
-      spdlog::warn("corrupt brick from {}: {}", address_, e.what());
+      throttled_warning(warnings_->corrupt, "corrupt brick from {}: {}", address_, e.what());
     }
     std::unique_lock lock(mutex_);
     stats_.bytes += payload.size();

@@ -92,6 +92,7 @@ class BrickFetcher final : public BrickSource {
  private:
   struct Channel;
   struct Stream;
+  struct Warnings;  // per-kind throttles of the warnings a misbehaving server would flood
 
   void supervise();  // connect, re-register, read until the stream breaks, back off, repeat
   // Up to `backoff` for the channel to connect; false when the fetcher is stopping.
@@ -107,6 +108,7 @@ class BrickFetcher final : public BrickSource {
   BrickCache& cache_;
   const FetcherOptions options_;
   std::unique_ptr<Channel> channel_;
+  std::unique_ptr<Warnings> warnings_;
 
   mutable std::mutex mutex_;
   std::condition_variable changed_;
