@@ -46,7 +46,10 @@ enum ClipPlaneBit : uint32_t {
   kClipGuardTop = 1u << 5,     // y <= guard * w
 };
 
-inline constexpr float kMinClipW = 1e-5f;
+// Below the nearest near plane a scene may set (1e-6): an ordinary projection's near plane
+// keeps w above this already, so the guard cuts only what a degenerate matrix would put at or
+// behind the eye (at 1e-5 it cut away objects between a near plane of 1e-6 and 1e-5).
+inline constexpr float kMinClipW = 5e-7f;
 
 // What plane `index` of ClipPlanes subtracts from dot(plane, clip): kClipPositiveW keeps
 // w >= kMinClipW, not w >= 0; every other plane keeps dot >= 0.

@@ -108,6 +108,24 @@ TEST(NearPlaneClipping, VerticesAtAndBehindTheEyeNeverBlowUp) {
   EXPECT_TRUE(raster_test::all_values_sane(g));
 }
 
+TEST(NearPlaneClipping, ATinyTriangleJustPastATinyNearPlaneIsDrawn) {
+  // A scene may put its near plane at 1e-6: a triangle 5e-6 ahead is in view and must not be
+  // cut away by the guard that keeps w positive for degenerate projections.
+  Mesh mesh;
+  mesh.positions = {{-1e-5f, -1e-5f, -5e-6f}, {1e-5f, -1e-5f, -5e-6f}, {0.0f, 1e-5f, -5e-6f}};
+  mesh.add_triangle(0, 1, 2);
+  RasterObject object;
+  object.mesh = mesh.view();
+  Rasterizer rasterizer({.threads = 1});
+  GBuffer g;
+  const glm::mat4 view_projection =
+      raster_test::perspective_look_at({0, 0, 0}, {0, 0, -1}, kWidth, kHeight, 60.0f, 1e-6f, 1e-3f);
+  const RasterStats stats =
+      render_one(rasterizer, {kWidth, kHeight, view_projection, {}}, object, g);
+  EXPECT_GT(stats.pixels_covered, static_cast<uint64_t>(kWidth * kHeight / 4));
+  EXPECT_TRUE(raster_test::all_values_sane(g));
+}
+
 TEST(NearPlaneClipping, TriangleWhollyBehindTheCameraIsCulled) {
   Mesh mesh;
   mesh.positions = {{-1.0f, -1.0f, 2.0f}, {1.0f, -1.0f, 2.0f}, {0.0f, 1.0f, 3.0f}};
