@@ -3,6 +3,8 @@
 #include <spdlog/spdlog.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -12,6 +14,7 @@
 #include "headless_run.h"
 #include "soltex/cli/tool_cli.h"
 #include "soltex/net/channel_security_options.h"
+#include "soltex/raster/raster_view.h"
 #include "soltex/scene/default_scene.h"
 #include "soltex/scene/scene_error.h"
 #include "soltex/scene/scene_loader.h"
@@ -94,6 +97,20 @@ std::optional<int> refuse(const view::ViewOptions& options) {
   return std::nullopt;
 }
 
+// Before rendering: a reference too large to rasterize would fail only after the frame.
+void check_reference_size(const view::ViewOptions& options, const capability::Choice& choice) {
+  if (!options.reference) return;
+  const int side = std::max(choice.width, choice.height);
+  if (static_cast<int64_t>(side) * options.supersample <= RasterView::kMaxSize) return;
+  throw std::invalid_argument(
+      "--reference at --supersample " + std::to_string(options.supersample) + " needs " +
+      std::to_string(static_cast<int64_t>(side) * options.supersample) +
+      " sub-pixels on a side, more than " + std::to_string(RasterView::kMaxSize) +
+      ": give --supersample " + std::to_string(std::max(1, RasterView::kMaxSize / side)) +
+      " or less for a " + std::to_string(choice.width) + "x" + std::to_string(choice.height) +
+      " image");
+}
+
 int run(const view::ViewOptions& options, const CLI::App& app,
         const net::ChannelSecurityOptions& security, view::StartupTimeline& timeline) {
   net::FetcherOptions fetcher_options;
@@ -118,6 +135,7 @@ int run(const view::ViewOptions& options, const CLI::App& app,
 #else
   (void)app;
 #endif
+  check_reference_size(options, setup.choice);
   return view::run_headless(options, scene, setup, marks);
 }
 

@@ -377,6 +377,16 @@ TEST_F(ViewCliConventions, NotANumberAndABadServerAddressExit2) {
   }
 }
 
+TEST_F(ViewCliConventions, AReferenceTooLargeToRasterizeExits2BeforeRendering) {
+  const std::filesystem::path out = directory_ / "wide.png";
+  const ToolRun r =
+      run_tool(SOLTEX_VIEW_BINARY, {"--headless", "--local", "--width", "4097", "--height", "16",
+                                    "--reference", "--supersample", "4", "--out", out.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("give --supersample 3 or less"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out)) << "refused only after rendering";
+}
+
 TEST_F(ViewCliConventions, TheOldNameOfMaxTimeStillWorks) {
   const ToolRun r = run_tool(SOLTEX_VIEW_BINARY,
                              {"--headless", "--local", "--width", "32", "--height", "18",
