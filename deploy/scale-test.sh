@@ -11,7 +11,9 @@
 #   5. two clients behind nginx are limited separately: one holding its stream limit does not
 #      refuse the other (limits follow the name of each client's bearer token);
 #   6. HTTP bricks through nginx's proxy_cache: a second client's bricks all come from nginx's
-#      cache (X-Cache-Status HIT) while the replicas' counters stand still.
+#      cache (X-Cache-Status HIT) while the replicas' counters stand still;
+#   7. with no replica answering, nginx's own error reads as soltexd's do: a plain-text 503 with
+#      CORS and Retry-After, so a page on another origin can see it and try again.
 # Every process listens on 127.0.0.1 on ports the kernel picks; everything is stopped on exit.
 # Usage: deploy/scale-test.sh            (builds nothing: run after the release build)
 # Environment: SOLTEX_BUILD_DIR (default build), SCALE_LOAD_SECONDS (default 5),
@@ -38,6 +40,7 @@ cleanup() {
   [ -f "$work/nginx1/logs/nginx.pid" ] && nginx -p "$work/nginx1" -c "$work/nginx1/nginx.conf" -s stop 2>/dev/null || true
   [ -f "$work/nginx5/logs/nginx.pid" ] && nginx -p "$work/nginx5" -c "$work/nginx5/nginx.conf" -s stop 2>/dev/null || true
   [ -f "$work/nginxh/logs/nginx.pid" ] && nginx -p "$work/nginxh" -c "$work/nginxh/nginx.conf" -s stop 2>/dev/null || true
+  [ -f "$work/nginxd/logs/nginx.pid" ] && nginx -p "$work/nginxd" -c "$work/nginxd/nginx.conf" -s stop 2>/dev/null || true
   for pid in "${pids[@]}"; do kill -9 "$pid" 2>/dev/null || true; done
   wait 2>/dev/null || true
   [ -n "${SCALE_KEEP:-}" ] || rm -rf "$work"
@@ -318,6 +321,21 @@ check "every one of them from nginx's cache (X-Cache-Status HIT)" test "$second_
 check "the replicas did no work for it (their counters unchanged)" test "$work_before" = "$work_after"
 check "no checksum failures" test "$(http_field "$work/http-first.json" 'r["checksum_failures"]')$(http_field "$work/http-second.json" 'r["checksum_failures"]')" = "00"
 if [ -n "${SCALE_REPORT:-}" ]; then echo "$summary" >>"$SCALE_REPORT"; fi
+
+echo "-- 7. no replica answering: nginx's error in soltexd's form"
+dead_lb_port=$(free_port)
+mkdir -p "$work/nginxd"
+"$root/deploy/nginx/render-http-conf.sh" "127.0.0.1:$dead_lb_port" "$work/nginxd" \
+  "127.0.0.1:$(free_port)" >"$work/nginxd/nginx.conf"
+nginx -p "$work/nginxd" -c "$work/nginxd/nginx.conf" -e "$work/nginxd/logs/error.log"
+wait_port "$dead_lb_port"
+curl -sS -D "$work/dead-headers.txt" -o "$work/dead-body.txt" -H 'Origin: http://page.example' \
+  "http://127.0.0.1:$dead_lb_port/v1/textures/0123456789abcdef/bricks/0/0/0/0?codec=raw" || true
+dead_header() { tr -d '\r' <"$work/dead-headers.txt" | awk -v n="$1" 'tolower($1) == tolower(n) ":" {print $2}'; }
+check "status 503" grep -q '^HTTP/1.1 503' "$work/dead-headers.txt"
+check "plain text" test "$(dead_header Content-Type)" = "text/plain"
+check "CORS: Access-Control-Allow-Origin *" test "$(dead_header Access-Control-Allow-Origin)" = "*"
+check "Retry-After 1" test "$(dead_header Retry-After)" = "1"
 
 if [ "$failures" -gt 0 ]; then
   echo "scale-test: $failures checks failed; logs:"

@@ -20,6 +20,8 @@ fill_block() {
     # Module scripts need their MIME type; nothing else here names one.
     printf '        location / {\n            root %s;\n            index index.html;\n' "$NGINX_WEB_ROOT"
     printf '            types { text/html html; text/javascript js; application/json json; text/css css; }\n'
+    # Scenes are JSON of up to megabytes (a mesh inline): about a fifth of that compressed.
+    printf '            gzip on;\n            gzip_types application/json text/javascript text/css;\n'
     printf '        }\n'
   else
     printf '        location / {\n            return 404 "no resource here; the routes are under /v1/textures\\n";\n        }\n'

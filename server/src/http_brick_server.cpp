@@ -71,7 +71,6 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
         handler_.error(11, 503,
                        "this server has " + std::to_string(limits_.max_connections) +
                            " HTTP connections open (--http-max-connections); try again later");
-    response.set(http::field::retry_after, "1");
     net::dispatch(stream_.get_executor(),
                   [self = shared_from_this(), response = std::move(response)]() mutable {
                     self->send(std::move(response), /*close=*/true);

@@ -120,6 +120,8 @@ HttpResponse HttpRequestHandler::error(unsigned version, unsigned status,
   HttpResponse response{static_cast<http::status>(status), version};
   response.set(http::field::content_type, "text/plain; charset=utf-8");
   response.set(http::field::cache_control, "no-store");
+  // A client over its limits, or a server busy: when to ask again (RFC 9110, 10.2.3).
+  if (status == 429 || status == 503) response.set(http::field::retry_after, "1");
   add_cors(response);
   response.body() = message + "\n";
   response.prepare_payload();

@@ -293,6 +293,7 @@ TEST(HttpBricks, ConnectionsBeyondTheLimitGet503) {
   HttpConnection extra(server.http_port());
   const HttpReply refused = extra.read();
   EXPECT_EQ(refused.status, 503);
+  EXPECT_EQ(refused.header("retry-after"), "1");
   EXPECT_NE(refused.body.find("--http-max-connections"), std::string::npos);
   held.pop_back();
   // The freed slot is reused once the server has seen the close.

@@ -1,6 +1,9 @@
 // Fetches wanted bricks over HTTP: coarsest level first (a coarse brick stands in for the fine
 // ones under it while they load), then nearest; at most `maxInFlight` requests at once; a
-// request whose brick the view no longer wants is aborted.
+// request whose brick the view no longer wants is aborted. A fetch that fails for a reason
+// that passes (the network, a 5xx, 408, 429) is tried again after a backoff that doubles up
+// to 4 s and starts over with the next brick that arrives, so the page recovers by itself
+// when the server comes back; any other answer (a 4xx) fails the brick for good.
 import { decodeBrick, type DecodedBrick } from "./brick_decoder";
 import { keyString, type BrickKey } from "./brick_pool";
 
@@ -15,15 +18,46 @@ export interface LoaderStats {
   bytes: number;
   cacheHits: number; // X-Cache-Status: HIT (a cache in front answered)
   cancelled: number;
-  errors: number;
+  errors: number; // failed fetches, retried or not
+  failed: number; // bricks given up on: an answer that asking again would not change
   decodeMs: number; // main-thread time decoding bricks
   uploadMs: number; // and handing them to the GPU
 }
 
+export const kInitialBackoffMs = 100;
+export const kMaxBackoffMs = 4000;
+
+// An answer that says the brick will never come: a malformed or refused request.
+class Refused extends Error {}
+
+// An answer that may pass, with the wait the server asked for (Retry-After, seconds), if any.
+class Transient extends Error {
+  constructor(message: string, readonly retryAfterMs: number) {
+    super(message);
+  }
+}
+
+function retryAfterMs(response: Response): number {
+  const seconds = Number(response.headers.get("retry-after") ?? "");
+  return Number.isFinite(seconds) && seconds > 0 ? Math.min(seconds, 60) * 1000 : 0;
+}
+
+// Whether a status may pass: the server overloaded, restarting or too slow.
+function transient(status: number): boolean {
+  return status >= 500 || status === 408 || status === 429;
+}
+
 export class BrickLoader {
-  readonly stats: LoaderStats = { requested: 0, received: 0, bytes: 0, cacheHits: 0, cancelled: 0, errors: 0, decodeMs: 0, uploadMs: 0 };
+  readonly stats: LoaderStats = {
+    requested: 0, received: 0, bytes: 0, cacheHits: 0, cancelled: 0, errors: 0, failed: 0,
+    decodeMs: 0, uploadMs: 0,
+  };
   private queue: Want[] = [];
   private readonly inFlight = new Map<string, AbortController>();
+  private wanted = new Map<string, Want>(); // the view's latest wants
+  private readonly retrying = new Map<string, ReturnType<typeof setTimeout>>();
+  private readonly failedForGood = new Set<string>();
+  private backoffMs = kInitialBackoffMs;
 
   constructor(
     private readonly urlOf: (key: BrickKey) => string,
@@ -31,28 +65,40 @@ export class BrickLoader {
     private readonly onBrick: (key: BrickKey, brick: DecodedBrick) => void,
   ) {}
 
+  // Bricks asked for and not yet answered, waiting to be asked again included.
   get pending(): number {
-    return this.queue.length + this.inFlight.size;
+    return this.queue.length + this.inFlight.size + this.retrying.size;
   }
 
   // The view's wants replace the previous ones.
   want(wants: Want[], isResident: (key: BrickKey) => boolean): void {
-    const wanted = new Set<string>();
+    this.wanted = new Map();
     this.queue = [];
     for (const w of wants) {
       const id = keyString(w.key);
-      wanted.add(id);
-      if (!isResident(w.key) && !this.inFlight.has(id)) this.queue.push(w);
+      this.wanted.set(id, w);
+      if (isResident(w.key) || this.inFlight.has(id) || this.retrying.has(id)) continue;
+      if (!this.failedForGood.has(id)) this.queue.push(w);
     }
     for (const [id, controller] of this.inFlight) {
-      if (!wanted.has(id)) {
+      if (!this.wanted.has(id)) {
         controller.abort();
         this.inFlight.delete(id);
         ++this.stats.cancelled;
       }
     }
-    this.queue.sort((a, b) => b.key.level - a.key.level || a.distance - b.distance);
+    for (const [id, timer] of this.retrying) {
+      if (!this.wanted.has(id)) {
+        clearTimeout(timer);
+        this.retrying.delete(id);
+      }
+    }
+    this.sortQueue();
     this.pump();
+  }
+
+  private sortQueue(): void {
+    this.queue.sort((a, b) => b.key.level - a.key.level || a.distance - b.distance);
   }
 
   private pump(): void {
@@ -69,11 +115,17 @@ export class BrickLoader {
   private async fetchOne(key: BrickKey, id: string, controller: AbortController): Promise<void> {
     try {
       const response = await fetch(this.urlOf(key), { signal: controller.signal });
-      if (!response.ok) throw new Error(`HTTP ${response.status}: ${await response.text()}`);
+      if (!response.ok) {
+        const message = `HTTP ${response.status}: ${await response.text()}`;
+        throw transient(response.status)
+          ? new Transient(message, retryAfterMs(response))
+          : new Refused(message);
+      }
       const bytes = new Uint8Array(await response.arrayBuffer());
       if (response.headers.get("x-cache-status") === "HIT") ++this.stats.cacheHits;
       this.stats.bytes += bytes.length;
       ++this.stats.received;
+      this.backoffMs = kInitialBackoffMs;
       if (this.inFlight.get(id) === controller) {
         const t0 = performance.now();
         const brick = decodeBrick(bytes, { verify: false });
@@ -83,13 +135,31 @@ export class BrickLoader {
         this.stats.uploadMs += performance.now() - t1;
       }
     } catch (e) {
-      if (!controller.signal.aborted) {
-        ++this.stats.errors;
-        console.warn(`brick ${id}: ${(e as Error).message}`);
-      }
+      if (!controller.signal.aborted) this.failed(id, e as Error);
     } finally {
       if (this.inFlight.get(id) === controller) this.inFlight.delete(id);
       this.pump();
     }
+  }
+
+  private failed(id: string, error: Error): void {
+    ++this.stats.errors;
+    console.warn(`brick ${id}: ${error.message}`);
+    if (error instanceof Refused) {
+      this.failedForGood.add(id);
+      ++this.stats.failed;
+      return;
+    }
+    const asked = error instanceof Transient ? error.retryAfterMs : 0;
+    const delay = Math.max(this.backoffMs, asked);
+    this.backoffMs = Math.min(2 * this.backoffMs, kMaxBackoffMs);
+    this.retrying.set(id, setTimeout(() => {
+      this.retrying.delete(id);
+      const want = this.wanted.get(id);
+      if (want === undefined || this.inFlight.has(id)) return;
+      this.queue.push(want);
+      this.sortQueue();
+      this.pump();
+    }, delay));
   }
 }

@@ -194,15 +194,15 @@ async function main(): Promise<void> {
   };
 
   let lastWants: Want[] = [];
-  let fps = 0;
-  let framesThisSecond = 0;
-  let secondStart = performance.now();
+  let framesSinceOverlay = 0;
+  let lastOverlay = performance.now();
+  let shownConverged = false;
   const overlay = document.getElementById("overlay")!;
-  const render = (now: number) => {
-    requestAnimationFrame(render);
+  // Draws a frame when the view changed or bricks arrived; false when there was nothing to do.
+  const draw = (now: number): boolean => {
     // While only bricks arrive, draw at most every 200 ms: on a software-rendered canvas a
     // frame can take longer than a brick, and drawing each arrival would starve the fetches.
-    if (!viewChanged && (!dirty || now - lastDraw < drawInterval)) return;
+    if (!viewChanged && (!dirty || now - lastDraw < drawInterval)) return false;
     lastDraw = now;
     dirty = false;
     ++frame;
@@ -222,24 +222,33 @@ async function main(): Promise<void> {
       gl.readPixels(0, 0, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, new Uint8Array(4));
       drawInterval = Math.min(1000, Math.max(100, 3 * (performance.now() - t0 + (t0 - now))));
     }
+    return true;
+  };
+  // The status and the overlay follow the loader on every tick, drawn or not: fetches fail and
+  // succeed while no frame is drawn, and the last change (converged) must show at once.
+  const report = (now: number) => {
     const resident = lastWants.filter((w) => pool.has(w.key)).length;
     status.frames = frame;
     status.wanted = lastWants.length;
     status.resident = resident;
     status.stats = loader.stats;
     status.converged = loader.pending === 0 && (resident === lastWants.length || pool.residentCount === pool.capacity);
-    ++framesThisSecond;
-    if (now - secondStart >= 500) {
-      fps = (framesThisSecond * 1000) / (now - secondStart);
-      framesThisSecond = 0;
-      secondStart = now;
-      const s = loader.stats;
-      overlay.textContent =
-        `${fps.toFixed(0)} fps  ${canvas.width}x${canvas.height}  bricks ${resident}/${lastWants.length} wanted, ` +
-        `${loader.pending} pending, pool ${pool.residentCount}/${pool.capacity}  fetched ${s.received} ` +
-        `(${(s.bytes / 1048576).toFixed(1)} MiB, ${s.cacheHits} cache hits, ${s.cancelled} cancelled, ${s.errors} errors)` +
-        `${status.converged ? "  converged" : ""}`;
-    }
+    if (now - lastOverlay < 500 && status.converged === shownConverged) return;
+    const fps = (framesSinceOverlay * 1000) / Math.max(1, now - lastOverlay);
+    framesSinceOverlay = 0;
+    lastOverlay = now;
+    shownConverged = status.converged;
+    const s = loader.stats;
+    overlay.textContent =
+      `${fps.toFixed(0)} fps  ${canvas.width}x${canvas.height}  bricks ${resident}/${lastWants.length} wanted, ` +
+      `${loader.pending} pending, pool ${pool.residentCount}/${pool.capacity}  fetched ${s.received} ` +
+      `(${(s.bytes / 1048576).toFixed(1)} MiB, ${s.cacheHits} cache hits, ${s.cancelled} cancelled, ${s.errors} errors` +
+      `${s.failed > 0 ? `, ${s.failed} failed for good` : ""})${status.converged ? "  converged" : ""}`;
+  };
+  const render = (now: number) => {
+    requestAnimationFrame(render);
+    if (draw(now)) ++framesSinceOverlay;
+    report(now);
   };
 
   // Orbit with the mouse, zoom with the wheel; keys: 1-4 preset textures on every object,
