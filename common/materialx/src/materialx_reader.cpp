@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cstdlib>
 #include <map>
 #include <pugixml.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 
 #include "soltex/common/spec_error.h"
 
@@ -53,15 +55,19 @@ std::string node_words(const pugi::xml_node& node) {
   return "node \"" + std::string(node.attribute("name").value()) + "\" (" + node.name() + ")";
 }
 
+// A value string's comma-separated numbers, decimal as MaterialX writes them (no hex, no
+// empty item: "0.9, 0.2, 0.1," is a typo, not three numbers); empty when it is not that.
 std::vector<double> numbers(const std::string& text) {
   std::vector<double> values;
   std::string item;
-  std::istringstream stream(text);
+  std::istringstream stream(text + ",");  // the last item is then ended like the others
   while (std::getline(stream, item, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    while (end && *end == ' ') ++end;
-    if (end == item.c_str() || (end && *end != '\0')) return {};
+    std::string_view view = item;
+    while (!view.empty() && view.front() == ' ') view.remove_prefix(1);
+    while (!view.empty() && view.back() == ' ') view.remove_suffix(1);
+    double v = 0.0;
+    const auto [end, error] = std::from_chars(view.data(), view.data() + view.size(), v);
+    if (view.empty() || error != std::errc() || end != view.data() + view.size()) return {};
     values.push_back(v);
   }
   return values;

@@ -121,9 +121,14 @@ TEST(MaterialxReader, DocumentProblems) {
   std::string interface = kNoise;
   interface.replace(interface.find("value=\"0.5\""), 11, "interfacename=\"amp\"");
   EXPECT_THAT(error_of(source(interface)), HasSubstr("interface inputs are not supported"));
-  std::string bad_value = kNoise;
-  bad_value.replace(bad_value.find("value=\"4.0\""), 11, "value=\"four\"");
-  EXPECT_THAT(error_of(source(bad_value)), HasSubstr("is not a float"));
+  for (const char* text : {"four", "0x4", "4,", ""}) {
+    std::string bad_value = kNoise;
+    bad_value.replace(bad_value.find("value=\"4.0\""), 11, std::string("value=\"") + text + "\"");
+    EXPECT_THAT(error_of(source(bad_value)), HasSubstr("is not a float")) << text;
+  }
+  std::string trailing = kNoise;
+  trailing.replace(trailing.find("\"1, 1, 1\""), 9, "\"1, 1, 1,\"");
+  EXPECT_THAT(error_of(source(trailing)), HasSubstr("is not a color3"));
 }
 
 // The example scene's graphs, inline and from their .mtlx documents, are the same textures.
