@@ -183,9 +183,9 @@ bool BrickFetcher::wait_to_reconnect(std::chrono::milliseconds backoff) {
   // as it has, so a restarted server is reached at once. After a sleep instead, a fail-fast
   // call found the channel still failing (gRPC's own reconnect waits for a call to ask for
   // it) and every retry failed until the backoff was seconds long.
-  // A server that is up but ended the stream (refused it, or shut down gracefully) gets the
-  // whole backoff: reconnecting at once would spin.
   if (channel_->channel->GetState(false) == GRPC_CHANNEL_READY) {
+    // A server that is up but ended the stream (refused it, or shut down gracefully) gets
+    // the whole backoff: reconnecting at once would spin.
     std::unique_lock lock(mutex_);
     return !changed_.wait_for(lock, backoff, [this] { return stopping_; });
   }
