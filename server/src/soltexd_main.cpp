@@ -52,10 +52,8 @@ int main(int argc, char** argv) {
           {{"SOLTEXD_LISTEN", "SOLTEX_LISTEN"}, {"SOLTEXD_TOKEN", "SOLTEX_TOKEN"}})) {
     return *exit_code;
   }
-  if (config.max_keys_per_request > config.max_queued_per_stream) {
-    std::fprintf(stderr,
-                 "--max-keys-per-request (%u) must not exceed --max-queued-per-stream (%u)\n",
-                 config.max_keys_per_request, config.max_queued_per_stream);
+  if (const std::string problem = soltex::server::usage_problem(config); !problem.empty()) {
+    std::fprintf(stderr, "soltexd: %s\n", problem.c_str());
     return soltex::cli::kExitUsage;
   }
   soltex::cli::start_logging("soltexd", config.log_level, soltex::cli::LogStyle::timestamped);

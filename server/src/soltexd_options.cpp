@@ -1,5 +1,7 @@
 #include "soltexd_options.h"
 
+#include "access_tokens.h"
+#include "address_range.h"
 #include "soltex/cli/tool_cli.h"
 
 namespace soltex::server {
@@ -187,6 +189,31 @@ void add_soltexd_options(CLI::App& app, ServerConfig& config) {
   add_shared_cache_options(app, config);
   add_security_options(app, config);
   add_fault_options(app, config);
+}
+
+std::string usage_problem(const ServerConfig& config) {
+  if (config.max_keys_per_request > config.max_queued_per_stream) {
+    return "--max-keys-per-request (" + std::to_string(config.max_keys_per_request) +
+           ") must not exceed --max-queued-per-stream (" +
+           std::to_string(config.max_queued_per_stream) + ")";
+  }
+  if (config.tls_cert_file.empty() != config.tls_key_file.empty()) {
+    return "TLS needs both --tls-cert and --tls-key";
+  }
+  if (config.tls_cert_file.empty() && !config.tls_client_ca_file.empty()) {
+    return "--tls-client-ca needs --tls-cert and --tls-key";
+  }
+  if (config.trust_forwarded_for) {
+    return "--trust-forwarded-for trusted x-forwarded-for from any peer and is gone: name the "
+           "balancers whose header to trust with --trusted-proxies ADDRESS[/BITS],...";
+  }
+  try {
+    (void)parse_address_ranges(config.trusted_proxies);
+    if (!config.token_file.empty()) (void)read_access_tokens(config.token_file);
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return {};
 }
 
 }  // namespace soltex::server

@@ -11,4 +11,9 @@ namespace soltex::server {
 // caller's).
 void add_soltexd_options(CLI::App& app, ServerConfig& config);
 
+// What makes a parsed command line unusable as a whole, for exit 2 before anything starts:
+// options that need each other, a removed option, a tokens file or proxy list that does not
+// parse. Empty when there is nothing (the daemon checks the same again, for other callers).
+std::string usage_problem(const ServerConfig& config);
+
 }  // namespace soltex::server

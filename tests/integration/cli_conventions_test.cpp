@@ -293,6 +293,23 @@ TEST_F(SoltexdCli, TheGrpcAddressMayBeAUnixSocket) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
 }
 
+TEST_F(SoltexdCli, OptionsThatDoNotGoTogetherOrAFileThatDoesNotParseExit2) {
+  const std::filesystem::path file = directory_ / "some.pem";
+  std::ofstream(file) << "not a certificate\n";
+  const std::filesystem::path tokens = directory_ / "tokens";
+  std::ofstream(tokens) << "viewer-1 abc # a comment after the token\n";
+  const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+      {{"--tls-cert", file.string()}, "TLS needs both --tls-cert and --tls-key"},
+      {{"--tls-client-ca", file.string()}, "--tls-client-ca needs --tls-cert"},
+      {{"--token-file", tokens.string()}, "line 1: expected 'NAME TOKEN' or 'TOKEN'"},
+      {{"--max-keys-per-request", "100", "--max-queued-per-stream", "10"}, "must not exceed"}};
+  for (const auto& [args, message] : cases) {
+    const ToolRun r = run_tool(SOLTEXD_BINARY, args);
+    EXPECT_EQ(r.exit_code, 2) << args[0] << ": " << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  }
+}
+
 TEST_F(SoltexdCli, AConfigFileKeyItDoesNotKnowExits2) {
   // A misspelt key, a section, and a file in another format: none may be skipped silently.
   for (const std::string text :
