@@ -335,7 +335,7 @@ dead_header() { tr -d '\r' <"$work/dead-headers.txt" | awk -v n="$1" 'tolower($1
 check "status 503" grep -q '^HTTP/1.1 503' "$work/dead-headers.txt"
 check "plain text" test "$(dead_header Content-Type)" = "text/plain"
 check "CORS: Access-Control-Allow-Origin *" test "$(dead_header Access-Control-Allow-Origin)" = "*"
-check "Retry-After 1" test "$(dead_header Retry-After)" = "1"
+check "Retry-After 1, exposed to the page" test "$(dead_header Retry-After) $(dead_header Access-Control-Expose-Headers)" = "1 Retry-After"
 
 if [ "$failures" -gt 0 ]; then
   echo "scale-test: $failures checks failed; logs:"

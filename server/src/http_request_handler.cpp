@@ -95,7 +95,7 @@ std::string describe(const Route& route) {
 void add_cors(HttpResponse& response) {
   response.set(http::field::access_control_allow_origin, "*");
   response.set(http::field::access_control_expose_headers,
-               "ETag, X-Soltex-Codec, X-Soltex-Checksum, X-Cache-Status");
+               "ETag, X-Soltex-Codec, X-Soltex-Checksum, X-Cache-Status, Retry-After");
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "soltexd_options.h"
 
+#include <fstream>
+
 #include "access_tokens.h"
 #include "address_range.h"
 #include "soltex/cli/tool_cli.h"
@@ -209,7 +211,11 @@ std::string usage_problem(const ServerConfig& config) {
   }
   try {
     (void)parse_address_ranges(config.trusted_proxies);
-    if (!config.token_file.empty()) (void)read_access_tokens(config.token_file);
+    // What the file says, where it can be read: a file that cannot be is a runtime failure
+    // (exit 1), which the daemon reports when it reads it.
+    if (!config.token_file.empty() && std::ifstream(config.token_file)) {
+      (void)read_access_tokens(config.token_file);
+    }
   } catch (const std::exception& e) {
     return e.what();
   }

@@ -294,6 +294,8 @@ TEST(HttpBricks, ConnectionsBeyondTheLimitGet503) {
   const HttpReply refused = extra.read();
   EXPECT_EQ(refused.status, 503);
   EXPECT_EQ(refused.header("retry-after"), "1");
+  // A page on another origin reads it only if it is exposed.
+  EXPECT_NE(refused.header("access-control-expose-headers").find("Retry-After"), std::string::npos);
   EXPECT_NE(refused.body.find("--http-max-connections"), std::string::npos);
   held.pop_back();
   // The freed slot is reused once the server has seen the close.

@@ -184,7 +184,7 @@ bool BrickFetcher::wait_to_reconnect(std::chrono::milliseconds backoff) {
   // call found the channel still failing (gRPC's own reconnect waits for a call to ask for
   // it) and every retry failed until the backoff was seconds long.
   if (channel_->channel->GetState(false) == GRPC_CHANNEL_READY) {
-    // A server that is up but ended the stream (refused it, or shut down gracefully) gets
+    // A server that is up but ended the stream (refused it: no token, too many streams) gets
     // the whole backoff: reconnecting at once would spin.
     std::unique_lock lock(mutex_);
     return !changed_.wait_for(lock, backoff, [this] { return stopping_; });

@@ -1,9 +1,11 @@
 // Fetches wanted bricks over HTTP: coarsest level first (a coarse brick stands in for the fine
 // ones under it while they load), then nearest; at most `maxInFlight` requests at once; a
 // request whose brick the view no longer wants is aborted. A fetch that fails for a reason
-// that passes (the network, a 5xx, 408, 429) is tried again after a backoff that doubles up
-// to 4 s and starts over with the next brick that arrives, so the page recovers by itself
-// when the server comes back; any other answer (a 4xx) fails the brick for good.
+// that passes (the network, a 5xx, 408, 429) goes back in the queue, and the whole queue
+// waits a backoff that doubles up to 4 s (or the Retry-After asked for) and starts over with
+// the next brick that arrives: the page recovers by itself when the server comes back, and a
+// server that is down gets a few requests per backoff rather than every queued brick's. Any
+// other answer (a 4xx) fails the brick for good.
 import { decodeBrick, type DecodedBrick } from "./brick_decoder";
 import { keyString, type BrickKey } from "./brick_pool";
 
@@ -55,9 +57,10 @@ export class BrickLoader {
   private queue: Want[] = [];
   private readonly inFlight = new Map<string, AbortController>();
   private wanted = new Map<string, Want>(); // the view's latest wants
-  private readonly retrying = new Map<string, ReturnType<typeof setTimeout>>();
   private readonly failedForGood = new Set<string>();
   private backoffMs = kInitialBackoffMs;
+  private pausedUntil = 0; // performance.now() before which no fetch starts
+  private resumeTimer: ReturnType<typeof setTimeout> | undefined;
 
   constructor(
     private readonly urlOf: (key: BrickKey) => string,
@@ -65,9 +68,9 @@ export class BrickLoader {
     private readonly onBrick: (key: BrickKey, brick: DecodedBrick) => void,
   ) {}
 
-  // Bricks asked for and not yet answered, waiting to be asked again included.
+  // Bricks asked for and not yet answered, those waiting to be asked again included.
   get pending(): number {
-    return this.queue.length + this.inFlight.size + this.retrying.size;
+    return this.queue.length + this.inFlight.size;
   }
 
   // The view's wants replace the previous ones.
@@ -77,20 +80,14 @@ export class BrickLoader {
     for (const w of wants) {
       const id = keyString(w.key);
       this.wanted.set(id, w);
-      if (isResident(w.key) || this.inFlight.has(id) || this.retrying.has(id)) continue;
-      if (!this.failedForGood.has(id)) this.queue.push(w);
+      if (isResident(w.key) || this.inFlight.has(id) || this.failedForGood.has(id)) continue;
+      this.queue.push(w);
     }
     for (const [id, controller] of this.inFlight) {
       if (!this.wanted.has(id)) {
         controller.abort();
         this.inFlight.delete(id);
         ++this.stats.cancelled;
-      }
-    }
-    for (const [id, timer] of this.retrying) {
-      if (!this.wanted.has(id)) {
-        clearTimeout(timer);
-        this.retrying.delete(id);
       }
     }
     this.sortQueue();
@@ -102,6 +99,14 @@ export class BrickLoader {
   }
 
   private pump(): void {
+    const wait = this.pausedUntil - performance.now();
+    if (wait > 0) {
+      this.resumeTimer ??= setTimeout(() => {
+        this.resumeTimer = undefined;
+        this.pump();
+      }, wait);
+      return;
+    }
     while (this.inFlight.size < this.maxInFlight && this.queue.length > 0) {
       const { key } = this.queue.shift()!;
       const id = keyString(key);
@@ -125,21 +130,30 @@ export class BrickLoader {
       if (response.headers.get("x-cache-status") === "HIT") ++this.stats.cacheHits;
       this.stats.bytes += bytes.length;
       ++this.stats.received;
+      if (this.inFlight.get(id) === controller) this.accept(key, bytes);
       this.backoffMs = kInitialBackoffMs;
-      if (this.inFlight.get(id) === controller) {
-        const t0 = performance.now();
-        const brick = decodeBrick(bytes, { verify: false });
-        const t1 = performance.now();
-        this.onBrick(key, brick);
-        this.stats.decodeMs += t1 - t0;
-        this.stats.uploadMs += performance.now() - t1;
-      }
     } catch (e) {
       if (!controller.signal.aborted) this.failed(id, e as Error);
     } finally {
       if (this.inFlight.get(id) === controller) this.inFlight.delete(id);
       this.pump();
     }
+  }
+
+  // A whole answer, decoded and handed on. One that does not decode is refused for good: the
+  // same URL gives the same bytes, so asking again would fail again.
+  private accept(key: BrickKey, bytes: Uint8Array): void {
+    const t0 = performance.now();
+    let brick: DecodedBrick;
+    try {
+      brick = decodeBrick(bytes, { verify: false });
+    } catch (e) {
+      throw new Refused(`undecodable brick: ${(e as Error).message}`);
+    }
+    const t1 = performance.now();
+    this.onBrick(key, brick);
+    this.stats.decodeMs += t1 - t0;
+    this.stats.uploadMs += performance.now() - t1;
   }
 
   private failed(id: string, error: Error): void {
@@ -151,15 +165,12 @@ export class BrickLoader {
       return;
     }
     const asked = error instanceof Transient ? error.retryAfterMs : 0;
-    const delay = Math.max(this.backoffMs, asked);
+    this.pausedUntil = Math.max(this.pausedUntil, performance.now() + Math.max(this.backoffMs, asked));
     this.backoffMs = Math.min(2 * this.backoffMs, kMaxBackoffMs);
-    this.retrying.set(id, setTimeout(() => {
-      this.retrying.delete(id);
-      const want = this.wanted.get(id);
-      if (want === undefined || this.inFlight.has(id)) return;
+    const want = this.wanted.get(id);
+    if (want !== undefined && !this.queue.some((w) => keyString(w.key) === id)) {
       this.queue.push(want);
       this.sortQueue();
-      this.pump();
-    }, delay));
+    }
   }
 }

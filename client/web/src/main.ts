@@ -232,7 +232,8 @@ async function main(): Promise<void> {
     status.wanted = lastWants.length;
     status.resident = resident;
     status.stats = loader.stats;
-    status.converged = loader.pending === 0 && (resident === lastWants.length || pool.residentCount === pool.capacity);
+    // Not while the last bricks wait for their frame: what is on screen must be the picture.
+    status.converged = !dirty && loader.pending === 0 && (resident === lastWants.length || pool.residentCount === pool.capacity);
     if (now - lastOverlay < 500 && status.converged === shownConverged) return;
     const fps = (framesSinceOverlay * 1000) / Math.max(1, now - lastOverlay);
     framesSinceOverlay = 0;

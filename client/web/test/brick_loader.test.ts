@@ -57,7 +57,7 @@ function urlOf(key: BrickKey): string {
 }
 
 async function settled(loader: BrickLoader): Promise<void> {
-  const deadline = Date.now() + 15000;
+  const deadline = Date.now() + 30000;
   while (loader.pending > 0 && Date.now() < deadline) await new Promise((r) => setTimeout(r, 20));
 }
 
@@ -76,7 +76,7 @@ describe("BrickLoader", () => {
     expect(loader.stats.received).toBe(8);
     expect(loader.stats.errors).toBe(8);
     expect(loader.stats.failed).toBe(0);
-  });
+  }, 40000); // each failure doubles the queue's pause, up to 4 s
 
   it("does not ask again for a brick the server refuses", async () => {
     const loader = new BrickLoader(urlOf, 4, () => {});

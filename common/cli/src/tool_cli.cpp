@@ -118,8 +118,11 @@ CLI::Validator ServerAddress() {
           if (text.starts_with(scheme)) return {};
         }
         const std::size_t colon = text.rfind(':');
-        if (colon == std::string::npos || colon == 0) {
-          return "address '" + text + "' must be HOST:PORT";
+        // An IPv6 host is bracketed: in "::1" the last colon is the address's own.
+        const bool bare_ipv6 =
+            colon != std::string::npos && text.find(':') < colon && !text.starts_with('[');
+        if (colon == std::string::npos || colon == 0 || bare_ipv6) {
+          return "address '" + text + "' must be HOST:PORT ([ADDRESS]:PORT for IPv6)";
         }
         unsigned port = 0;
         const char* end = text.data() + text.size();

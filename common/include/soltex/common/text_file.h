@@ -13,7 +13,7 @@ namespace soltex {
 inline constexpr std::size_t kMaxTextFileBytes = std::size_t{64} << 20;
 
 // All of `in` if it holds at most `max_bytes`; nullopt when it holds more (then `in` is left
-// just past byte max_bytes).
+// somewhere past byte max_bytes, at most a 64 KiB read further on).
 std::optional<std::string> read_at_most(std::istream& in, std::size_t max_bytes);
 
 // The whole file, at most kMaxTextFileBytes. Throws std::runtime_error "cannot read the
