@@ -78,6 +78,25 @@ describe("BrickLoader", () => {
     expect(loader.stats.failed).toBe(0);
   }, 40000); // each failure doubles the queue's pause, up to 4 s
 
+  it("does not ask again for a brick that does not decode", async () => {
+    // A server whose answers are all 200 and not bricks: the same URL would give the same bytes.
+    let asked = 0;
+    const garbage = createServer((_request, reply) => {
+      ++asked;
+      reply.writeHead(200, { "content-type": "application/octet-stream" }).end("not a brick");
+    });
+    await new Promise<void>((resolve) => garbage.listen(0, "127.0.0.1", resolve));
+    const port = (garbage.address() as AddressInfo).port;
+    const loader = new BrickLoader(() => `http://127.0.0.1:${port}/brick`, 4, () => {});
+    loader.want([{ key: { texture: 0, level: 0, x: 0, y: 0, z: 0 }, distance: 0 }], () => false);
+    await settled(loader);
+    await new Promise((r) => setTimeout(r, 300)); // time for a retry, were there one
+    garbage.close();
+    expect(loader.pending).toBe(0);
+    expect(loader.stats.failed).toBe(1);
+    expect(asked).toBe(1);
+  });
+
   it("does not ask again for a brick the server refuses", async () => {
     const loader = new BrickLoader(urlOf, 4, () => {});
     // Level 9 of a texture with 2 levels: a 4xx, which asking again would not change.
