@@ -236,11 +236,18 @@ bool BrickStream::answer_from_cache(const BrickKey& key,
   } else {
     context_.metrics.bricks_requested.fetch_add(1, std::memory_order_relaxed);
   }
+  unsent_bytes_.fetch_add(hit->payload().size(), std::memory_order_relaxed);
   outbox_.push_back({std::move(hit), std::nullopt, std::nullopt, now, now});
   return true;
 }
 
 std::function<void()> BrickStream::take() {
+  // The client reads slower than its bricks are made: they wait in the queue, as keys, until
+  // a write makes room (on_write_done() hands the stream back to the scheduler).
+  if (unsent_full()) {
+    throttled_.store(true, std::memory_order_relaxed);
+    return {};
+  }
   // More streams wait than there are workers (the same test as hold_back()'s): this stream's
   // next turn is far off, so this turn makes a run of its bricks, to share one message.
   const bool crowded =
@@ -290,6 +297,7 @@ void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick, bo
   if (in_run) --run_unmade_;
   queue_.finished();
   if (brick) {
+    unsent_bytes_.fetch_add(brick->payload().size(), std::memory_order_relaxed);
     outbox_.push_back(
         {brick, std::nullopt, std::nullopt, item.enqueued, std::chrono::steady_clock::now()});
   } else {
@@ -390,6 +398,7 @@ void BrickStream::write_outbox() {
   batch_.Swap(&message);
   batch_slices_.clear();  // the message holds its own references
   writing_ = true;
+  writing_bytes_ = bytes;
   ++batches_sent_;
   bricks_sent_ += bricks;
   bytes_sent_ += bytes;
@@ -451,11 +460,21 @@ void BrickStream::pump() {
 }
 
 void BrickStream::on_write_done(bool ok) {
-  std::lock_guard lock(mutex_);
-  context_.metrics.record(BrickStage::write, std::chrono::steady_clock::now() - write_started_);
-  writing_ = false;
-  if (!ok) cancelled_ = true;  // the client is gone; OnCancel or OnDone follows
-  pump();
+  std::size_t resumed = 0;
+  {
+    std::lock_guard lock(mutex_);
+    context_.metrics.record(BrickStage::write, std::chrono::steady_clock::now() - write_started_);
+    writing_ = false;
+    unsent_bytes_.fetch_sub(writing_bytes_, std::memory_order_relaxed);
+    writing_bytes_ = 0;
+    if (!ok) cancelled_ = true;  // the client is gone; OnCancel or OnDone follows
+    pump();
+    if (!unsent_full() && throttled_.exchange(false, std::memory_order_relaxed)) {
+      resumed = queue_.size();
+    }
+  }
+  // Outside our lock: the scheduler takes its own lock and then ours (via take()).
+  context_.scheduler.notify(shared_from_this(), resumed);
 }
 
 void BrickStream::on_cancel() {

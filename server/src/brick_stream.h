@@ -2,6 +2,7 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include <atomic>
 #include <boost/asio/steady_timer.hpp>
 #include <chrono>
 #include <deque>
@@ -42,6 +43,11 @@ struct StreamLimits {
   // bricks go in one message however long the run takes (the coalesce wait does not cut it),
   // so this also bounds how long a run's first brick waits for its last.
   uint32_t run_bricks = 16;
+  // Made bricks a stream may hold unsent (its outbox and the write in flight) before its
+  // queued bricks wait for the client to read: the count bounds (max_queued_*) hold keys, but
+  // a client that stops reading would otherwise make the server keep every brick made for it
+  // (65,536 raw bricks of one client: 1.5 GiB).
+  std::size_t max_unsent_bytes = std::size_t{2} << 20;
 };
 
 // Everything one StreamBricks call needs, shared between the gRPC reactor (gRPC threads) and
@@ -78,7 +84,8 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   void shut_down();
 
   std::function<void()> take() override;
-  bool has_work() const override { return queue_.size() > 0; }
+  // Queued bricks, and room to hold what they become (max_unsent_bytes).
+  bool has_work() const override { return queue_.size() > 0 && !unsent_full(); }
 
  private:
   class Reactor;
@@ -160,6 +167,14 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   uint64_t batches_sent_ = 0;
   uint64_t bricks_sent_ = 0;
   uint64_t bytes_sent_ = 0;
+  // Bytes of the bricks in outbox_ and in the write in flight; written under mutex_, read
+  // without it by the scheduler (has_work(), take()): a brick more or less does not matter.
+  std::atomic<std::size_t> unsent_bytes_{0};
+  std::size_t writing_bytes_ = 0;       // of the write in flight
+  std::atomic<bool> throttled_{false};  // take() held work back for unsent_bytes_
+  bool unsent_full() const {
+    return unsent_bytes_.load(std::memory_order_relaxed) >= context_.limits.max_unsent_bytes;
+  }
   uint64_t errors_sent_ = 0;
 };
 

@@ -264,6 +264,45 @@ TEST(Soltexd, CancellationDropsQueuedWork) {
   EXPECT_EQ(metric_value(m, "soltex_queue_depth"), 0.0);
 }
 
+// A client that asks for many bricks and does not read: the server makes only what fits its
+// unsent-bytes bound (StreamLimits::max_unsent_bytes, 2 MiB) and holds the rest as keys, then
+// makes them as the client reads.
+TEST(Soltexd, AStreamThatDoesNotReadHoldsABoundedPartOfItsBricks) {
+  SoltexdProcess server({"--threads", "2"});
+  auto stub = connect(server);
+  v1::RegisterTextureRequest registration = marble_request(8, 16);
+  for (const auto channel : {v1::CHANNEL_COLOUR, v1::CHANNEL_OPACITY, v1::CHANNEL_SPECULAR}) {
+    registration.mutable_spec()->add_channels(channel);
+  }
+  const v1::TextureHandle handle = register_texture(*stub, registration);
+  std::vector<v1::BrickKey> keys = level_keys(handle.id(), 0, 16);
+  keys.resize(1024);  // 17^3 samples x 5 channels raw: about 24 KB each, 25 MB in all
+
+  grpc::ClientContext context;
+  auto stream = stub->StreamBricks(&context);
+  ASSERT_TRUE(stream->Write(want(keys, v1::CODEC_RAW)));
+  // Until the server stops making bricks for it: the count stays put for a second.
+  double evaluated = -1.0;
+  for (int still = 0, polls = 0; still < 5 && polls < 200; ++polls) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    const double now = metric_value(metrics(server), "soltex_bricks_evaluated_total");
+    still = now == evaluated ? still + 1 : 0;
+    evaluated = now;
+  }
+  // 2 MiB of unsent bricks, the write in flight and what HTTP/2's windows took: a few
+  // hundred at most, not the 1024 asked for.
+  EXPECT_LT(evaluated, 512.0);
+  EXPECT_GT(evaluated, 0.0);
+
+  // Read, and the rest is made.
+  stream->WritesDone();
+  std::size_t received = 0;
+  v1::BrickBatch batch;
+  while (stream->Read(&batch)) received += static_cast<std::size_t>(batch.bricks_size());
+  EXPECT_TRUE(stream->Finish().ok());
+  EXPECT_EQ(received, keys.size());
+}
+
 TEST(Soltexd, BadKeysGetTheirCodeAndTheStreamGoesOn) {
   SoltexdProcess server({"--max-keys-per-request", "64", "--max-queued-per-stream", "64"});
   auto stub = connect(server);
