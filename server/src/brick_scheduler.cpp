@@ -1,5 +1,8 @@
 #include "brick_scheduler.h"
 
+#include <algorithm>
+#include <chrono>
+
 namespace soltex::server {
 
 BrickScheduler::BrickScheduler(int threads) : threads_(threads) {
@@ -18,6 +21,7 @@ void BrickScheduler::notify(const std::shared_ptr<WorkSource>& source, std::size
     std::lock_guard lock(mutex_);
     if (!source->in_ready_list_) {
       source->in_ready_list_ = true;
+      source->used_ns_ = std::max(source->used_ns_, clock_ns_);
       ready_.push_back(source);
       waiting_sources_.store(ready_.size(), std::memory_order_relaxed);
     }
@@ -31,30 +35,45 @@ void BrickScheduler::notify(const std::shared_ptr<WorkSource>& source, std::size
   }
 }
 
-std::function<void()> BrickScheduler::next_task() {
-  std::function<void()> task;
-  while (!task && !ready_.empty()) {
-    std::shared_ptr<WorkSource> source = std::move(ready_.front());
-    ready_.pop_front();
-    task = source->take();
+BrickScheduler::Turn BrickScheduler::next_turn() {
+  Turn turn;
+  while (!turn.task && !ready_.empty()) {
+    // The least used; among equals the longest waiting (the front), as round robin would.
+    auto least = ready_.begin();
+    for (auto it = ready_.begin(); it != ready_.end(); ++it) {
+      if ((*it)->used_ns_ < (*least)->used_ns_) least = it;
+    }
+    std::shared_ptr<WorkSource> source = std::move(*least);
+    ready_.erase(least);
+    clock_ns_ = std::max(clock_ns_, source->used_ns_);
+    turn.task = source->take();
     if (source->has_work()) {
-      ready_.push_back(std::move(source));  // back of the line: the other sources go first
+      ready_.push_back(source);
     } else {
       source->in_ready_list_ = false;
     }
+    // Kept only with a task to charge: a source held by a sleeping worker would outlive its
+    // stream (and its counts, which its destructor settles).
+    if (turn.task) turn.source = std::move(source);
   }
   waiting_sources_.store(ready_.size(), std::memory_order_relaxed);
-  return task;
+  return turn;
 }
 
 void BrickScheduler::work() {
   std::unique_lock lock(mutex_);
   for (;;) {
-    std::function<void()> task = next_task();
-    if (task) {
+    Turn turn = next_turn();
+    if (turn.task) {
       lock.unlock();
-      task();
-      task = nullptr;  // let go of the source before taking the lock again
+      const auto start = std::chrono::steady_clock::now();
+      turn.task();
+      turn.task = nullptr;
+      const auto used = std::chrono::steady_clock::now() - start;
+      lock.lock();
+      turn.source->used_ns_ += std::chrono::duration_cast<std::chrono::nanoseconds>(used).count();
+      lock.unlock();
+      turn.source.reset();  // outside the lock: it may be the stream's last reference
       lock.lock();
       continue;
     }

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <boost/asio/thread_pool.hpp>
 #include <condition_variable>
+#include <cstdint>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -26,12 +27,16 @@ class WorkSource {
  private:
   friend class BrickScheduler;
   bool in_ready_list_ = false;  // guarded by the scheduler's mutex
+  int64_t used_ns_ = 0;         // the worker time its turns took; the scheduler's mutex
 };
 
-// Brick work runs on our own worker threads, never on gRPC's threads. Fair across streams:
-// sources with work take turns, one take() each (round robin: one item, or a run of a few when
-// many sources wait, the same for every source); within a stream the source's own order
-// decides (coarse levels first, then priority).
+// Brick work runs on our own worker threads, never on gRPC's threads. Fair across streams in
+// worker time, not in bricks: the next turn goes to the waiting source whose turns have taken
+// the least time (a source that was idle starts level with the one served last, so idling
+// banks no credit). A texture whose bricks take a second each then gets the same share of the
+// workers as one whose bricks take 0.2 ms, where turns counted in bricks gave it 5,000 times
+// more. A turn is one take(): one item, or a run of a few when many sources wait; within a
+// stream the source's own order decides (coarse levels first, then priority).
 //
 // A worker keeps taking items until no source has any, so a busy server hands bricks to its
 // workers without a wake-up per brick: a worker sleeps only when there is nothing to do, and
@@ -55,8 +60,12 @@ class BrickScheduler {
 
  private:
   void work();
-  // The next task, round robin over the sources; empty when none has work. mutex_ held.
-  std::function<void()> next_task();
+  struct Turn {
+    std::function<void()> task;  // empty when no source has work
+    std::shared_ptr<WorkSource> source;
+  };
+  // The next turn: the waiting source that has used the least worker time. mutex_ held.
+  Turn next_turn();
 
   const int threads_;
   boost::asio::thread_pool timers_{1};
@@ -64,6 +73,7 @@ class BrickScheduler {
   std::condition_variable wake_;
   std::deque<std::shared_ptr<WorkSource>> ready_;
   std::atomic<std::size_t> waiting_sources_{0};  // ready_.size(), readable without the lock
+  int64_t clock_ns_ = 0;  // used_ns_ of the source served last: where a newly waiting one starts
   int sleeping_ = 0;
   bool stopping_ = false;
   std::vector<std::thread> workers_;

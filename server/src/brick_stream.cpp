@@ -261,10 +261,17 @@ std::function<void()> BrickStream::take() {
     items.push_back(std::move(*item));
   }
   if (items.empty()) return {};
-  return [self = shared_from_this(), items = std::move(items)] {
+  return [self = shared_from_this(), items = std::move(items)]() mutable {
     const bool in_run = items.size() > 1;
     if (in_run) self->begin_run(items.size());
-    for (const WorkItem& item : items) {
+    const auto start = std::chrono::steady_clock::now();
+    for (std::size_t i = 0; i < items.size(); ++i) {
+      if (in_run && i > 0 &&
+          std::chrono::steady_clock::now() - start >= self->context_.limits.run_time) {
+        self->give_back({items.begin() + static_cast<std::ptrdiff_t>(i), items.end()});
+        break;
+      }
+      const WorkItem& item = items[i];
       if (self->let_go_if_gone(in_run)) continue;  // cancelled mid-run: none of the rest is wanted
       // Measured here, not when the run was taken: a run's later bricks wait on this worker
       // behind its earlier ones, and that wait belongs to no other stage.
@@ -275,6 +282,26 @@ std::function<void()> BrickStream::take() {
       });
     }
   };
+}
+
+void BrickStream::give_back(std::span<WorkItem> items) {
+  std::size_t queued = 0;
+  {
+    std::lock_guard lock(mutex_);
+    for (WorkItem& item : items) {
+      --run_unmade_;
+      if (queue_.give_back(std::move(item))) {
+        ++queued;
+      } else {
+        // Asked for again meanwhile and queued as that: this one is let go, as cancelled.
+        context_.metrics.bricks_cancelled.fetch_add(1, std::memory_order_relaxed);
+      }
+    }
+    count_queued(static_cast<int64_t>(queued));
+    pump();  // the run's message no longer waits for these
+  }
+  // Outside our lock: the scheduler takes its own lock and then ours (via take()).
+  context_.scheduler.notify(shared_from_this(), queued);
 }
 
 void BrickStream::begin_run(std::size_t bricks) {

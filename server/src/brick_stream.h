@@ -9,6 +9,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <string>
 #include <unordered_map>
 
@@ -43,6 +44,11 @@ struct StreamLimits {
   // bricks go in one message however long the run takes (the coalesce wait does not cut it),
   // so this also bounds how long a run's first brick waits for its last.
   uint32_t run_bricks = 16;
+  // A run also ends once it has taken this long, its other bricks going back to the queue: a
+  // run is for bricks cheap enough to share a message (16 cold marble bricks: about 2.5 ms);
+  // an expensive texture's run would hold a worker for its whole length (16 supersampled
+  // bricks: 16 s) while every other stream waited for one.
+  std::chrono::microseconds run_time{5000};
   // Made bricks a stream may hold unsent (its outbox and the write in flight) before its
   // queued bricks wait for the client to read: the count bounds (max_queued_*) hold keys, but
   // a client that stops reading would otherwise make the server keep every brick made for it
@@ -109,7 +115,8 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   // Whether the stream sends no more bricks (cancelled, shutting down, finished); if so, lets go
   // of one taken item without making it, counted as cancelled.
   bool let_go_if_gone(bool in_run);
-  void begin_run(std::size_t bricks);  // a worker starts making a run of this many bricks
+  void begin_run(std::size_t bricks);         // a worker starts making a run of this many bricks
+  void give_back(std::span<WorkItem> items);  // a run's unmade rest, back in the queue
 
   // All below: mutex_ held.
   std::size_t accept_request();  // returns how many keys were queued

@@ -38,6 +38,16 @@ std::optional<WorkItem> WorkQueue::pop() {
   return std::move(node.value());
 }
 
+bool WorkQueue::give_back(WorkItem item) {
+  std::lock_guard lock(mutex_);
+  assert(taken_ > 0 && "give_back() without a pop()");
+  if (taken_ > 0) --taken_;
+  if (by_key_.contains(item.key)) return false;
+  const BrickKey key = item.key;
+  by_key_.emplace(key, items_.insert(std::move(item)).first);
+  return true;
+}
+
 void WorkQueue::finished() {
   std::lock_guard lock(mutex_);
   assert(taken_ > 0 && "finished() without a pop()");

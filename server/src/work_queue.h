@@ -39,6 +39,9 @@ class WorkQueue {
   std::optional<WorkItem> pop();
   // A taken item is done with (its brick made, or its failure reported).
   void finished();
+  // A taken item goes back unmade, in its old place (its sequence); if its key was asked for
+  // again meanwhile, the queued one stands. Returns whether it was queued again.
+  bool give_back(WorkItem item);
   std::size_t size() const;         // queued
   std::size_t taken() const;        // taken and not finished
   std::size_t outstanding() const;  // queued + taken, read together

@@ -1,0 +1,83 @@
+#include "brick_scheduler.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace soltex::server {
+namespace {
+
+// `count` tasks, each running `task`. take() and has_work() run under the scheduler's lock,
+// so `left_` needs no lock of its own.
+class CountedSource final : public WorkSource {
+ public:
+  CountedSource(int count, std::function<void()> task) : left_(count), task_(std::move(task)) {}
+  std::function<void()> take() override {
+    if (left_ == 0) return {};
+    --left_;
+    return task_;
+  }
+  bool has_work() const override { return left_ > 0; }
+
+ private:
+  int left_;
+  std::function<void()> task_;
+};
+
+TEST(BrickScheduler, TurnsAreSharedInWorkerTimeNotInTasks) {
+  // One worker, a source of slow tasks (20 ms) and one of instant ones: counted in tasks,
+  // turns would alternate; counted in time, the instant source's 400 tasks (well under 20 ms
+  // in all) all run before the slow source's second turn.
+  BrickScheduler scheduler(1);
+  std::atomic<int> instant_done{0};
+  std::vector<int> instant_done_at_slow_starts;  // one worker: no lock needed
+  auto slow = std::make_shared<CountedSource>(3, [&] {
+    instant_done_at_slow_starts.push_back(instant_done.load());
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  });
+  auto instant = std::make_shared<CountedSource>(400, [&] { ++instant_done; });
+  scheduler.notify(slow, 3);
+  scheduler.notify(instant, 400);
+  scheduler.stop();  // lets the workers finish what is queued
+  ASSERT_EQ(instant_done_at_slow_starts.size(), 3u);
+  EXPECT_LE(instant_done_at_slow_starts[0], 1);
+  EXPECT_EQ(instant_done_at_slow_starts[1], 400);
+  EXPECT_EQ(instant_done.load(), 400);
+}
+
+TEST(BrickScheduler, AnIdleSourceBanksNoCredit) {
+  // A source that waited idle while another used the worker starts level with it: the two
+  // then alternate instead of the newcomer taking every turn until it caught up.
+  BrickScheduler scheduler(1);
+  std::vector<char> order;  // one worker: no lock needed
+  auto first = std::make_shared<CountedSource>(20, [&] {
+    order.push_back('a');
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  });
+  scheduler.notify(first, 10);
+  std::this_thread::sleep_for(std::chrono::milliseconds(15));  // `first` runs alone a while
+  auto second = std::make_shared<CountedSource>(10, [&] {
+    order.push_back('b');
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  });
+  scheduler.notify(second, 10);
+  scheduler.stop();
+  // Once `second` came, no run of its own longer than a few turns.
+  int longest_b_run = 0;
+  for (int i = 0, run = 0; i < static_cast<int>(order.size()); ++i) {
+    run = order[static_cast<std::size_t>(i)] == 'b' ? run + 1 : 0;
+    longest_b_run = std::max(longest_b_run, run);
+  }
+  EXPECT_LE(longest_b_run, 2) << std::string(order.begin(), order.end());
+  EXPECT_EQ(order.size(), 30u);
+}
+
+}  // namespace
+}  // namespace soltex::server
