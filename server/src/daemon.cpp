@@ -99,6 +99,8 @@ HttpLimits http_limits(const ServerConfig& config) {
   HttpLimits limits;
   limits.max_body_bytes = config.max_message_bytes;
   limits.max_connections = config.http_max_connections;
+  limits.max_connections_per_client = config.http_max_connections_per_client;
+  limits.unbounded_peers = parse_address_ranges(config.trusted_proxies);
   limits.timeout =
       std::chrono::milliseconds(static_cast<int64_t>(config.http_timeout_seconds * 1000.0));
   limits.threads = config.http_threads;

@@ -47,6 +47,10 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
   }
   ~HttpSession() { metrics_.http.connections_open.fetch_sub(1, std::memory_order_relaxed); }
 
+  // The peer's connection slot, given back when the session ends.
+  void hold(PeerConnections::Slot slot) { slot_ = std::move(slot); }
+  const std::string& peer_host() const { return peer_host_; }
+
   void start() {
     net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->begin(); });
   }
@@ -63,14 +67,11 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
     net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->close(); });
   }
 
-  // Too many connections: one 503, then closed.
-  void refuse() {
+  // Too many connections (the server's, or this peer's: `why`): one 503, then closed.
+  void refuse(const std::string& why) {
     metrics_.http.connections_refused.fetch_add(1, std::memory_order_relaxed);
     metrics_.http.count(HttpMetrics::Route::other, 503);
-    HttpResponse response =
-        handler_.error(11, 503,
-                       "this server has " + std::to_string(limits_.max_connections) +
-                           " HTTP connections open (--http-max-connections); try again later");
+    HttpResponse response = handler_.error(11, 503, why + "; try again later");
     net::dispatch(stream_.get_executor(),
                   [self = shared_from_this(), response = std::move(response)]() mutable {
                     self->send(std::move(response), /*close=*/true);
@@ -184,6 +185,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
   HttpRequestHandler& handler_;
   ServerMetrics& metrics_;
   std::string peer_host_;
+  PeerConnections::Slot slot_;
   beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
   HttpResponse response_;
@@ -197,6 +199,8 @@ HttpBrickServer::HttpBrickServer(const std::string& host, uint16_t port, HttpLim
       metrics_(context.metrics),
       handler_(context),
       tls_(tls ? std::make_unique<HttpTls>(*tls) : nullptr),
+      peers_(std::make_shared<PeerConnections>(limits.max_connections_per_client,
+                                               limits.unbounded_peers)),
       acceptor_(io_) {
   beast::error_code ec;
   const auto address = net::ip::make_address(host, ec);
@@ -232,17 +236,28 @@ void HttpBrickServer::accept() {
         const std::shared_ptr<net::ssl::context> context = tls_->context();
         auto session = std::make_shared<HttpSession<TlsStream>>(std::move(socket), limits_,
                                                                 handler_, metrics_, *context);
-        if (full) {
+        std::optional<PeerConnections::Slot> slot;
+        if (!full) slot = peers_->open(session->peer_host());
+        if (!slot) {
           session->close_now();
         } else {
+          session->hold(std::move(*slot));
           session->start_with(context);
         }
       } else {
         auto session = std::make_shared<HttpSession<beast::tcp_stream>>(std::move(socket), limits_,
                                                                         handler_, metrics_);
+        std::optional<PeerConnections::Slot> slot;
+        if (!full) slot = peers_->open(session->peer_host());
         if (full) {
-          session->refuse();
+          session->refuse("this server has " + std::to_string(limits_.max_connections) +
+                          " HTTP connections open (--http-max-connections)");
+        } else if (!slot) {
+          session->refuse("this client (" + session->peer_host() + ") has " +
+                          std::to_string(limits_.max_connections_per_client) +
+                          " HTTP connections open (--http-max-connections-per-client)");
         } else {
+          session->hold(std::move(*slot));
           session->start();
         }
       }

@@ -12,6 +12,7 @@
 
 #include "http_request_handler.h"
 #include "http_tls.h"
+#include "peer_connections.h"
 
 namespace soltex::server {
 
@@ -19,6 +20,9 @@ struct HttpLimits {
   std::size_t max_body_bytes = 4u << 20;  // a registration; the gRPC message bound
   std::size_t max_header_bytes = 16384;   // request line and headers (?spec= rides there)
   uint32_t max_connections = 1024;        // beyond: 503 and closed
+  // Of them from one peer address, but for the balancers named here (trusted proxies).
+  uint32_t max_connections_per_client = 64;
+  std::vector<AddressRange> unbounded_peers;
   // A request must arrive whole, and a response be written, within this; an idle keep-alive
   // connection is closed after it.
   std::chrono::milliseconds timeout{15000};
@@ -48,6 +52,7 @@ class HttpBrickServer {
   ServerMetrics& metrics_;
   HttpRequestHandler handler_;
   std::unique_ptr<HttpTls> tls_;  // null: plain HTTP
+  std::shared_ptr<PeerConnections> peers_;
   boost::asio::io_context io_;
   boost::asio::ip::tcp::acceptor acceptor_;
   uint16_t port_ = 0;

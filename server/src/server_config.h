@@ -37,6 +37,8 @@ struct ServerConfig {
   // HTTP bricks (docs/PROTOCOL.md, HTTP): off while empty.
   std::string http_listen;
   uint32_t http_max_connections = 1024;
+  uint32_t http_max_connections_per_client =
+      64;  // of those, from one address (not a trusted proxy)
   double http_timeout_seconds = 15.0;
   int http_threads = 2;
 

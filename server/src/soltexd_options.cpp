@@ -91,6 +91,11 @@ void add_http_options(CLI::App& app, ServerConfig& config) {
                   "open HTTP connections; one more is answered 503 and closed")
       ->check(CLI::Range(1u, 1u << 20))
       ->capture_default_str();
+  web->add_option("--http-max-connections-per-client", config.http_max_connections_per_client,
+                  "of those, open from one address (--trusted-proxies are not bounded); one "
+                  "more is answered 503 and closed")
+      ->check(CLI::Range(1u, 1u << 20))
+      ->capture_default_str();
   web->add_option("--http-timeout-s", config.http_timeout_seconds,
                   "seconds a request may take to arrive, a response to be written, or a "
                   "keep-alive connection to idle")

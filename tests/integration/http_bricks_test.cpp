@@ -309,6 +309,40 @@ TEST(HttpBricks, ConnectionsBeyondTheLimitGet503) {
       testing::metric_value(testing::metrics(server), "soltex_http_connections_refused_total"), 1);
 }
 
+TEST(HttpBricks, OneClientCannotHoldEveryConnection) {
+  // Every connection of this test comes from 127.0.0.1: one client, two slots.
+  SoltexdProcess server(
+      http_args({"--http-max-connections", "8", "--http-max-connections-per-client", "2"}));
+  const std::string id = register_over_http(server.http_port())["id"];
+  std::vector<std::unique_ptr<HttpConnection>> held;
+  for (int i = 0; i < 2; ++i) {
+    held.push_back(std::make_unique<HttpConnection>(server.http_port()));
+    EXPECT_EQ(held.back()->send("GET", brick_path(id, 0, 0, 0, 0)).status, 200);
+  }
+  HttpConnection extra(server.http_port());
+  const HttpReply refused = extra.read();
+  EXPECT_EQ(refused.status, 503);
+  EXPECT_NE(refused.body.find("--http-max-connections-per-client"), std::string::npos)
+      << refused.body;
+  held.pop_back();
+  int status = 0;
+  for (int attempt = 0; attempt < 50 && status != 200; ++attempt) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    status = http_request(server.http_port(), "GET", brick_path(id, 0, 0, 0, 0)).status;
+  }
+  EXPECT_EQ(status, 200);
+
+  // A balancer named as a trusted proxy carries many clients: it is not bounded per client.
+  SoltexdProcess behind_proxy(
+      http_args({"--http-max-connections-per-client", "2", "--trusted-proxies", "127.0.0.1"}));
+  const std::string proxied = register_over_http(behind_proxy.http_port())["id"];
+  std::vector<std::unique_ptr<HttpConnection>> balancer;
+  for (int i = 0; i < 4; ++i) {
+    balancer.push_back(std::make_unique<HttpConnection>(behind_proxy.http_port()));
+    EXPECT_EQ(balancer.back()->send("GET", brick_path(proxied, 0, 0, 0, 0)).status, 200) << i;
+  }
+}
+
 TEST(HttpBricks, TokensAreCheckedAsForGrpc) {
   SoltexdProcess server(http_args({"--token", "s3cret"}));
   const int port = server.http_port();
