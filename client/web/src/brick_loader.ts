@@ -29,12 +29,11 @@ export interface LoaderStats {
 export const kInitialBackoffMs = 100;
 export const kMaxBackoffMs = 4000;
 
-// An answer that says the brick will never come: a malformed or refused request.
-class Refused extends Error {}
-
-// An answer that may pass, with the wait the server asked for (Retry-After, seconds), if any.
-class Transient extends Error {
-  constructor(message: string, readonly retryAfterMs: number) {
+// A fetch that failed with an answer: whether asking again may get the brick (a 5xx, 408, 429)
+// or not (any other 4xx, bytes that do not decode), and the wait the server asked for. A
+// fetch that got no answer at all (the network) throws the browser's own error: it may pass.
+class FetchError extends Error {
+  constructor(message: string, readonly passes: boolean, readonly retryAfterMs = 0) {
     super(message);
   }
 }
@@ -122,9 +121,7 @@ export class BrickLoader {
       const response = await fetch(this.urlOf(key), { signal: controller.signal });
       if (!response.ok) {
         const message = `HTTP ${response.status}: ${await response.text()}`;
-        throw transient(response.status)
-          ? new Transient(message, retryAfterMs(response))
-          : new Refused(message);
+        throw new FetchError(message, transient(response.status), retryAfterMs(response));
       }
       const bytes = new Uint8Array(await response.arrayBuffer());
       if (response.headers.get("x-cache-status") === "HIT") ++this.stats.cacheHits;
@@ -148,7 +145,7 @@ export class BrickLoader {
     try {
       brick = decodeBrick(bytes, { verify: false });
     } catch (e) {
-      throw new Refused(`undecodable brick: ${(e as Error).message}`);
+      throw new FetchError(`undecodable brick: ${(e as Error).message}`, false);
     }
     const t1 = performance.now();
     this.onBrick(key, brick);
@@ -156,15 +153,15 @@ export class BrickLoader {
     this.stats.uploadMs += performance.now() - t1;
   }
 
-  private failed(id: string, error: Error): void {
+  private failed(id: string, error: Error & Partial<FetchError>): void {
     ++this.stats.errors;
     console.warn(`brick ${id}: ${error.message}`);
-    if (error instanceof Refused) {
+    if (error.passes === false) {
       this.failedForGood.add(id);
       ++this.stats.failed;
       return;
     }
-    const asked = error instanceof Transient ? error.retryAfterMs : 0;
+    const asked = error.retryAfterMs ?? 0;
     this.pausedUntil = Math.max(this.pausedUntil, performance.now() + Math.max(this.backoffMs, asked));
     this.backoffMs = Math.min(2 * this.backoffMs, kMaxBackoffMs);
     const want = this.wanted.get(id);

@@ -194,7 +194,7 @@ async function main(): Promise<void> {
   };
 
   let lastWants: Want[] = [];
-  let framesSinceOverlay = 0;
+  let framesDrawn = 0;
   let lastOverlay = performance.now();
   let shownConverged = false;
   const overlay = document.getElementById("overlay")!;
@@ -235,8 +235,8 @@ async function main(): Promise<void> {
     // Not while the last bricks wait for their frame: what is on screen must be the picture.
     status.converged = !dirty && loader.pending === 0 && (resident === lastWants.length || pool.residentCount === pool.capacity);
     if (now - lastOverlay < 500 && status.converged === shownConverged) return;
-    const fps = (framesSinceOverlay * 1000) / Math.max(1, now - lastOverlay);
-    framesSinceOverlay = 0;
+    const fps = (framesDrawn * 1000) / Math.max(1, now - lastOverlay);
+    framesDrawn = 0;
     lastOverlay = now;
     shownConverged = status.converged;
     const s = loader.stats;
@@ -248,7 +248,7 @@ async function main(): Promise<void> {
   };
   const render = (now: number) => {
     requestAnimationFrame(render);
-    if (draw(now)) ++framesSinceOverlay;
+    if (draw(now)) ++framesDrawn;
     report(now);
   };
 
