@@ -282,14 +282,31 @@ TEST(HttpBricks, SlowClientsTimeOutWhileOthersAreServed) {
       testing::metric_value(page, "soltex_http_responses_total{route=\"other\",code=\"408\"}"), 1);
 }
 
+// `count` keep-alive connections, each with one brick answered: they hold their slots.
+std::vector<std::unique_ptr<HttpConnection>> hold_connections(int port, const std::string& id,
+                                                              int count) {
+  std::vector<std::unique_ptr<HttpConnection>> held;
+  for (int i = 0; i < count; ++i) {
+    held.push_back(std::make_unique<HttpConnection>(port));
+    EXPECT_EQ(held.back()->send("GET", brick_path(id, 0, 0, 0, 0)).status, 200) << i;
+  }
+  return held;
+}
+
+// A brick's status once a freed slot is reused: the server must first see the close.
+int status_when_a_slot_frees(int port, const std::string& id) {
+  int status = 0;
+  for (int attempt = 0; attempt < 50 && status != 200; ++attempt) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    status = http_request(port, "GET", brick_path(id, 0, 0, 0, 0)).status;
+  }
+  return status;
+}
+
 TEST(HttpBricks, ConnectionsBeyondTheLimitGet503) {
   SoltexdProcess server(http_args({"--http-max-connections", "3"}));
   const std::string id = register_over_http(server.http_port())["id"];
-  std::vector<std::unique_ptr<HttpConnection>> held;
-  for (int i = 0; i < 3; ++i) {
-    held.push_back(std::make_unique<HttpConnection>(server.http_port()));
-    EXPECT_EQ(held.back()->send("GET", brick_path(id, 0, 0, 0, 0)).status, 200);
-  }
+  std::vector<std::unique_ptr<HttpConnection>> held = hold_connections(server.http_port(), id, 3);
   HttpConnection extra(server.http_port());
   const HttpReply refused = extra.read();
   EXPECT_EQ(refused.status, 503);
@@ -298,13 +315,7 @@ TEST(HttpBricks, ConnectionsBeyondTheLimitGet503) {
   EXPECT_NE(refused.header("access-control-expose-headers").find("Retry-After"), std::string::npos);
   EXPECT_NE(refused.body.find("--http-max-connections"), std::string::npos);
   held.pop_back();
-  // The freed slot is reused once the server has seen the close.
-  int status = 0;
-  for (int attempt = 0; attempt < 50 && status != 200; ++attempt) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    status = http_request(server.http_port(), "GET", brick_path(id, 0, 0, 0, 0)).status;
-  }
-  EXPECT_EQ(status, 200);
+  EXPECT_EQ(status_when_a_slot_frees(server.http_port(), id), 200);
   EXPECT_GE(
       testing::metric_value(testing::metrics(server), "soltex_http_connections_refused_total"), 1);
 }
@@ -314,33 +325,20 @@ TEST(HttpBricks, OneClientCannotHoldEveryConnection) {
   SoltexdProcess server(
       http_args({"--http-max-connections", "8", "--http-max-connections-per-client", "2"}));
   const std::string id = register_over_http(server.http_port())["id"];
-  std::vector<std::unique_ptr<HttpConnection>> held;
-  for (int i = 0; i < 2; ++i) {
-    held.push_back(std::make_unique<HttpConnection>(server.http_port()));
-    EXPECT_EQ(held.back()->send("GET", brick_path(id, 0, 0, 0, 0)).status, 200);
-  }
+  std::vector<std::unique_ptr<HttpConnection>> held = hold_connections(server.http_port(), id, 2);
   HttpConnection extra(server.http_port());
   const HttpReply refused = extra.read();
   EXPECT_EQ(refused.status, 503);
   EXPECT_NE(refused.body.find("--http-max-connections-per-client"), std::string::npos)
       << refused.body;
   held.pop_back();
-  int status = 0;
-  for (int attempt = 0; attempt < 50 && status != 200; ++attempt) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    status = http_request(server.http_port(), "GET", brick_path(id, 0, 0, 0, 0)).status;
-  }
-  EXPECT_EQ(status, 200);
+  EXPECT_EQ(status_when_a_slot_frees(server.http_port(), id), 200);
 
   // A balancer named as a trusted proxy carries many clients: it is not bounded per client.
   SoltexdProcess behind_proxy(
       http_args({"--http-max-connections-per-client", "2", "--trusted-proxies", "127.0.0.1"}));
   const std::string proxied = register_over_http(behind_proxy.http_port())["id"];
-  std::vector<std::unique_ptr<HttpConnection>> balancer;
-  for (int i = 0; i < 4; ++i) {
-    balancer.push_back(std::make_unique<HttpConnection>(behind_proxy.http_port()));
-    EXPECT_EQ(balancer.back()->send("GET", brick_path(proxied, 0, 0, 0, 0)).status, 200) << i;
-  }
+  const auto balancer = hold_connections(behind_proxy.http_port(), proxied, 4);
 }
 
 TEST(HttpBricks, TokensAreCheckedAsForGrpc) {
