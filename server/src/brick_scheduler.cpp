@@ -21,7 +21,7 @@ void BrickScheduler::notify(const std::shared_ptr<WorkSource>& source, std::size
     std::lock_guard lock(mutex_);
     if (!source->in_ready_list_) {
       source->in_ready_list_ = true;
-      source->used_ns_ = std::max(source->used_ns_, clock_ns_);
+      source->share_->used_ns = std::max(source->share_->used_ns, clock_ns_);
       ready_.push_back(source);
       waiting_sources_.store(ready_.size(), std::memory_order_relaxed);
     }
@@ -35,17 +35,31 @@ void BrickScheduler::notify(const std::shared_ptr<WorkSource>& source, std::size
   }
 }
 
+std::shared_ptr<FairShare> BrickScheduler::share_of(const std::string& client) {
+  std::lock_guard lock(mutex_);
+  std::shared_ptr<FairShare> share = shares_[client].lock();
+  if (!share) {
+    // Clients come and go: forget the ones whose sources are all gone, now and then.
+    if (shares_.size() > 1024)
+      std::erase_if(shares_, [](const auto& s) { return s.second.expired(); });
+    share = std::make_shared<FairShare>();
+    share->used_ns = clock_ns_;
+    shares_[client] = share;
+  }
+  return share;
+}
+
 BrickScheduler::Turn BrickScheduler::next_turn() {
   Turn turn;
   while (!turn.task && !ready_.empty()) {
     // The least used; among equals the longest waiting (the front), as round robin would.
     auto least = ready_.begin();
     for (auto it = ready_.begin(); it != ready_.end(); ++it) {
-      if ((*it)->used_ns_ < (*least)->used_ns_) least = it;
+      if ((*it)->share_->used_ns < (*least)->share_->used_ns) least = it;
     }
     std::shared_ptr<WorkSource> source = std::move(*least);
     ready_.erase(least);
-    clock_ns_ = std::max(clock_ns_, source->used_ns_);
+    clock_ns_ = std::max(clock_ns_, source->share_->used_ns);
     turn.task = source->take();
     if (source->has_work()) {
       ready_.push_back(source);
@@ -71,7 +85,8 @@ void BrickScheduler::work() {
       turn.task = nullptr;
       const auto used = std::chrono::steady_clock::now() - start;
       lock.lock();
-      turn.source->used_ns_ += std::chrono::duration_cast<std::chrono::nanoseconds>(used).count();
+      turn.source->share_->used_ns +=
+          std::chrono::duration_cast<std::chrono::nanoseconds>(used).count();
       lock.unlock();
       turn.source.reset();  // outside the lock: it may be the stream's last reference
       lock.lock();

@@ -8,15 +8,27 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <thread>
+#include <unordered_map>
 #include <vector>
 
 namespace soltex::server {
+
+// The worker time a client's turns have taken, shared by all its sources (its streams), so
+// that fairness is between clients: one client's 64 streams get one client's share. Guarded
+// by the scheduler's mutex.
+struct FairShare {
+  int64_t used_ns = 0;
+};
 
 // Something with bricks to make: a stream. The scheduler asks it for one item at a time.
 class WorkSource {
  public:
   virtual ~WorkSource() = default;
+  // Charges this source's turns to `share` (BrickScheduler::share_of its client) instead of
+  // an account of its own. Before it is first notified.
+  void share_with(std::shared_ptr<FairShare> share) { share_ = std::move(share); }
   // Takes the best pending item (or a short run of them, best first) off the queue and returns
   // the work to do for it (run by the scheduler outside its lock), or an empty function when
   // nothing is pending. Called with
@@ -27,14 +39,14 @@ class WorkSource {
  private:
   friend class BrickScheduler;
   bool in_ready_list_ = false;  // guarded by the scheduler's mutex
-  int64_t used_ns_ = 0;         // the worker time its turns took; the scheduler's mutex
+  std::shared_ptr<FairShare> share_ = std::make_shared<FairShare>();
 };
 
-// Brick work runs on our own worker threads, never on gRPC's threads. Fair across streams in
-// worker time, not in bricks: the next turn goes to the waiting source whose turns have taken
-// the least time (a source that was idle starts level with the one served last, so idling
-// banks no credit). A texture whose bricks take a second each then gets the same share of the
-// workers as one whose bricks take 0.2 ms, where turns counted in bricks gave it 5,000 times
+// Brick work runs on our own worker threads, never on gRPC's threads. Fair across clients in
+// worker time, not in bricks: the next turn goes to the waiting source whose client's turns
+// have taken the least time (a client that was idle starts level with the one served last,
+// so idling banks no credit). A texture whose bricks take a second each then gets the same share of
+// the workers as one whose bricks take 0.2 ms, where turns counted in bricks gave it 5,000 times
 // more. A turn is one take(): one item, or a run of a few when many sources wait; within a
 // stream the source's own order decides (coarse levels first, then priority).
 //
@@ -48,6 +60,9 @@ class BrickScheduler {
 
   // `source` gained `items` new items of work.
   void notify(const std::shared_ptr<WorkSource>& source, std::size_t items);
+
+  // The account of `client`'s sources: one per client while any source of it holds it.
+  std::shared_ptr<FairShare> share_of(const std::string& client);
 
   // Lets the workers finish what is queued, then joins them.
   void stop();
@@ -73,7 +88,8 @@ class BrickScheduler {
   std::condition_variable wake_;
   std::deque<std::shared_ptr<WorkSource>> ready_;
   std::atomic<std::size_t> waiting_sources_{0};  // ready_.size(), readable without the lock
-  int64_t clock_ns_ = 0;  // used_ns_ of the source served last: where a newly waiting one starts
+  int64_t clock_ns_ = 0;  // used_ns of the share served last: where a newly waiting one starts
+  std::unordered_map<std::string, std::weak_ptr<FairShare>> shares_;  // by client
   int sleeping_ = 0;
   bool stopping_ = false;
   std::vector<std::thread> workers_;

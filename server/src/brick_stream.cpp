@@ -55,6 +55,8 @@ BrickStream::BrickStream(Context context, uint64_t id, std::string peer,
       coalesce_timer_(context_.scheduler.timer_executor()) {
   context_.metrics.streams_opened.fetch_add(1, std::memory_order_relaxed);
   context_.metrics.streams_open.fetch_add(1, std::memory_order_relaxed);
+  // Turns are shared between clients: this client's streams draw on one account.
+  share_with(context_.scheduler.share_of(lease_->usage().client));
 }
 
 BrickStream::~BrickStream() {

@@ -79,5 +79,31 @@ TEST(BrickScheduler, AnIdleSourceBanksNoCredit) {
   EXPECT_EQ(order.size(), 30u);
 }
 
+TEST(BrickScheduler, TheSourcesOfOneClientShareOneClientsTurns) {
+  // Client a has four sources, client b one, all with tasks of the same length: b gets half
+  // the turns, not a fifth.
+  BrickScheduler scheduler(1);
+  std::vector<char> order;  // one worker: no lock needed
+  const auto task_of = [&](char client) {
+    return [&order, client] {
+      order.push_back(client);
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    };
+  };
+  std::vector<std::shared_ptr<CountedSource>> sources;
+  for (int i = 0; i < 4; ++i) {
+    sources.push_back(std::make_shared<CountedSource>(10, task_of('a')));
+    sources.back()->share_with(scheduler.share_of("a"));
+  }
+  sources.push_back(std::make_shared<CountedSource>(40, task_of('b')));
+  sources.back()->share_with(scheduler.share_of("b"));
+  for (const auto& source : sources) scheduler.notify(source, 10);
+  scheduler.stop();
+  ASSERT_EQ(order.size(), 80u);
+  const auto b_turns = std::count(order.begin(), order.begin() + 40, 'b');
+  EXPECT_GE(b_turns, 16) << std::string(order.begin(), order.end());  // about 20 of 40
+  EXPECT_LE(b_turns, 24) << std::string(order.begin(), order.end());
+}
+
 }  // namespace
 }  // namespace soltex::server
