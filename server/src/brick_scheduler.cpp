@@ -87,9 +87,7 @@ void BrickScheduler::work() {
       lock.lock();
       turn.source->share_->used_ns +=
           std::chrono::duration_cast<std::chrono::nanoseconds>(used).count();
-      lock.unlock();
-      turn.source.reset();  // outside the lock: it may be the stream's last reference
-      lock.lock();
+      turn.source.reset();  // as next_turn() lets go of a source without work: under the lock
       continue;
     }
     if (stopping_) return;

@@ -238,8 +238,7 @@ bool BrickStream::answer_from_cache(const BrickKey& key,
   } else {
     context_.metrics.bricks_requested.fetch_add(1, std::memory_order_relaxed);
   }
-  unsent_bytes_.fetch_add(hit->payload().size(), std::memory_order_relaxed);
-  outbox_.push_back({std::move(hit), std::nullopt, std::nullopt, now, now});
+  add_to_outbox(std::move(hit), now, now);
   return true;
 }
 
@@ -306,6 +305,13 @@ void BrickStream::give_back(std::span<WorkItem> items) {
   context_.scheduler.notify(shared_from_this(), queued);
 }
 
+void BrickStream::add_to_outbox(EncodedBrickPtr brick,
+                                std::chrono::steady_clock::time_point enqueued,
+                                std::chrono::steady_clock::time_point ready) {
+  unsent_bytes_.fetch_add(brick->payload().size(), std::memory_order_relaxed);
+  outbox_.push_back({std::move(brick), std::nullopt, std::nullopt, enqueued, ready});
+}
+
 void BrickStream::begin_run(std::size_t bricks) {
   std::lock_guard lock(mutex_);
   run_unmade_ += bricks;
@@ -326,9 +332,7 @@ void BrickStream::deliver(const WorkItem& item, const EncodedBrickPtr& brick, bo
   if (in_run) --run_unmade_;
   queue_.finished();
   if (brick) {
-    unsent_bytes_.fetch_add(brick->payload().size(), std::memory_order_relaxed);
-    outbox_.push_back(
-        {brick, std::nullopt, std::nullopt, item.enqueued, std::chrono::steady_clock::now()});
+    add_to_outbox(brick, item.enqueued, std::chrono::steady_clock::now());
   } else {
     add_error(to_proto(item.key), grpc::StatusCode::INTERNAL,
               "evaluating " + describe(to_proto(item.key)) + " failed (see the server log)");

@@ -117,6 +117,9 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   bool let_go_if_gone(bool in_run);
   void begin_run(std::size_t bricks);         // a worker starts making a run of this many bricks
   void give_back(std::span<WorkItem> items);  // a run's unmade rest, back in the queue
+  // A made brick into the outbox, counted in unsent_bytes_. mutex_ held.
+  void add_to_outbox(EncodedBrickPtr brick, std::chrono::steady_clock::time_point enqueued,
+                     std::chrono::steady_clock::time_point ready);
 
   // All below: mutex_ held.
   std::size_t accept_request();  // returns how many keys were queued
