@@ -226,8 +226,17 @@ async function main(): Promise<void> {
   };
   // The status and the overlay follow the loader on every tick, drawn or not: fetches fail and
   // succeed while no frame is drawn, and the last change (converged) must show at once.
+  // Counted again only when it can have changed: a brick arrived (the pool took it, perhaps
+  // evicting another) or a frame was drawn (the wants may be new). Not per tick: a view
+  // wants thousands of bricks.
+  let resident = 0;
+  let residentCountedAt = "";
   const report = (now: number) => {
-    const resident = lastWants.filter((w) => pool.has(w.key)).length;
+    const changes = `${loader.stats.received}/${frame}`;
+    if (changes !== residentCountedAt) {
+      resident = lastWants.filter((w) => pool.has(w.key)).length;
+      residentCountedAt = changes;
+    }
     status.frames = frame;
     status.wanted = lastWants.length;
     status.resident = resident;
