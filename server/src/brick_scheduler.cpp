@@ -5,7 +5,8 @@
 
 namespace soltex::server {
 
-BrickScheduler::BrickScheduler(int threads) : threads_(threads) {
+BrickScheduler::BrickScheduler(int threads, double direct_request_share)
+    : threads_(threads), direct_requests_(direct_request_share, std::chrono::milliseconds(5)) {
   workers_.reserve(static_cast<std::size_t>(threads));
   for (int i = 0; i < threads; ++i) workers_.emplace_back([this] { work(); });
 }

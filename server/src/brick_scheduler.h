@@ -13,6 +13,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "time_budget.h"
+
 namespace soltex::server {
 
 // The worker time a client's turns have taken, shared by all its sources (its streams), so
@@ -47,15 +49,17 @@ class WorkSource {
 // have taken the least time (a client that was idle starts level with the one served last,
 // so idling banks no credit). A texture whose bricks take a second each then gets the same share of
 // the workers as one whose bricks take 0.2 ms, where turns counted in bricks gave it 5,000 times
-// more. A turn is one take(): one item, or a run of a few when many sources wait; within a
-// stream the source's own order decides (coarse levels first, then priority).
+// more. A turn is one take(): one item, a run of a few when many sources wait, or the handling
+// of a request a stream read, so that a client's request parsing is charged to it as well;
+// within a stream the source's own order decides (coarse levels first, then priority).
 //
 // A worker keeps taking items until no source has any, so a busy server hands bricks to its
 // workers without a wake-up per brick: a worker sleeps only when there is nothing to do, and
 // notify() wakes no more sleeping workers than there are new items.
 class BrickScheduler {
  public:
-  explicit BrickScheduler(int threads);
+  // direct_request_share: the threads' worth of time of direct_requests().
+  explicit BrickScheduler(int threads, double direct_request_share = 1.0);
   ~BrickScheduler();
 
   // `source` gained `items` new items of work.
@@ -69,6 +73,13 @@ class BrickScheduler {
   int threads() const { return threads_; }
   // Sources with work waiting for a worker, as of a moment ago (no lock: a hint).
   std::size_t waiting_sources() const { return waiting_sources_.load(std::memory_order_relaxed); }
+  // The time gRPC's threads may spend handling requests (parsing, queueing, answering from
+  // the cache) before further requests wait for a worker's turn, charged to their client like
+  // bricks: handled there, one client's flood of requests would keep gRPC's few threads busy
+  // while other clients' messages waited, unread, behind it. A whole thread by default: a
+  // hot-cache client alone keeps the direct path (a worker hand-off per request cost 35 % of
+  // hot serving's rate), and a flood leaves gRPC's other threads to everyone's I/O.
+  TimeBudget& direct_requests() { return direct_requests_; }
   // An executor for short handlers such as timers, on a thread of its own: the workers may all
   // be busy with bricks for longer than a timer should wait.
   boost::asio::thread_pool::executor_type timer_executor() { return timers_.get_executor(); }
@@ -84,6 +95,7 @@ class BrickScheduler {
 
   const int threads_;
   boost::asio::thread_pool timers_{1};
+  TimeBudget direct_requests_;
   std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<std::shared_ptr<WorkSource>> ready_;

@@ -90,7 +90,9 @@ BrickStream::ServerReactor* BrickStream::start() {
 }
 
 void BrickStream::on_read_done(bool ok) {
-  std::size_t added = 0;
+  // Handled here, on gRPC's thread, while the budget for that lasts; otherwise on a worker's
+  // turn, charged to this client's share. Either way the next message is read only after.
+  const bool here = ok && context_.scheduler.direct_requests().has_credit();
   {
     std::lock_guard lock(mutex_);
     reading_ = false;
@@ -98,9 +100,33 @@ void BrickStream::on_read_done(bool ok) {
       reads_done_ = true;  // the client half-closed (or the call is over)
     } else {
       context_.metrics.stream_messages.fetch_add(1, std::memory_order_relaxed);
+      unhandled_request_.Swap(&request_bytes_);
+      request_unhandled_ = true;
+      if (!here) {
+        request_queued_.store(true, std::memory_order_relaxed);
+        context_.metrics.stream_messages_on_turns.fetch_add(1, std::memory_order_relaxed);
+      }
+    }
+    if (!here) pump();
+  }
+  if (here) {
+    const auto start = std::chrono::steady_clock::now();
+    handle_request();
+    context_.scheduler.direct_requests().spend(std::chrono::steady_clock::now() - start);
+  } else if (ok) {
+    // Outside our lock: the scheduler takes its own lock and then ours (via take()).
+    context_.scheduler.notify(shared_from_this(), 1);
+  }
+}
+
+void BrickStream::handle_request() {
+  std::size_t added = 0;
+  {
+    std::lock_guard lock(mutex_);
+    if (!cancelled_ && !shutting_down_ && !finished_) {
       request_.Clear();
       const grpc::Status parsed =
-          grpc::SerializationTraits<v1::BrickRequest>::Deserialize(&request_bytes_, &request_);
+          grpc::SerializationTraits<v1::BrickRequest>::Deserialize(&unhandled_request_, &request_);
       if (parsed.ok()) {
         added = accept_request();
       } else {
@@ -109,9 +135,10 @@ void BrickStream::on_read_done(bool ok) {
                               parsed.error_message() + "); nothing in it was queued");
       }
     }
+    unhandled_request_.Clear();
+    request_unhandled_ = false;
     pump();
   }
-  // Outside our lock: the scheduler takes its own lock and then ours (via take()).
   context_.scheduler.notify(shared_from_this(), added);
 }
 
@@ -243,6 +270,10 @@ bool BrickStream::answer_from_cache(const BrickKey& key,
 }
 
 std::function<void()> BrickStream::take() {
+  // A request first: its cancels and coarse levels decide what the bricks after it are.
+  if (request_queued_.exchange(false, std::memory_order_relaxed)) {
+    return [self = shared_from_this()] { self->handle_request(); };
+  }
   // The client reads slower than its bricks are made: they wait in the queue, as keys, until
   // a write makes room (on_write_done() hands the stream back to the scheduler).
   if (unsent_full()) {
@@ -464,12 +495,12 @@ void BrickStream::pump() {
   // the stream owes: queued, being produced, and made but not yet written (a client that
   // stops reading must not make the server hold its answers without bound).
   const bool room = owed() + limits.max_keys_per_request <= limits.max_queued_per_stream;
-  if (!reading_ && !reads_done_ && !shutting_down_ && !cancelled_ && room) {
+  if (!reading_ && !request_unhandled_ && !reads_done_ && !shutting_down_ && !cancelled_ && room) {
     reading_ = true;
     reactor_->StartRead(&request_bytes_);
   }
 
-  const bool idle = !writing_ && outbox_.empty() && queue_.drained();
+  const bool idle = !writing_ && outbox_.empty() && queue_.drained() && !request_unhandled_;
   grpc::Status status;
   bool finish = false;
   if (cancelled_) {

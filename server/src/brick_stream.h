@@ -90,8 +90,11 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   void shut_down();
 
   std::function<void()> take() override;
-  // Queued bricks, and room to hold what they become (max_unsent_bytes).
-  bool has_work() const override { return queue_.size() > 0 && !unsent_full(); }
+  // A request read and not yet handled; or queued bricks, and room to hold what they become
+  // (max_unsent_bytes).
+  bool has_work() const override {
+    return request_queued_.load(std::memory_order_relaxed) || (queue_.size() > 0 && !unsent_full());
+  }
 
  private:
   class Reactor;
@@ -110,6 +113,7 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   void on_done();
 
   // Worker callbacks.
+  void handle_request();  // parses the request read last and queues what it asks for
   // in_run: the item is one of a run's (take()), counted in run_unmade_ until delivered.
   void deliver(const WorkItem& item, const EncodedBrickPtr& brick, bool in_run);
   // Whether the stream sends no more bricks (cancelled, shutting down, finished); if so, lets go
@@ -147,8 +151,12 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   std::recursive_mutex mutex_;
   Reactor* reactor_ = nullptr;      // null once gRPC has called OnDone
   grpc::ByteBuffer request_bytes_;  // owned by the read in flight
-  v1::BrickRequest request_;        // the last request read, parsed
-  grpc::ByteBuffer batch_;          // owned by the write in flight
+  // The request read last, until a worker's turn handles it; the next is read only then.
+  grpc::ByteBuffer unhandled_request_;
+  bool request_unhandled_ = false;
+  std::atomic<bool> request_queued_{false};  // read, and not yet taken by a worker (take())
+  v1::BrickRequest request_;                 // the last request read, parsed
+  grpc::ByteBuffer batch_;                   // owned by the write in flight
   std::vector<grpc::Slice> batch_slices_;
   v1::BrickBatch batch_errors_;  // the errors of the message being assembled
   std::vector<std::chrono::steady_clock::time_point> batch_enqueued_;

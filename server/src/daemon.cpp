@@ -118,7 +118,7 @@ Daemon::Daemon(const ServerConfig& config)
       shared_cache_(shared_cache(config, worker_count(config.threads))),
       registry_(registry_limits(config)),
       store_(config.cache_mb << 20),
-      scheduler_(worker_count(config.threads)),
+      scheduler_(worker_count(config.threads), config.direct_request_share),
       producer_(store_, metrics_state_, config.zstd_level, shared_cache_.get(), &faults_) {
   if (config.faults.any()) {
     spdlog::warn("fault injection on: bricks delayed {} ms, every {} brick corrupted (0: none)",

@@ -31,6 +31,9 @@ struct ServerConfig {
   // load").
   uint32_t coalesce_bricks = 32;
   uint32_t coalesce_wait_us = 2000;
+  // Threads' worth of time gRPC's threads may spend handling stream requests themselves; past
+  // it a request waits for a brick worker's turn, shared fairly between clients.
+  double direct_request_share = 1.0;
   double shutdown_grace_seconds = 5.0;
   std::string ready_file;  // written once listening: "grpc=PORT\nmetrics=PORT\n[http=PORT\n]"
 

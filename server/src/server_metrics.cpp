@@ -35,6 +35,9 @@ namespace {
   X(streams_opened, "soltex_streams_opened_total", counter, "StreamBricks calls started.")        \
   X(streams_open, "soltex_streams_open", gauge, "StreamBricks calls in progress.")                \
   X(stream_messages, "soltex_stream_messages_total", counter, "BrickRequest messages read.")      \
+  X(stream_messages_on_turns, "soltex_stream_messages_on_turns_total", counter,                   \
+    "BrickRequest messages handled on a brick worker's turn, charged to their client, because "   \
+    "gRPC's threads had spent their --direct-request-share.")                                     \
   X(register_requests, "soltex_register_requests_total", counter,                                 \
     "Texture registrations: RegisterTexture calls and textures carried on streams.")              \
   X(bricks_requested, "soltex_bricks_requested_total", counter,                                   \
@@ -266,6 +269,7 @@ std::string ServerMetrics::render(const BrickStoreStats& store, std::size_t stor
   value(F::streams_opened, load(streams_opened));
   value(F::streams_open, load(streams_open));
   value(F::stream_messages, load(stream_messages));
+  value(F::stream_messages_on_turns, load(stream_messages_on_turns));
   value(F::register_requests, load(register_requests));
   value(F::bricks_requested, load(bricks_requested));
   value(F::bricks_served, load(bricks_served));

@@ -41,7 +41,8 @@ struct AccessCounts {
 struct ServerMetrics {
   std::atomic<uint64_t> streams_opened{0};
   std::atomic<int64_t> streams_open{0};
-  std::atomic<uint64_t> stream_messages{0};  // BrickRequest messages read
+  std::atomic<uint64_t> stream_messages{0};           // BrickRequest messages read
+  std::atomic<uint64_t> stream_messages_on_turns{0};  // of those, handled on a worker's turn
   std::atomic<uint64_t> register_requests{0};
   std::atomic<uint64_t> bricks_requested{0};  // wanted keys accepted into a queue
   std::atomic<uint64_t> bricks_served{0};

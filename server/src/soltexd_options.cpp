@@ -74,6 +74,12 @@ void add_serving_options(CLI::App& app, ServerConfig& config) {
                  "longest a made brick waits for others to share its message, microseconds")
       ->check(CLI::Range(0u, 1000000u))
       ->capture_default_str();
+  app.add_option("--direct-request-share", config.direct_request_share,
+                 "threads' worth of time gRPC's threads may spend handling stream requests "
+                 "themselves; past it a request waits for a brick worker's turn, shared fairly "
+                 "between clients (0: every request does)")
+      ->check(soltex::cli::NumberIn(0.0, 64.0))
+      ->capture_default_str();
   app.add_option("--shutdown-grace-s,--shutdown-grace", config.shutdown_grace_seconds,
                  "seconds open calls get to finish on SIGINT/SIGTERM (--shutdown-grace: old name)")
       ->check(soltex::cli::NumberIn(0.0, 600.0))

@@ -3,6 +3,7 @@
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <future>
 #include <map>
 #include <set>
@@ -301,6 +302,61 @@ TEST(Soltexd, AStreamThatDoesNotReadHoldsABoundedPartOfItsBricks) {
   while (stream->Read(&batch)) received += static_cast<std::size_t>(batch.bricks_size());
   EXPECT_TRUE(stream->Finish().ok());
   EXPECT_EQ(received, keys.size());
+}
+
+// Past gRPC threads' share of request handling (0 here), a stream's request waits for a
+// worker's turn, charged to its client, and the stream's next message is read only after it:
+// a client's flood of requests queues in its own connection, not in front of other clients'.
+TEST(Soltexd, PastTheDirectShareRequestsAreReadOneAtATimeOnWorkerTurns) {
+  // One worker, kept busy 4 s by a brick of the first stream.
+  SoltexdProcess server(
+      {"--threads", "1", "--fault-delay-ms", "4000", "--direct-request-share", "0"});
+  auto stub = connect(server);
+  const v1::TextureHandle handle = register_texture(*stub, marble_request());
+  grpc::ClientContext busy_context;
+  auto busy = stub->StreamBricks(&busy_context);
+  ASSERT_TRUE(busy->Write(want({key_of(handle.id(), 3, 0, 0, 0)})));
+  const auto poll_until = [&](const std::function<bool(const std::string&)>& done) {
+    for (int polls = 0; polls < 250; ++polls) {
+      if (done(metrics(server))) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
+  };
+  // Queued by a worker's turn, then taken off the queue: the worker is making it.
+  ASSERT_TRUE(poll_until([](const std::string& m) {
+    return metric_value(m, "soltex_bricks_requested_total") == 1.0 &&
+           metric_value(m, "soltex_queue_depth") == 0.0;
+  }));
+
+  grpc::ClientContext context;
+  auto stream = stub->StreamBricks(&context);
+  constexpr int kRequests = 5;
+  for (int i = 0; i < kRequests; ++i) {
+    v1::BrickRequest cancel;
+    *cancel.add_cancel() = key_of(handle.id(), 0, i, 0, 0);  // queued nowhere: nothing to do
+    ASSERT_TRUE(stream->Write(cancel));
+  }
+  // Its first request is read and waits for the worker; the others wait unread.
+  ASSERT_TRUE(poll_until(
+      [](const std::string& m) { return metric_value(m, "soltex_stream_messages_total") >= 2.0; }));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  std::string m = metrics(server);
+  EXPECT_EQ(metric_value(m, "soltex_stream_messages_total"), 2.0);
+  EXPECT_EQ(metric_value(m, "soltex_bricks_served_total"), 0.0);  // still within the 4 s
+
+  stream->WritesDone();
+  v1::BrickBatch batch;
+  while (stream->Read(&batch)) ADD_FAILURE() << "a stream that only cancels gets no message";
+  EXPECT_TRUE(stream->Finish().ok());
+  busy->WritesDone();
+  std::size_t bricks = 0;
+  while (busy->Read(&batch)) bricks += static_cast<std::size_t>(batch.bricks_size());
+  EXPECT_TRUE(busy->Finish().ok());
+  EXPECT_EQ(bricks, 1u);
+  m = metrics(server);
+  EXPECT_EQ(metric_value(m, "soltex_stream_messages_total"), 1.0 + kRequests);
+  EXPECT_EQ(metric_value(m, "soltex_stream_messages_on_turns_total"), 1.0 + kRequests);
 }
 
 TEST(Soltexd, BadKeysGetTheirCodeAndTheStreamGoesOn) {
