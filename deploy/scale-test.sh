@@ -11,7 +11,8 @@
 #   5. two clients behind nginx are limited separately: one holding its stream limit does not
 #      refuse the other (limits follow the name of each client's bearer token);
 #   6. HTTP bricks through nginx's proxy_cache: a second client's bricks all come from nginx's
-#      cache (X-Cache-Status HIT) while the replicas' counters stand still;
+#      cache (X-Cache-Status HIT) while the replicas' counters stand still; a brick has one
+#      entry, and its spellings soltexd refuses are refused through the cache too;
 #   7. with no replica answering, nginx's own error reads as soltexd's do: a plain-text 503 with
 #      CORS and Retry-After, so a page on another origin can see it and try again.
 # Every process listens on 127.0.0.1 on ports the kernel picks; everything is stopped on exit.
@@ -321,6 +322,21 @@ check "every one of them from nginx's cache (X-Cache-Status HIT)" test "$second_
 check "the replicas did no work for it (their counters unchanged)" test "$work_before" = "$work_after"
 check "no checksum failures" test "$(http_field "$work/http-first.json" 'r["checksum_failures"]')$(http_field "$work/http-second.json" 'r["checksum_failures"]')" = "00"
 if [ -n "${SCALE_REPORT:-}" ]; then echo "$summary" >>"$SCALE_REPORT"; fi
+# One spelling, one entry: a spelling soltexd refuses is refused through the cache too, and
+# ?codec=zstd is the entry of the default codec.
+lb="http://127.0.0.1:$http_lb_port"
+handle=$(curl -fsS --data '{"texture": {"wood": {}}}' "$lb/v1/textures")
+id=$(echo "$handle" | python3 -c 'import json,sys; print(json.load(sys.stdin)["id"])')
+spec=$(echo "$handle" | python3 -c 'import json,sys; print(json.load(sys.stdin)["spec"])')
+answer() {  # answer PATH [QUERY]: status and X-Cache-Status, with the spec any replica reads
+  curl -sS -o /dev/null -D - "$lb/v1/textures/$id/bricks/$1?spec=$spec${2:-}" |
+    tr -d '\r' | awk 'NR == 1 {code = $2} tolower($1) == "x-cache-status:" {c = $2}
+                      END {print code, c}'
+}
+check "a canonical brick URL is cached" test "$(answer 1/0/0/1) $(answer 1/0/0/1)" = "200 MISS 200 HIT"
+check "its other spellings are refused, not answered from its entry" \
+  test "$(answer 1/0/0/%31 | cut -d' ' -f1) $(answer 1//0/0/1 | cut -d' ' -f1)" = "400 404"
+check "codec=zstd is the default codec's entry" test "$(answer 1/0/0/1 '&codec=zstd')" = "200 HIT"
 
 echo "-- 7. no replica answering: nginx's error in soltexd's form"
 dead_lb_port=$(free_port)

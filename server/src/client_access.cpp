@@ -7,7 +7,7 @@
 namespace soltex::server {
 namespace {
 
-constexpr std::string_view kBearer = "Bearer ";
+constexpr std::string_view kBearer = "bearer ";  // compared without case
 constexpr std::string_view kForwardedFor = "x-forwarded-for";
 
 // Compares in time independent of where the strings differ, so the token cannot be guessed
@@ -92,12 +92,20 @@ grpc::Status ClientAccess::check_token(const std::string_view* authorization,
     return {grpc::StatusCode::UNAUTHENTICATED,
             "this server requires a bearer token: send metadata 'authorization: Bearer <token>'"};
   }
-  const std::string_view value = *authorization;
-  if (!value.starts_with(kBearer)) {
+  std::string_view value = *authorization;
+  // The scheme's name is case-insensitive (RFC 9110 11.1), and spaces may follow it.
+  const bool bearer =
+      value.size() > kBearer.size() &&
+      std::equal(kBearer.begin(), kBearer.end(), value.begin(), [](char want, char got) {
+        return want == (got >= 'A' && got <= 'Z' ? static_cast<char>(got + 32) : got);
+      });
+  if (!bearer) {
     return {grpc::StatusCode::UNAUTHENTICATED,
             "the 'authorization' metadata must read 'Bearer <token>'"};
   }
-  const std::string_view presented = value.substr(kBearer.size());
+  value.remove_prefix(kBearer.size());
+  while (!value.empty() && value.front() == ' ') value.remove_prefix(1);
+  const std::string_view presented = value;
   const AccessToken* match = nullptr;
   // Every token is compared, so the time taken tells nothing about which one matched.
   for (const AccessToken& token : *tokens()) {

@@ -13,6 +13,8 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "http_message_checks.h"
+
 namespace soltex::server {
 namespace {
 
@@ -113,6 +115,24 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
       beast::error_code ignored;
       self->socket().cancel(ignored);
     });
+    http::async_read_header(
+        stream_, buffer_, *parser_,
+        [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_header(ec); });
+  }
+
+  // A client that sent "Expect: 100-continue" waits for a word before sending its body.
+  void on_header(beast::error_code ec) {
+    if (ec || parser_->is_done() || !expects_continue(parser_->get())) return read_body(ec);
+    continue_ = {http::status::continue_, 11};
+    http::async_write(stream_, continue_,
+                      [self = shared_from_this()](beast::error_code ec, std::size_t) {
+                        if (ec) return self->close();
+                        self->read_body({});
+                      });
+  }
+
+  void read_body(beast::error_code ec) {
+    if (ec || parser_->is_done()) return on_read(ec);
     http::async_read(
         stream_, buffer_, *parser_,
         [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_read(ec); });
@@ -142,6 +162,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
                                      std::to_string(limits_.max_header_bytes) + " bytes");
     }
     if (ec) return refuse_request(400, "malformed HTTP request: " + ec.message());
+    if (const auto problem = framing_problem(parser_->get())) return refuse_request(400, *problem);
     // While a worker makes the brick; the write sets its own deadline.
     beast::get_lowest_layer(stream_).expires_never();
     handler_.handle(parser_->get(), peer_host_, [self = shared_from_this()](HttpResponse response) {
@@ -189,6 +210,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
   beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
   HttpResponse response_;
+  http::response<http::empty_body> continue_;
 };
 
 }  // namespace

@@ -5,7 +5,9 @@
 #include <boost/beast/http/field.hpp>
 #include <boost/beast/version.hpp>
 #include <cstdio>
+#include <ctime>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <vector>
 
 #include "base64url.h"
@@ -72,18 +74,46 @@ std::string etag_of(std::string_view payload) {
   return "\"" + hex64(XXH64(payload.data(), payload.size(), 0)) + "\"";
 }
 
-// If-None-Match: "*" or a list of entity tags, compared weakly (RFC 9110 13.1.2).
-bool none_match_hits(std::string_view header, const std::string& etag) {
+// Whether a list of entity tags or "*" (If-Match, If-None-Match) names `etag`: compared
+// weakly for If-None-Match, strongly for If-Match, where a weak tag matches nothing (RFC 9110
+// 8.8.3.2).
+bool tag_list_names(std::string_view header, const std::string& etag, bool weak) {
   while (!header.empty()) {
     const std::size_t comma = header.find(',');
     std::string_view tag = header.substr(0, comma);
     header.remove_prefix(comma == std::string_view::npos ? header.size() : comma + 1);
     while (!tag.empty() && (tag.front() == ' ' || tag.front() == '\t')) tag.remove_prefix(1);
     while (!tag.empty() && (tag.back() == ' ' || tag.back() == '\t')) tag.remove_suffix(1);
-    if (tag.starts_with("W/")) tag.remove_prefix(2);
+    if (tag.starts_with("W/")) {
+      if (!weak) continue;
+      tag.remove_prefix(2);
+    }
     if (tag == "*" || tag == etag) return true;
   }
   return false;
+}
+
+// Every line of a list-valued header as one (RFC 9110 5.3), or nothing when it is absent.
+std::optional<std::string> joined_lines(const HttpRequest& request, http::field field) {
+  std::optional<std::string> value;
+  for (auto [it, end] = request.equal_range(field); it != end; ++it) {
+    value = value ? *value + ", " + std::string(it->value()) : std::string(it->value());
+  }
+  return value;
+}
+
+// IMF-fixdate (RFC 9110 5.6.7), written without the C locale's names.
+std::string http_date(std::time_t now) {
+  static constexpr const char* kDays[] = {"Sun", "Mon", "Tue", "Wed", "Thu", "Fri", "Sat"};
+  static constexpr const char* kMonths[] = {"Jan", "Feb", "Mar", "Apr", "May", "Jun",
+                                            "Jul", "Aug", "Sep", "Oct", "Nov", "Dec"};
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::snprintf(text, sizeof text, "%s, %02d %s %04d %02d:%02d:%02d GMT", kDays[utc.tm_wday],
+                utc.tm_mday, kMonths[utc.tm_mon], utc.tm_year + 1900, utc.tm_hour, utc.tm_min,
+                utc.tm_sec);
+  return text;
 }
 
 std::string describe(const Route& route) {
@@ -105,6 +135,7 @@ struct HttpRequestHandler::Call {
   bool keep_alive = true;
   bool head = false;
   RouteKind kind = RouteKind::refused;
+  std::optional<std::string> if_match;
   std::string if_none_match;
   std::string client;
   std::unique_ptr<StreamLease> lease;
@@ -120,6 +151,7 @@ HttpResponse HttpRequestHandler::error(unsigned version, unsigned status,
   HttpResponse response{static_cast<http::status>(status), version};
   response.set(http::field::content_type, "text/plain; charset=utf-8");
   response.set(http::field::cache_control, "no-store");
+  response.set(http::field::date, http_date(std::time(nullptr)));
   // A client over its limits, or a server busy: when to ask again (RFC 9110, 10.2.3).
   if (status == 429 || status == 503) response.set(http::field::retry_after, "1");
   add_cors(response);
@@ -131,15 +163,16 @@ HttpResponse HttpRequestHandler::error(unsigned version, unsigned status,
 void HttpRequestHandler::finish(Call& call, HttpResponse response) {
   response.version(call.version);
   response.keep_alive(call.keep_alive);
+  response.set(http::field::date, http_date(std::time(nullptr)));
   add_cors(response);
-  if (response.result() != http::status::not_modified &&
-      response.result() != http::status::no_content) {
-    response.prepare_payload();
-  }
+  const bool sized = response.result() != http::status::not_modified &&
+                     response.result() != http::status::no_content;
+  if (sized) response.prepare_payload();
   if (call.head) {
+    // The length a GET's content would have, and no content (RFC 9110 9.3.2, 8.6).
     const auto length = response.body().size();
     response.body().clear();
-    response.content_length(length);
+    if (sized) response.content_length(length);
   }
   context_.metrics.http.count(metrics_route(call.kind), response.result_int());
   call.lease.reset();
@@ -191,9 +224,8 @@ void HttpRequestHandler::handle(const HttpRequest& request, const std::string& p
     grpc::Status refusal;
     call->lease = context_.access.open_stream(call->client, refusal);
     if (!call->lease) throw HttpError{429, refusal.error_message()};
-    if (const auto match = request.find(http::field::if_none_match); match != request.end()) {
-      call->if_none_match = std::string(match->value());
-    }
+    call->if_match = joined_lines(request, http::field::if_match);
+    call->if_none_match = joined_lines(request, http::field::if_none_match).value_or("");
     switch (route.kind) {
       case RouteKind::register_texture:
         context_.metrics.register_requests.fetch_add(1, std::memory_order_relaxed);
@@ -233,7 +265,13 @@ TexturePin HttpRequestHandler::find_or_register(const Route& route, Call& call) 
   const std::optional<std::string> text = base64url_decode(route.spec);
   if (!text) throw HttpError{400, "spec is not base64url text without padding"};
   context_.metrics.register_requests.fetch_add(1, std::memory_order_relaxed);
-  pin = register_texture(context_.registry, registration_from_json(*text), call.client);
+  v1::RegisterTextureRequest registration;
+  try {
+    registration = registration_from_json(*text);
+  } catch (const RegistrationError& e) {
+    throw HttpError{status_of(e.code()), std::string("spec, decoded: ") + e.what()};
+  }
+  pin = register_texture(context_.registry, registration, call.client);
   if (pin.texture()->id != route.texture_id) {
     throw HttpError{400, "spec registers texture " + texture_id_hex(pin.texture()->id) +
                              ", not the texture " + id + " the path names"};
@@ -243,6 +281,12 @@ TexturePin HttpRequestHandler::find_or_register(const Route& route, Call& call) 
 
 void HttpRequestHandler::answer_texture(const Route& route, Call& call) {
   const TexturePin pin = find_or_register(route, call);
+  // The texture's JSON carries no ETag: only "*" can match it.
+  if (call.if_match && !tag_list_names(*call.if_match, "*", false)) {
+    throw HttpError{412,
+                    "If-Match names an entity tag; a texture's JSON has none (only * "
+                    "matches it)"};
+  }
   nlohmann::json body = registration_to_json(*pin.texture());
   body["id"] = texture_id_hex(route.texture_id);
   HttpResponse response{http::status::ok, call.version};
@@ -291,7 +335,14 @@ void HttpRequestHandler::handle_brick(const Route& route, std::shared_ptr<Call> 
       return;
     }
     const std::string etag = etag_of(brick->payload());
-    const bool fresh = !call->if_none_match.empty() && none_match_hits(call->if_none_match, etag);
+    if (call->if_match && !tag_list_names(*call->if_match, etag, false)) {
+      HttpResponse failed =
+          error(call->version, 412, "If-Match does not name this brick's entity tag " + etag);
+      failed.set(http::field::etag, etag);
+      return finish(*call, std::move(failed));
+    }
+    const bool fresh =
+        !call->if_none_match.empty() && tag_list_names(call->if_none_match, etag, true);
     HttpResponse response{fresh ? http::status::not_modified : http::status::ok, call->version};
     response.set(http::field::etag, etag);
     response.set(http::field::cache_control,

@@ -131,25 +131,57 @@ std::optional<Route> read_brick_path(const std::vector<std::string_view>& segmen
   return std::nullopt;
 }
 
-// The method against what the resource allows; GET resources also take HEAD and OPTIONS.
-std::optional<Route> check_method(std::string_view method, std::string_view allowed, Route& route) {
-  if (method == "OPTIONS") {
-    route.kind = RouteKind::preflight;
-    route.allow = std::string(allowed) + ", OPTIONS";
-    return std::nullopt;
-  }
+// The method against what the resource allows; GET resources also take HEAD (OPTIONS is a
+// preflight, answered before).
+std::optional<Route> check_method(std::string_view method, std::string_view allowed) {
   if (method == allowed) return std::nullopt;
-  if (allowed == "GET, HEAD" && (method == "GET" || method == "HEAD")) {
-    route.head = method == "HEAD";
-    return std::nullopt;
-  }
+  if (allowed == "GET, HEAD" && (method == "GET" || method == "HEAD")) return std::nullopt;
   return refuse(405, quoted(method) + " is not allowed here; use " + std::string(allowed),
                 std::string(allowed) + ", OPTIONS");
 }
 
-}  // namespace
+// An absolute-form target (RFC 9112 3.2.2, what a client talking to a proxy sends) as the
+// origin-form path and query it names.
+std::string_view origin_form(std::string_view target) {
+  const std::size_t scheme_end = target.find("://");
+  if (target.starts_with("/") || scheme_end == std::string_view::npos) return target;
+  for (const char c : target.substr(0, scheme_end)) {
+    const bool scheme_char = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
+                             (c >= '0' && c <= '9') || c == '+' || c == '-' || c == '.';
+    if (!scheme_char) return target;
+  }
+  const std::string_view rest = target.substr(scheme_end + 3);
+  const std::size_t path = rest.find_first_of("/?");
+  if (path == std::string_view::npos) return "/";
+  return rest.substr(path);
+}
 
-Route route_request(std::string_view method, std::string_view target) {
+// A preflight asks whether the real request may be sent; it is answered for any path under
+// /v1/textures, so that a malformed one is refused on the real request, where the page can
+// read why, rather than as an unreadable CORS failure.
+std::optional<Route> preflight(std::string_view method, std::string_view target) {
+  if (method != "OPTIONS") return std::nullopt;
+  const std::string_view path = target.substr(0, target.find('?'));
+  Route route;
+  route.kind = RouteKind::preflight;
+  if (target == "*") {
+    route.allow = "GET, HEAD, POST, OPTIONS";
+  } else if (path == "/v1/textures") {
+    route.allow = "POST, OPTIONS";
+  } else if (path.starts_with("/v1/textures/")) {
+    route.allow = "GET, HEAD, OPTIONS";
+  } else {
+    return std::nullopt;
+  }
+  return route;
+}
+
+Route route_target(std::string_view method, std::string_view target) {
+  if (method == "CONNECT") {
+    return refuse(501, "CONNECT is not implemented: soltexd is an origin server, not a proxy");
+  }
+  target = origin_form(target);
+  if (auto answered = preflight(method, target)) return *answered;
   const std::size_t question = target.find('?');
   const std::string_view path = target.substr(0, question);
   Route route;
@@ -171,7 +203,7 @@ Route route_request(std::string_view method, std::string_view target) {
     if (!route.spec.empty() || route.codec != Codec::zstd) {
       return refuse(400, "POST /v1/textures takes no query parameters");
     }
-    if (auto refused = check_method(method, "POST", route)) return *refused;
+    if (auto refused = check_method(method, "POST")) return *refused;
     return route;
   }
   const std::optional<uint64_t> id = parse_texture_id(segments[3]);
@@ -186,7 +218,16 @@ Route route_request(std::string_view method, std::string_view target) {
     route.kind = RouteKind::brick;
     if (auto refused = read_brick_path(segments, route)) return *refused;
   }
-  if (auto refused = check_method(method, "GET, HEAD", route)) return *refused;
+  if (auto refused = check_method(method, "GET, HEAD")) return *refused;
+  return route;
+}
+
+}  // namespace
+
+Route route_request(std::string_view method, std::string_view target) {
+  Route route = route_target(method, target);
+  // Refusals too: a HEAD is answered without content whatever the status.
+  route.head = method == "HEAD";
   return route;
 }
 
