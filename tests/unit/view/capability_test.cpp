@@ -229,6 +229,30 @@ TEST(Choose, TheCacheBudgetBoundsTheFinestLevel) {
             choose(roomy, scene, 1280, 720).finest_level_log2);
 }
 
+// A model written far from its origin and drawn where it was written (no translate) gets the
+// level of the same model centred and translated there: what counts is where the mesh is.
+TEST(Choose, TheFinestLevelFollowsWhereTheMeshIsNotItsOrigin) {
+  Scene scene = default_scene();
+  scene.objects.resize(1);
+  SceneObject& object = scene.objects[0];
+  const glm::dvec3 far{1e5, 0.0, 0.0};
+  scene.camera.position = far + glm::dvec3(0.0, 0.0, 3.0);
+  scene.camera.target = far;
+  object.transform = {};
+  object.transform.translate = far;
+  Capability c = strong_machine();
+  const Choice translated = choose(c, scene, 1280, 720);
+
+  Mesh written_there = *object.mesh;
+  for (glm::vec3& p : written_there.positions) p += glm::vec3(far);
+  written_there.update_bounds();
+  object.mesh = std::make_shared<const Mesh>(std::move(written_there));
+  object.transform.translate = glm::dvec3(0.0);
+  const Choice in_place = choose(c, scene, 1280, 720);
+  EXPECT_EQ(in_place.finest_level_log2, translated.finest_level_log2) << in_place.reason;
+  EXPECT_GT(in_place.finest_level_log2, 6) << in_place.reason;
+}
+
 TEST(Choose, HeadlessKeepsTheSizeAskedForAWindowShrinksToTheMachine) {
   const Scene scene = default_scene();
   Capability slow_cpu = strong_machine();
