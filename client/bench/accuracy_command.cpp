@@ -60,7 +60,14 @@ CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommandOptions& options) {
   command->add_option("--csv", options.csv, "CSV (default: OUT_DIR/accuracy.csv)");
   command->add_option("--svg", options.svg,
                       "plot, drawn by plot_accuracy.py with matplotlib; .svg or .png "
-                      "(default: OUT_DIR/accuracy.svg)");
+                      "(default: OUT_DIR/accuracy.svg)")
+      ->check(CLI::Validator(
+          [](std::string& path) -> std::string {
+            // Known before the sweep, not after it: matplotlib writes these two here.
+            const std::string extension = std::filesystem::path(path).extension().string();
+            return extension == ".svg" || extension == ".png" ? "" : "must end in .svg or .png";
+          },
+          "PATH"));
   command->add_option("--threads", options.threads, "render threads (0: one per core)")
       ->check(CLI::Range(0, 256));
   command

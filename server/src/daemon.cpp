@@ -70,14 +70,16 @@ RegistryLimits registry_limits(const ServerConfig& config) {
 }
 
 std::unique_ptr<SharedBrickCache> shared_cache(const ServerConfig& config, int threads) {
-  if (config.memcached.empty()) return nullptr;
   SharedCacheConfig shared;
-  shared.servers = config.memcached;
+  // `memcached = ""` (the example config's "off") reads as one empty address.
+  std::copy_if(config.memcached.begin(), config.memcached.end(),
+               std::back_inserter(shared.servers), [](const std::string& s) { return !s.empty(); });
+  if (shared.servers.empty()) return nullptr;
   shared.timeout_ms = config.memcached_timeout_ms;
   shared.ttl_seconds = config.memcached_ttl_seconds;
   shared.connections = threads;
   spdlog::info("shared brick cache: memcached {} (consistent hashing, {} ms timeout)",
-               fmt::join(config.memcached, ","), config.memcached_timeout_ms);
+               fmt::join(shared.servers, ","), config.memcached_timeout_ms);
   return std::make_unique<SharedBrickCache>(shared);
 }
 

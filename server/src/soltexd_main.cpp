@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
+#include <system_error>
 
 #include "daemon.h"
 #include "signal_wait.h"
@@ -16,6 +18,7 @@ namespace {
 
 using soltex::server::ServerConfig;
 
+// Throws std::runtime_error naming the file and why it could not be written.
 void write_ready_file(const std::string& path, int grpc_port, int metrics_port, int http_port) {
   // Written to a temporary name and renamed, so a reader never sees half a file.
   const std::string temporary = path + ".tmp";
@@ -23,8 +26,16 @@ void write_ready_file(const std::string& path, int grpc_port, int metrics_port, 
     std::ofstream out(temporary);
     out << "grpc=" << grpc_port << "\nmetrics=" << metrics_port << "\n";
     if (http_port != 0) out << "http=" << http_port << "\n";
+    out.close();
+    if (!out) throw std::runtime_error("--ready-file: cannot write " + temporary);
   }
-  std::filesystem::rename(temporary, path);
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::filesystem::remove(temporary, error);
+    throw std::runtime_error("--ready-file: cannot rename " + temporary + " to " + path + ": " +
+                             error.message());
+  }
 }
 
 // `address` (HOST:PORT) with the port the daemon bound, which port 0 leaves to the system.
@@ -76,8 +87,14 @@ int main(int argc, char** argv) {
     spdlog::info("HTTP bricks on {} (port {})", config.http_listen, daemon->http_port());
   }
   if (!config.ready_file.empty()) {
-    write_ready_file(config.ready_file, daemon->grpc_port(), daemon->metrics_port(),
-                     daemon->http_port());
+    try {
+      write_ready_file(config.ready_file, daemon->grpc_port(), daemon->metrics_port(),
+                       daemon->http_port());
+    } catch (const std::runtime_error& e) {
+      spdlog::critical("{}", e.what());
+      daemon->shut_down();
+      return soltex::cli::kExitFailure;
+    }
   }
 
   soltex::server::wait_for_signals(*daemon);  // SIGHUP reloads; SIGINT or SIGTERM returns

@@ -118,7 +118,8 @@ void add_shared_cache_options(CLI::App& app, ServerConfig& config) {
   shared
       ->add_option("--memcached", config.memcached,
                    "memcached nodes HOST:PORT[,HOST:PORT...] (consistent hashing); empty: off")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(host_port(true));
   shared
       ->add_option("--memcached-timeout-ms", config.memcached_timeout_ms,
                    "connect and I/O timeout; a slower node counts as a miss")
@@ -167,7 +168,15 @@ void add_security_options(CLI::App& app, ServerConfig& config) {
       ->add_option("--token-file", config.token_file,
                    "tokens file ('NAME TOKEN' or 'TOKEN' per line) for BrickService calls")
       ->check(CLI::ExistingFile);
-  security->add_option("--token", config.token, "the bearer token itself (prefer --token-file)");
+  security->add_option("--token", config.token, "the bearer token itself (prefer --token-file)")
+      ->check(CLI::Validator(
+          [](std::string& token) -> std::string {
+            // An unset variable in a deploy script must not turn authentication off silently.
+            return token.empty() ? "is empty: give the token, or leave --token out to serve "
+                                   "without one"
+                                 : "";
+          },
+          "TOKEN"));
   security
       ->add_option("--max-streams-per-client", config.max_streams_per_client,
                    "open brick streams one client (token name, else address) may hold")
@@ -215,6 +224,9 @@ std::string usage_problem(const ServerConfig& config) {
   }
   if (config.tls_cert_file.empty() && !config.tls_client_ca_file.empty()) {
     return "--tls-client-ca needs --tls-cert and --tls-key";
+  }
+  if (!config.token.empty() && !config.token_file.empty()) {
+    return "--token and --token-file both name tokens: give one";
   }
   if (config.trust_forwarded_for) {
     return "--trust-forwarded-for trusted x-forwarded-for from any peer and is gone: name the "

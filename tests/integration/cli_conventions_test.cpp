@@ -302,12 +302,41 @@ TEST_F(SoltexdCli, OptionsThatDoNotGoTogetherOrAFileThatDoesNotParseExit2) {
       {{"--tls-cert", file.string()}, "TLS needs both --tls-cert and --tls-key"},
       {{"--tls-client-ca", file.string()}, "--tls-client-ca needs --tls-cert"},
       {{"--token-file", tokens.string()}, "line 1: expected 'NAME TOKEN' or 'TOKEN'"},
-      {{"--max-keys-per-request", "100", "--max-queued-per-stream", "10"}, "must not exceed"}};
+      {{"--max-keys-per-request", "100", "--max-queued-per-stream", "10"}, "must not exceed"},
+      // An unset variable in a script must not turn authentication off.
+      {{"--token", ""}, "--token"},
+      {{"--token", "abc", "--token-file", tokens.string()}, "give one"},
+      {{"--memcached", "127.0.0.1:11211,bogus"}, "must be HOST:PORT"}};
   for (const auto& [args, message] : cases) {
     const ToolRun r = run_tool(SOLTEXD_BINARY, args);
     EXPECT_EQ(r.exit_code, 2) << args[0] << ": " << r.err;
     EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
   }
+}
+
+TEST_F(SoltexdCli, AReadyFileThatCannotBeWrittenExits1) {
+  for (const std::filesystem::path path : {directory_ / "no-such-folder" / "ready", directory_}) {
+    const ToolRun r = run_tool(SOLTEXD_BINARY, {"--listen", "127.0.0.1:0", "--metrics-listen",
+                                                "127.0.0.1:0", "--ready-file", path.string()});
+    EXPECT_EQ(r.exit_code, 1) << path << ": " << r.err;
+    EXPECT_NE(r.err.find("--ready-file"), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(directory_.string() + ".tmp"));
+}
+
+TEST_F(SoltexdCli, AnEmptyMemcachedListIsOff) {
+  const std::filesystem::path ready = directory_ / "ready";
+  const std::filesystem::path file = directory_ / "soltexd.toml";
+  std::ofstream(file) << "memcached = \"\"\n";
+  ToolProcess soltexd(SOLTEXD_BINARY,
+                      {"--config", file.string(), "--listen", "127.0.0.1:0", "--metrics-listen",
+                       "127.0.0.1:0", "--ready-file", ready.string()},
+                      {}, directory_);
+  ASSERT_TRUE(wait_for_file(ready)) << "memcached = \"\" did not start";
+  soltexd.signal(SIGTERM);
+  const ToolRun r = soltexd.finish();
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("shared brick cache"), std::string::npos) << r.err;
 }
 
 TEST_F(SoltexdCli, AConfigFileKeyItDoesNotKnowExits2) {
@@ -458,6 +487,13 @@ TEST_F(BenchCliConventions, ASubcommandOptionComesFromTheEnvironment) {
                {{"SOLTEX_FRONT_CLOCK", "sundial"}});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("--front-clock"), std::string::npos) << r.err;
+}
+
+TEST_F(BenchCliConventions, APlotItCannotDrawIsRefusedBeforeTheSweep) {
+  const ToolRun r = run_tool(SOLTEX_BENCH_BINARY, {"accuracy", "--quick", "--out-dir",
+                                                   directory_.string(), "--svg", "plot.jpg"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--svg: must end in .svg or .png"), std::string::npos) << r.err;
 }
 
 using GalleryCliConventions = ToolTest;

@@ -4,9 +4,14 @@
 #include <cmath>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "soltex/raster/raster_view.h"
+#include "soltex/scene/scene_loader.h"
 #include "soltex/scene/texture_volume.h"
 
 namespace soltex {
+
+// Every plane a scene may name is one the rasterizer can test.
+static_assert(SceneLimits::kMaxClipPlanes <= static_cast<int>(RasterView::kMaxClipPlanes));
 
 PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolution,
                             net::BrickSource& source) {

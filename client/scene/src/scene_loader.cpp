@@ -483,6 +483,11 @@ Scene parse_scene(std::string_view json_text, const std::string& name_for_errors
         name->fail("\"" + object.name + "\" is already the name of objects[" +
                    std::to_string(it->second) + "]");
       }
+    } else if (const auto it = object_by_name.find(object.name); it != object_by_name.end()) {
+      // A clip plane naming it would cut only one of the two.
+      value.fail("has no name, and its default \"" + object.name +
+                 "\" is already the name of objects[" + std::to_string(it->second) +
+                 "]: name one of them");
     }
     object_by_name.emplace(object.name, index);
     meshes.push_back(read_mesh(fields.get("mesh"), obj_directory));

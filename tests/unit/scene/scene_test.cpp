@@ -412,6 +412,19 @@ INSTANTIATE_TEST_SUITE_P(
                    s["objects"].push_back(first_object(s));
                  },
                  "objects[1].name", "\"twin\" is already the name of objects[0]"},
+        BadScene{"DefaultNameTaken",
+                 [](json& s) {
+                   first_object(s)["name"] = "object 1";
+                   s["objects"].push_back(first_object(s));
+                   s["objects"][1].erase("name");
+                 },
+                 "objects[1]", "its default \"object 1\" is already the name of objects[0]"},
+        BadScene{"TooManyClipPlanes",
+                 [](json& s) {
+                   s["clip_planes"] = json::array();
+                   for (int i = 0; i < 9; ++i) s["clip_planes"].push_back({{"normal", {1, 0, 0}}});
+                 },
+                 "clip_planes", "at most 8"},
         BadScene{"MissingObjFile",
                  [](json& s) {
                    first_object(s)["mesh"] = {{"obj", {{"path", "/nonexistent/x.obj"}}}};

@@ -28,7 +28,8 @@ struct SceneLimits {
   static constexpr int kMaxImageSide = 8192;
   static constexpr int kMaxObjects = 1024;
   static constexpr int kMaxLights = 64;
-  static constexpr int kMaxClipPlanes = 16;
+  // What the rasterizer tests per vertex in one byte (RasterView::kMaxClipPlanes).
+  static constexpr int kMaxClipPlanes = 8;
   static constexpr int kMaxOrbitFrames = 100000;
   // Camera, lights and clip planes; as wide as TransformLimits::kMaxTranslate (see there).
   static constexpr double kMaxCoordinate = 1e9;
