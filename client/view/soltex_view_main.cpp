@@ -87,6 +87,19 @@ std::optional<int> refuse(const view::ViewOptions& options) {
     std::fprintf(stderr, "soltex-view: give --server HOST:PORT, or --local to run without one\n");
     return kExitBadInput;
   }
+  if (options.local && !options.server.empty()) {
+    // Not refused: SOLTEX_SERVER may be set for every tool in the environment.
+    spdlog::warn("--local draws without a server: --server {} is not used", options.server);
+  }
+  // A level holds at least one brick on a side.
+  const int brick_log2 = options.brick_size == 8 ? 3 : 4;
+  if (options.finest_level > 0 && options.finest_level < brick_log2) {
+    std::fprintf(stderr,
+                 "soltex-view: --finest-level %d: must be 0 (chosen) or at least log2 of "
+                 "--brick-size %d, %d\n",
+                 options.finest_level, options.brick_size, brick_log2);
+    return kExitBadInput;
+  }
 #ifndef SOLTEX_HAVE_SDL2
   if (!options.headless) {
     std::fprintf(stderr,

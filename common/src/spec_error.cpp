@@ -1,7 +1,7 @@
 #include "soltex/common/spec_error.h"
 
+#include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <utility>
 
 namespace soltex {
@@ -15,9 +15,10 @@ SpecError::SpecError(std::string field, std::string value, std::string bound)
 std::string spec_number_text(double v) {
   if (std::isnan(v)) return "nan";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  // The shortest digits that read back as v: 1e-06, not %.17g's 9.9999999999999995e-07.
   char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  return buffer;
+  const auto written = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, written.ptr);
 }
 
 }  // namespace soltex

@@ -189,6 +189,10 @@ TEST_F(ViewCli, BadInputExitsTwo) {
             2);
   EXPECT_EQ(view("no-server", {"--headless"}).exit_code, 2);
   EXPECT_EQ(view("capability", {"--headless", "--local", "--capability", "cpu=-1"}).exit_code, 2);
+  // Below one brick of 16 on a side; 3 is one brick of 8.
+  const ViewRun coarse = view("finest-level", {"--headless", "--local", "--finest-level", "3"});
+  EXPECT_EQ(coarse.exit_code, 2);
+  EXPECT_NE(coarse.output.find("--brick-size 16, 4"), std::string::npos) << coarse.output;
 
   const std::filesystem::path scene = directory_ / "bad.json";
   std::ofstream(scene)

@@ -267,7 +267,8 @@ Material read_material(const JsonValue& value) {
       volume->fail("give both min and max, or neither (the object's padded bounds)");
     }
     if (const auto level = fields.find("finest_level_log2")) {
-      material.volume.finest_level_log2 = level->integer(0, SpecLimits::kMaxFinestLevelLog2);
+      // At least one brick of the smaller size, 8, on a side; bricks of 16 need 4.
+      material.volume.finest_level_log2 = level->integer(3, SpecLimits::kMaxFinestLevelLog2);
     }
     fields.reject_unknown_keys();
     if (min) {
