@@ -58,9 +58,10 @@ CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommandOptions& options) {
       ->capture_default_str();
   command->add_option("--md", options.markdown, "Markdown table (default: OUT_DIR/accuracy.md)");
   command->add_option("--csv", options.csv, "CSV (default: OUT_DIR/accuracy.csv)");
-  command->add_option("--svg", options.svg,
-                      "plot, drawn by plot_accuracy.py with matplotlib; .svg or .png "
-                      "(default: OUT_DIR/accuracy.svg)")
+  command
+      ->add_option("--svg", options.svg,
+                   "plot, drawn by plot_accuracy.py with matplotlib; .svg or .png "
+                   "(default: OUT_DIR/accuracy.svg)")
       ->check(CLI::Validator(
           [](std::string& path) -> std::string {
             // Known before the sweep, not after it: matplotlib writes these two here.

@@ -72,8 +72,8 @@ RegistryLimits registry_limits(const ServerConfig& config) {
 std::unique_ptr<SharedBrickCache> shared_cache(const ServerConfig& config, int threads) {
   SharedCacheConfig shared;
   // `memcached = ""` (the example config's "off") reads as one empty address.
-  std::copy_if(config.memcached.begin(), config.memcached.end(),
-               std::back_inserter(shared.servers), [](const std::string& s) { return !s.empty(); });
+  std::copy_if(config.memcached.begin(), config.memcached.end(), std::back_inserter(shared.servers),
+               [](const std::string& s) { return !s.empty(); });
   if (shared.servers.empty()) return nullptr;
   shared.timeout_ms = config.memcached_timeout_ms;
   shared.ttl_seconds = config.memcached_ttl_seconds;

@@ -7,6 +7,7 @@
 #include "soltex/common/spec_error.h"
 #include "soltex/common/texture_id.h"
 #include "soltex/scene/scene_error.h"
+#include "soltex/scene/strict_json.h"
 #include "soltex/scene/texture_spec_json.h"
 #include "soltex/spec_proto/brick_proto.h"
 #include "soltex/spec_proto/spec_from_proto.h"
@@ -100,8 +101,13 @@ json channels_json(const ChannelSet& channels) {
 }  // namespace
 
 v1::RegisterTextureRequest registration_from_json(std::string_view text) {
-  const json body = json::parse(text, nullptr, /*allow_exceptions=*/false);
-  if (body.is_discarded()) fail("body", "is not JSON");
+  json body;
+  try {
+    // A repeated key is refused, as in a scene file, not silently the last one.
+    body = parse_strict_json(text, kBody);
+  } catch (const SceneError& e) {
+    fail(e.field().empty() ? "body" : e.field(), e.problem());
+  }
   if (!body.is_object()) fail("body", "must be a JSON object");
   if (!body.contains("texture")) fail("texture", "is required (the texture spec)");
   v1::RegisterTextureRequest request;

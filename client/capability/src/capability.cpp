@@ -280,8 +280,8 @@ double largest_object_pixels(const Scene& scene, int frame_height) {
     const double radius = 0.5 * glm::length(size);
     // Where the mesh is, not where its model origin is: a model written far from its origin
     // (not normalized) sits at its bounds' centre.
-    const glm::dvec3 centre = glm::dvec3(
-        object.transform.matrix() * glm::dvec4(glm::dvec3(object.mesh->bounds.centre()), 1.0));
+    const glm::dvec3 centre = glm::dvec3(object.transform.matrix() *
+                                         glm::dvec4(glm::dvec3(object.mesh->bounds.centre()), 1.0));
     const double distance = std::max(glm::length(centre - scene.camera.position), 1e-6);
     largest = std::max(largest, radius / (distance * tan_half) * frame_height);
   }

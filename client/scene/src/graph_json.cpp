@@ -25,9 +25,15 @@ graph::RampKeys read_keys(const JsonValue& value) {
 }
 
 // Numbers may be anything finite here: compile() applies the bounds and names them.
-graph::InputValue read_input(const JsonValue& value) {
+// `boolean`: the input takes true or false (graph::takes_boolean).
+graph::InputValue read_input(const JsonValue& value, bool boolean) {
   const json& j = value.json();
-  if (j.is_boolean()) return value.boolean() ? 1.0 : 0.0;
+  if (j.is_boolean()) {
+    value.expect(boolean,
+                 "a number, a vector, a choice, {\"node\": ...} or ramp keys (true and "
+                 "false are for true/false inputs)");
+    return value.boolean() ? 1.0 : 0.0;
+  }
   if (j.is_number()) return value.number(-kAny, kAny);
   if (j.is_string()) return value.string();
   if (j.is_object()) {
@@ -58,7 +64,8 @@ graph::Node read_node(const JsonValue& value) {
   if (const auto inputs = object.find("inputs")) {
     inputs->expect(inputs->json().is_object(), "an object of inputs");
     for (const auto& [name, input] : inputs->json().items()) {
-      node.inputs.push_back({name, read_input(inputs->child(name))});
+      node.inputs.push_back(
+          {name, read_input(inputs->child(name), graph::takes_boolean(node.category, name))});
     }
   }
   object.reject_unknown_keys();

@@ -1,5 +1,6 @@
 #include "node_catalogue.h"
 
+#include <algorithm>
 #include <limits>
 
 namespace soltex::graph {
@@ -229,6 +230,14 @@ const NodeDef* find_node_def(std::string_view category) {
     if (category == def.category) return &def;
   }
   return nullptr;
+}
+
+bool takes_boolean(std::string_view category, std::string_view input) {
+  const NodeDef* def = find_node_def(category);
+  if (def == nullptr) return false;
+  return std::any_of(def->inputs.begin(), def->inputs.end(), [&](const InputDef& in) {
+    return in.slot == Slot::boolean && input == in.name;
+  });
 }
 
 }  // namespace soltex::graph

@@ -83,12 +83,18 @@ graph::InputValue input_value(const Document& doc, const pugi::xml_node& node,
   if (input.attribute("output")) {
     doc.fail(offset, where + ": outputs of multi-output nodes are not supported");
   }
-  if (const auto ref = input.attribute("nodename")) return graph::NodeRef{ref.value()};
   const auto value = input.attribute("value");
+  if (const auto ref = input.attribute("nodename")) {
+    if (value) doc.fail(offset, where + ": give a value or a nodename, not both");
+    return graph::NodeRef{ref.value()};
+  }
   if (!value) doc.fail(offset, where + ": needs a value or a nodename");
   const std::string type = input.attribute("type").value();
   const std::string text = value.value();
   if (type == "boolean") {
+    if (!graph::takes_boolean(node.name(), input.attribute("name").value())) {
+      doc.fail(offset, where + ": takes a number, not a boolean");
+    }
     if (text == "true") return 1.0;
     if (text == "false") return 0.0;
     doc.fail(offset, where + ": boolean \"" + text + "\" must be true or false");

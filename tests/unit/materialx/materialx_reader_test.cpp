@@ -114,6 +114,17 @@ TEST(MaterialxReader, TwoNodegraphsOfTheNameAskedForAreRefused) {
                     HasSubstr("the first is on line 3")));
 }
 
+TEST(MaterialxReader, AnInputIsAValueOrANodeOfItsOwnType) {
+  std::string boolean_amplitude = kNoise;
+  boolean_amplitude.replace(boolean_amplitude.find(R"(type="float" value="0.5" />)"), 27,
+                            R"(type="boolean" value="true" />)");
+  EXPECT_THAT(error_of(source(boolean_amplitude)),
+              AllOf(HasSubstr("hand.mtlx:"), HasSubstr("\"amplitude\": takes a number")));
+  std::string both = kNoise;
+  both.replace(both.find(R"(nodename="n" />)"), 15, R"(nodename="n" value="0.5" />)");
+  EXPECT_THAT(error_of(source(both)), HasSubstr("a value or a nodename, not both"));
+}
+
 TEST(MaterialxReader, DocumentProblems) {
   EXPECT_THAT(error_of(source("<materialx><nodegraph")), HasSubstr("not XML"));
   EXPECT_THAT(error_of(source(kNoise, "other")), HasSubstr("no nodegraph named \"other\""));

@@ -76,5 +76,25 @@ TEST(GraphJson, AnEmptyListSaysWhatItMightHaveBeen) {
   }
 }
 
+// true and false are for true/false inputs; elsewhere they would be a 1 or 0 nobody wrote.
+TEST(GraphJson, ABooleanIsOnlyForATrueFalseInput) {
+  const json number = json::parse(R"({"graph": {
+      "nodes": [{"name": "n", "category": "noise3d", "inputs": {"amplitude": true}}],
+      "outputs": {"colour": "n"}}})");
+  try {
+    (void)texture_spec_from_json(number, "scene.json", "texture");
+    FAIL() << "accepted a boolean amplitude";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.field(), "texture.graph.nodes[0].inputs.amplitude") << e.what();
+    EXPECT_NE(std::string(e.what()).find("found a boolean"), std::string::npos) << e.what();
+  }
+  const json flag = json::parse(R"({"graph": {
+      "nodes": [{"name": "c", "category": "checker", "inputs": {"three_d": true}},
+                {"name": "m", "category": "mix", "type": "color3",
+                 "inputs": {"fg": [1, 1, 1], "bg": [0, 0, 0], "mix": {"node": "c"}}}],
+      "outputs": {"colour": "m"}}})");
+  EXPECT_NO_THROW((void)texture_spec_from_json(flag, "scene.json", "texture"));
+}
+
 }  // namespace
 }  // namespace soltex

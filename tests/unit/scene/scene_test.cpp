@@ -552,9 +552,8 @@ TEST_F(SceneFolder, AnObjectTooLargeForItsVolumeIsNamedNotAVolumeTheSceneLacks) 
     FAIL() << "expected a SceneError";
   } catch (const SceneError& e) {
     EXPECT_EQ(e.field(), "objects[0]");
-    EXPECT_THAT(e.what(),
-                AllOf(HasSubstr("spans [-1"), HasSubstr("volume.min.x"),
-                      HasSubstr("[-1e+12, 1e+12]"), HasSubstr("normalize")));
+    EXPECT_THAT(e.what(), AllOf(HasSubstr("spans [-1"), HasSubstr("volume.min.x"),
+                                HasSubstr("[-1e+12, 1e+12]"), HasSubstr("normalize")));
   }
 }
 

@@ -55,7 +55,9 @@ TEST(RegistrationJson, RefusalsNameTheField) {
     const char* names;
   } cases[] = {
       {"[]", "body: must be a JSON object"},
-      {"{", "body: is not JSON"},
+      {"{", "body: not valid JSON"},
+      {R"({"texture": {"marble": {"frequency": 2, "frequency": 3}}})",
+       "texture.marble.frequency: duplicate key \"frequency\""},
       {"{}", "texture: is required"},
       {R"({"texture": {"marble": {}}, "colour": 1})", "colour: unknown key"},
       {R"({"texture": {"marble": {}}, "volume": {"min": [0, 0]}})", "volume.min: must be an array"},

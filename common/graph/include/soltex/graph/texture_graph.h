@@ -2,6 +2,7 @@
 
 #include <glm/vec3.hpp>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -49,5 +50,10 @@ struct TextureGraph {
 };
 
 const char* channel_name(Channel channel);
+
+// Whether input `input` of a `category` node is a true/false constant. Readers of formats with
+// booleans of their own (JSON, MaterialX) accept one only there: elsewhere a boolean read as
+// 0 or 1 would be a number the user never wrote. False for unknown nodes and inputs.
+bool takes_boolean(std::string_view category, std::string_view input);
 
 }  // namespace soltex::graph
