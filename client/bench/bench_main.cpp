@@ -13,6 +13,9 @@ int main(int argc, char** argv) {
   cli::add_common_options(app, "soltex-bench", log_level);
   soltex::bench::AccuracyCommandOptions accuracy;
   CLI::App* accuracy_command = soltex::bench::add_accuracy_command(app, accuracy);
+  // --log-level and the other common options after the subcommand's name too, as every
+  // tool's options may come in any order.
+  accuracy_command->fallthrough();
   if (const auto exit_code = cli::parse(app, "soltex-bench", argc, argv)) return *exit_code;
   cli::start_logging("soltex-bench", log_level);
   if (accuracy_command->parsed()) return soltex::bench::run_accuracy_command(accuracy);

@@ -49,6 +49,15 @@ const char* codec_choice_name(CodecChoice codec) {
 
 namespace {
 
+// For unsigned options, checked as text: read as unsigned, -1 would become 2^64 - 1.
+CLI::Validator not_negative() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return text.starts_with("-") ? "must not be negative" : "";
+      },
+      "");
+}
+
 void require(bool condition, const std::string& message) {
   if (!condition) throw LoadOptionsError(message);
 }
@@ -170,7 +179,8 @@ void add_load_options(CLI::App& app, LoadOptions& o) {
 
   app.add_option("--duration-s,--duration", o.duration_seconds,
                  "seconds of measured load after the warmup (default 10 unless --count)");
-  app.add_option("--count", o.count, "stop after this many measured brick requests");
+  app.add_option("--count", o.count, "stop after this many measured brick requests")
+      ->check(not_negative());
   app.add_option("--warmup-s,--warmup", o.warmup_seconds,
                  "seconds of load first, left out of the results")
       ->capture_default_str();
@@ -210,7 +220,10 @@ void add_load_options(CLI::App& app, LoadOptions& o) {
       ->capture_default_str();
   add_choice(app, "--codec", o.codec, codecs, "brick codec to ask for", codec_choice_name(o.codec));
 
-  app.add_option("--seed", o.seed, "random seed of the key choices")->capture_default_str();
+  // Checked as text: an unsigned option would read -1 as 2^64 - 1.
+  app.add_option("--seed", o.seed, "random seed of the key choices")
+      ->check(not_negative())
+      ->capture_default_str();
   app.add_flag("--verify", o.verify,
                "decode every brick and check its checksum (costs client CPU)");
   app.add_option("--max-backlog", o.max_backlog_per_stream,

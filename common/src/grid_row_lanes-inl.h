@@ -223,8 +223,11 @@ inline void WoodRow(const WoodParams& w, const fields::WoodFrame& frame,
       const auto ux = hn::Div(hn::LoadU(dd, x2s + i), radius);
       const auto uy = hn::Div(hn::LoadU(dd, y2s + i), radius);
       const auto across = hn::Add(hn::Mul(ux, cz), hn::Mul(uy, sz));
+      // z1 again (not kept from the first loop: the scratch holds three rows), as it was made.
+      const auto z1 = hn::Add(hn::Mul(minus_sy, hn::LoadU(dd, xs + i)), hn::Mul(cy, pz));
       const auto gx = hn::Mul(across, cy);
-      const auto gy = hn::Sub(hn::Mul(uy, cz), hn::Mul(ux, sz));
+      const auto gy = hn::Sub(hn::Sub(hn::Mul(uy, cz), hn::Mul(ux, sz)),
+                              hn::Mul(hn::Mul(across, hn::Set(dd, w.twist)), z1));
       const auto gz = hn::Mul(across, sy);
       const auto width = hn::Add(hn::Add(hn::Mul(hn::Abs(gx), hn::Set(dd, box.x)),
                                          hn::Mul(hn::Abs(gy), hn::Set(dd, box.y))),

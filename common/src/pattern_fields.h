@@ -115,12 +115,15 @@ inline float wood(const WoodParams& w, const WoodFrame& frame, const WoodRotatio
   const double radius = std::hypot(x2, y2);
   const double ring = radius / w.ring_spacing + jitter;
   // The ring's width over the box: the gradient of the radius in the trunk's frame, turned back
-  // into texture space (the twist and the jitter's slope are left out: both vary slowly).
+  // into texture space. The twist turns the point about y by an angle that grows with y, which
+  // moves it by twist * z1 along x1 per unit of y: far from the trunk's axis that outgrows the
+  // radius's own change. (The jitter's slope, jitter * jitter_scale at most, is left out.)
   double ring_width = 0.0;
   if (radius > 0.0 && box != glm::dvec3(0.0)) {
     const double ux = x2 / radius, uy = y2 / radius;
-    const glm::dvec3 gradient((ux * cz + uy * sz) * cy, uy * cz - ux * sz,
-                              (ux * cz + uy * sz) * sy);
+    const double along_x1 = ux * cz + uy * sz;  // d radius / d x1
+    const glm::dvec3 gradient(along_x1 * cy, uy * cz - ux * sz - along_x1 * w.twist * z1,
+                              along_x1 * sy);
     ring_width = width_along(gradient, box) / w.ring_spacing;
   }
   // The dark grain is the thin part of each ring.

@@ -230,7 +230,8 @@ class TypeInference {
             (!is_ref && working != ValueType::float_)) {
           return;
         }
-        need = std::string("must be float or ") + type_name(working);
+        need = working == ValueType::float_ ? std::string("must be float like the node's output")
+                                            : std::string("must be float or ") + type_name(working);
         break;
       case Slot::float_:
         if (got == ValueType::float_) return;

@@ -279,5 +279,27 @@ TEST(PatternKernels, EveryTargetEvaluatesGridsAsTheScalarDefinition) {
   }
 }
 
+// Far from the trunk's axis the twist, not the radius, sets how fast the rings pass along y:
+// 0.5 rad per unit at 12 units out moves a point 6 units per unit of y, 60 rings of 0.1. A box
+// along y is then many rings wide and its wood the rings' average, which the filter must know.
+TEST(PatternKernels, WoodFarFromItsAxisAveragesTheTwistedRingsInABox) {
+  WoodParams w;
+  w.jitter = 0.0;  // the rings alone
+  const fields::WoodFrame frame{std::cos(w.tilt_z), std::sin(w.tilt_z)};
+  const auto wood_at = [&](const glm::dvec3& p, const glm::dvec3& box) {
+    return static_cast<double>(fields::wood(w, frame, fields::wood_rotation(w, p.y), p, box));
+  };
+  for (const glm::dvec3 p : {glm::dvec3(0.0, 0.3, 12.0), glm::dvec3(-8.0, 1.0, 9.0)}) {
+    const double height = 0.04;
+    constexpr int kSamples = 20000;
+    double sum = 0.0;
+    for (int i = 0; i < kSamples; ++i) {
+      const double y = p.y - 0.5 * height + (i + 0.5) * height / kSamples;
+      sum += wood_at({p.x, y, p.z}, glm::dvec3(0.0));
+    }
+    EXPECT_NEAR(wood_at(p, {0.0, height, 0.0}), sum / kSamples, 0.05) << p.x << " " << p.z;
+  }
+}
+
 }  // namespace
 }  // namespace soltex
