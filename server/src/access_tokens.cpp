@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
-#include <unordered_set>
+#include <unordered_map>
 
 #include "soltex/common/text_file.h"
 
@@ -41,7 +41,7 @@ bool valid_name(std::string_view name) {
 
 std::vector<AccessToken> parse_access_tokens(std::string_view text, const std::string& origin) {
   std::vector<AccessToken> tokens;
-  std::unordered_set<std::string_view> secrets;
+  std::vector<int> lines;  // each token's line
   int number = 0;
   while (!text.empty()) {
     const auto end = text.find('\n');
@@ -67,11 +67,17 @@ std::vector<AccessToken> parse_access_tokens(std::string_view text, const std::s
                                " characters; at most " + std::to_string(kMaxSecretLength));
     }
     tokens.push_back(std::move(token));
+    lines.push_back(number);
   }
-  for (const AccessToken& token : tokens) {
-    if (!secrets.insert(token.secret).second) {
-      throw std::runtime_error(origin + ": the same token appears twice" +
-                               (token.name.empty() ? "" : " (again as '" + token.name + "')"));
+  // Secrets are looked up only after the file is read: `tokens` no longer moves.
+  std::unordered_map<std::string_view, int> first_line;
+  for (std::size_t i = 0; i < tokens.size(); ++i) {
+    const auto [seen, added] = first_line.emplace(tokens[i].secret, lines[i]);
+    if (!added) {
+      throw std::runtime_error(
+          origin + " line " + std::to_string(lines[i]) + ": the same token as line " +
+          std::to_string(seen->second) +
+          (tokens[i].name.empty() ? "" : " (again as '" + tokens[i].name + "')"));
     }
   }
   if (tokens.empty()) throw std::runtime_error(origin + ": holds no token");

@@ -158,6 +158,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
                                      " bytes (--max-message-bytes)");
     }
     if (ec == http::error::header_limit) {
+      // The request line not read whole (the parser sets the method once it is): it alone is
+      // too long, which is the target's doing (RFC 9112 3: 414).
+      if (parser_->get().method_string().empty()) {
+        return refuse_request(
+            414, "the request line is over " + std::to_string(limits_.max_header_bytes) + " bytes");
+      }
       return refuse_request(431, "the request line and headers are over " +
                                      std::to_string(limits_.max_header_bytes) + " bytes");
     }

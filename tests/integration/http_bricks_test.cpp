@@ -262,6 +262,11 @@ TEST(HttpBricks, BodiesOverTheLimitAreRefused) {
   const HttpReply headers =
       http_request(server.http_port(), "GET", "/v1/textures", {{"X-Big", std::string(32768, 'y')}});
   EXPECT_EQ(headers.status, 431);
+  // The request line alone too long: the target's doing.
+  const HttpReply target =
+      http_request(server.http_port(), "GET", "/v1/textures/" + std::string(32768, 'a'));
+  EXPECT_EQ(target.status, 414);
+  EXPECT_NE(target.body.find("request line"), std::string::npos) << target.body;
 }
 
 TEST(HttpBricks, SlowClientsTimeOutWhileOthersAreServed) {

@@ -6,6 +6,20 @@
 
 namespace soltex::net {
 
+namespace {
+
+// gRPC takes any text and, given no PEM block, fails each connection later with a message
+// about addresses: a file that holds none is named now.
+std::string read_pem_file(const std::string& path, const std::string& what) {
+  std::string text = read_text_file(path, what);
+  if (text.find("-----BEGIN ") == std::string::npos) {
+    throw std::runtime_error(what + " '" + path + "' holds no PEM block (-----BEGIN ...)");
+  }
+  return text;
+}
+
+}  // namespace
+
 std::string read_token_file(const std::string& path) {
   return read_trimmed_text_file(path, "token");
 }
@@ -21,10 +35,10 @@ std::shared_ptr<grpc::ChannelCredentials> channel_credentials(const ChannelSecur
     throw std::runtime_error("a client certificate needs both its chain and its key");
   }
   grpc::SslCredentialsOptions options;
-  options.pem_root_certs = read_text_file(security.tls_ca_file, "server CA");
+  options.pem_root_certs = read_pem_file(security.tls_ca_file, "server CA");
   if (!security.tls_cert_file.empty()) {
-    options.pem_cert_chain = read_text_file(security.tls_cert_file, "client certificate");
-    options.pem_private_key = read_text_file(security.tls_key_file, "client key");
+    options.pem_cert_chain = read_pem_file(security.tls_cert_file, "client certificate");
+    options.pem_private_key = read_pem_file(security.tls_key_file, "client key");
   }
   return grpc::SslCredentials(options);
 }

@@ -117,6 +117,16 @@ LoadedObj parse_obj(std::string_view text, const std::string& name_for_errors,
                    "no faces (" + std::to_string(vertex_count) + " vertices): not a surface mesh");
   }
 
+  // Faces of one or two vertices (a point or a line written as "f") make no triangle; a file of
+  // nothing else is named for what it holds, not as zero-area faces.
+  const std::size_t too_small = static_cast<std::size_t>(std::count_if(
+      obj.face_sizes.begin(), obj.face_sizes.end(), [](uint32_t n) { return n < 3; }));
+  if (too_small == obj.face_sizes.size()) {
+    throw ObjError(name_for_errors, "line " + std::to_string(obj.face_lines.front()) +
+                                        ": every face has fewer than 3 vertices (" +
+                                        std::to_string(too_small) +
+                                        " faces): a face needs 3, a line is \"l\"");
+  }
   WideMesh wide;
   triangulate_faces(obj, name_for_errors, wide, stats);
   wide.positions = std::move(obj.positions);

@@ -51,5 +51,20 @@ TEST(ChannelSecurity, HalfGivenCertificatesAreRefused) {
   std::filesystem::remove(ca);
 }
 
+TEST(ChannelSecurity, ACaFileWithNoPemBlockIsNamedAtOnce) {
+  const auto ca = temporary("not-pem", "soltex-host\n");
+  ChannelSecurity security;
+  security.tls_ca_file = ca.string();
+  try {
+    (void)channel_credentials(security);
+    ADD_FAILURE() << "a CA file with no PEM block was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("server CA '" + ca.string() + "' holds no PEM block"),
+              std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(ca);
+}
+
 }  // namespace
 }  // namespace soltex::net

@@ -231,6 +231,8 @@ TEST(ParseObjErrors, NameTheFileAndTheProblem) {
   EXPECT_THAT(obj_error_of("v 0 0 0\nv 1 0 0\n").what(), HasSubstr("no faces"));
   EXPECT_THAT(obj_error_of("not an obj file at all\n").what(), HasSubstr("no faces"));
   EXPECT_THAT(obj_error_of("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n").what(), HasSubstr("degenerate"));
+  EXPECT_THAT(obj_error_of("v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2\nf 3\n").what(),
+              AllOf(HasSubstr("line 4"), HasSubstr("every face has fewer than 3 vertices")));
 }
 
 TEST(LoadObj, MalformedFileGivesAClearError) {
