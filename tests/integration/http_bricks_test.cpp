@@ -28,12 +28,8 @@ namespace {
 using testing::http_request;
 using testing::HttpConnection;
 using testing::HttpReply;
+using testing::kMarbleJson;
 using testing::SoltexdProcess;
-
-// The texture marble_request(6, 8) describes, as HTTP clients write it.
-const std::string kMarbleJson =
-    R"({"texture": {"marble": {}}, "brick_size": 8,
-        "volume": {"min": [-1, -1, -1], "max": [1, 1, 1], "finest_level_log2": 6}})";
 
 std::vector<std::string> http_args(std::vector<std::string> extra = {}) {
   std::vector<std::string> args = {"--http-listen", "127.0.0.1:0", "--threads", "2"};

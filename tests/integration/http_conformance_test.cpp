@@ -12,14 +12,7 @@
 namespace soltex {
 namespace {
 
-using testing::http_request;
-using testing::HttpConnection;
-using testing::HttpReply;
-using testing::SoltexdProcess;
-
-const std::string kMarbleJson =
-    R"({"texture": {"marble": {}}, "brick_size": 8,
-        "volume": {"min": [-1, -1, -1], "max": [1, 1, 1], "finest_level_log2": 6}})";
+using namespace testing;
 
 class HttpConformance : public ::testing::Test {
  protected:

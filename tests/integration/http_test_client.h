@@ -44,6 +44,11 @@ class HttpConnection {
   boost::beast::flat_buffer buffer_;
 };
 
+// The texture marble_request(6, 8) (brick_test_client.h) describes, as HTTP clients write it.
+inline const std::string kMarbleJson =
+    R"({"texture": {"marble": {}}, "brick_size": 8,
+        "volume": {"min": [-1, -1, -1], "max": [1, 1, 1], "finest_level_log2": 6}})";
+
 // One request on a fresh connection.
 HttpReply http_request(int port, const std::string& method, const std::string& target,
                        const HttpHeaders& headers = {}, const std::string& body = "");
