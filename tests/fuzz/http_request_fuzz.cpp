@@ -1,7 +1,8 @@
 // libFuzzer target for soltexd's HTTP request path: the bytes are read as an HTTP/1.1 request
 // by Beast's parser with the daemon's bounds, then routed by route_request() as the daemon
 // routes it; any method and target are also routed directly. Whatever comes in, the route is
-// either refused with a 4xx status and a message, or names a resource whose fields keep their
+// either refused with a 4xx status (or 501 for CONNECT, which soltexd does not implement) and a
+// message, or names a resource whose fields keep their
 // bounds, and a ?spec= value decodes as base64url only where it is the one spelling of its bytes.
 
 #include <boost/beast/core/buffers_to_string.hpp>
@@ -28,7 +29,8 @@ void check(bool condition) {
 void check_route(std::string_view method, std::string_view target) {
   const Route route = soltex::server::route_request(method, target);
   if (route.kind == RouteKind::refused) {
-    check(route.status >= 400 && route.status < 500);
+    check((route.status >= 400 && route.status < 500) ||
+          (route.status == 501 && method == "CONNECT"));
     check(!route.message.empty());
     check(route.status != 405 || !route.allow.empty());
     return;
@@ -63,7 +65,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, std::size_t size) {
   }
 
   // As a target alone, for each method the routes know.
-  for (const char* method : {"GET", "HEAD", "POST", "OPTIONS", "PUT"}) check_route(method, text);
+  for (const char* method : {"GET", "HEAD", "POST", "OPTIONS", "PUT", "CONNECT"}) {
+    check_route(method, text);
+  }
 
   // base64url both ways: what decodes re-encodes to the same text; what encodes decodes back.
   if (const auto bytes = soltex::server::base64url_decode(text)) {

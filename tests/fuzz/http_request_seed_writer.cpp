@@ -1,6 +1,7 @@
 // Writes the starting corpus of http_request_fuzz: requests for every route soltexd's HTTP
 // endpoint has, with and without query parameters, and requests it refuses (bad ids, signed,
-// huge and zero-padded coordinates, unknown parameters, bad methods).
+// huge and zero-padded coordinates, unknown parameters, bad methods), absolute-form targets,
+// preflights, CONNECT, a body of unknown length and one that waits for 100 Continue.
 //
 //   http_request_seed_writer <corpus-dir>
 
@@ -40,6 +41,13 @@ std::vector<std::string> seeds() {
       request("GET", "/v1/textures/XYZ/bricks/0/0/0/0"),
       request("DELETE", "/v1/textures/" + id),
       request("GET", "/metrics"),
+      request("GET", "http://soltex.example" + brick + "1/0/0/1?codec=raw"),
+      request("OPTIONS", "/v1/textures/not-an-id/bricks/x"),
+      request("OPTIONS", "*"),
+      request("CONNECT", "soltex.example:443"),
+      "POST /v1/textures HTTP/1.1\r\nHost: a\r\nTransfer-Encoding: gzip\r\n\r\n",
+      "POST /v1/textures HTTP/1.1\r\nHost: a\r\nExpect: 100-continue\r\nContent-Length: "
+      "2\r\n\r\n{}",
       brick + "1/2/3/4?spec=" + spec,
   };
 }
