@@ -337,6 +337,8 @@ check "a canonical brick URL is cached" test "$(answer 1/0/0/1) $(answer 1/0/0/1
 check "its other spellings are refused, not answered from its entry" \
   test "$(answer 1/0/0/%31 | cut -d' ' -f1) $(answer 1//0/0/1 | cut -d' ' -f1)" = "400 404"
 check "codec=zstd is the default codec's entry" test "$(answer 1/0/0/1 '&codec=zstd')" = "200 HIT"
+check "a query soltexd refuses is refused through the cache too" \
+  test "$(answer 1/0/0/1 '&codec=' | cut -d' ' -f1) $(answer 1/0/0/1 '&cdec=raw' | cut -d' ' -f1)" = "400 400"
 
 echo "-- 7. no replica answering: nginx's error in soltexd's form"
 dead_lb_port=$(free_port)

@@ -11,8 +11,10 @@
 namespace soltex {
 namespace {
 
-// Bumped whenever the encoding or the meaning of a texture changes.
-constexpr char kFormatTag[] = "soltex.texture.v1";
+// Bumped whenever the encoding or the meaning of a texture changes, bricks' bytes included: a
+// brick URL is cached as immutable, so new bytes need a new name. v2: wood's band limit counts
+// the twist.
+constexpr char kFormatTag[] = "soltex.texture.v2";
 
 class CanonicalWriter {
  public:

@@ -158,9 +158,13 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
                                      " bytes (--max-message-bytes)");
     }
     if (ec == http::error::header_limit) {
-      // The request line not read whole (the parser sets the method once it is): it alone is
-      // too long, which is the target's doing (RFC 9112 3: 414).
-      if (parser_->get().method_string().empty()) {
+      // The request line not read whole: it alone is too long, which is the target's doing
+      // (RFC 9112 3: 414). The parser sets the method once it has read the line, but may also
+      // wait for the whole header block first, leaving it all in the buffer.
+      const std::string_view unread(static_cast<const char*>(buffer_.data().data()),
+                                    buffer_.data().size());
+      if (parser_->get().method_string().empty() &&
+          unread.substr(0, limits_.max_header_bytes).find('\n') == std::string_view::npos) {
         return refuse_request(
             414, "the request line is over " + std::to_string(limits_.max_header_bytes) + " bytes");
       }
@@ -181,7 +185,14 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
 
   void refuse_request(unsigned status, const std::string& message) {
     metrics_.http.count(HttpMetrics::Route::other, status);
-    send(handler_.error(11, status, message), /*close=*/true);
+    HttpResponse response = handler_.error(11, status, message);
+    // A HEAD's answer has no content, whatever its status (its length stays, as for GET).
+    if (parser_ && parser_->get().method() == http::verb::head) {
+      const auto length = response.body().size();
+      response.body().clear();
+      response.content_length(length);
+    }
+    send(std::move(response), /*close=*/true);
   }
 
   void send(HttpResponse response, bool close) {

@@ -200,7 +200,7 @@ void HttpRequestHandler::handle(const HttpRequest& request, const std::string& p
       HttpResponse response{http::status::no_content, call->version};
       response.set(http::field::access_control_allow_methods, route.allow);
       response.set(http::field::access_control_allow_headers,
-                   "Authorization, Content-Type, If-None-Match");
+                   "Authorization, Content-Type, If-Match, If-None-Match");
       response.set(http::field::access_control_max_age, "86400");
       return finish(*call, std::move(response));
     }

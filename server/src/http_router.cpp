@@ -141,19 +141,19 @@ std::optional<Route> check_method(std::string_view method, std::string_view allo
 }
 
 // An absolute-form target (RFC 9112 3.2.2, what a client talking to a proxy sends) as the
-// origin-form path and query it names.
-std::string_view origin_form(std::string_view target) {
+// origin-form path and query it names; an empty path is "/".
+std::string origin_form(std::string_view target) {
   const std::size_t scheme_end = target.find("://");
-  if (target.starts_with("/") || scheme_end == std::string_view::npos) return target;
+  if (target.starts_with("/") || scheme_end == std::string_view::npos) return std::string(target);
   for (const char c : target.substr(0, scheme_end)) {
     const bool scheme_char = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') ||
                              (c >= '0' && c <= '9') || c == '+' || c == '-' || c == '.';
-    if (!scheme_char) return target;
+    if (!scheme_char) return std::string(target);
   }
   const std::string_view rest = target.substr(scheme_end + 3);
   const std::size_t path = rest.find_first_of("/?");
   if (path == std::string_view::npos) return "/";
-  return rest.substr(path);
+  return (rest[path] == '?' ? "/" : "") + std::string(rest.substr(path));
 }
 
 // A preflight asks whether the real request may be sent; it is answered for any path under
@@ -176,11 +176,12 @@ std::optional<Route> preflight(std::string_view method, std::string_view target)
   return route;
 }
 
-Route route_target(std::string_view method, std::string_view target) {
+Route route_target(std::string_view method, std::string_view raw_target) {
   if (method == "CONNECT") {
     return refuse(501, "CONNECT is not implemented: soltexd is an origin server, not a proxy");
   }
-  target = origin_form(target);
+  const std::string origin = origin_form(raw_target);
+  const std::string_view target = origin;
   if (auto answered = preflight(method, target)) return *answered;
   const std::size_t question = target.find('?');
   const std::string_view path = target.substr(0, question);

@@ -258,6 +258,11 @@ TEST(HttpBricks, BodiesOverTheLimitAreRefused) {
   const HttpReply headers =
       http_request(server.http_port(), "GET", "/v1/textures", {{"X-Big", std::string(32768, 'y')}});
   EXPECT_EQ(headers.status, 431);
+  // A request line of 1 KB is not the one too long, though the first read ends inside it.
+  const HttpReply cookie =
+      http_request(server.http_port(), "GET", "/v1/textures/" + std::string(1000, 'a'),
+                   {{"Cookie", std::string(32768, 'c')}});
+  EXPECT_EQ(cookie.status, 431);
   // The request line alone too long: the target's doing.
   const HttpReply target =
       http_request(server.http_port(), "GET", "/v1/textures/" + std::string(32768, 'a'));

@@ -137,6 +137,7 @@ TEST_F(HttpConformance, PreflightsAnswerForAnyTexturePathAndConnectIsNotImplemen
                    {{"Origin", "https://page.example"}, {"Access-Control-Request-Method", "GET"}});
   EXPECT_EQ(preflight.status, 204);
   EXPECT_EQ(preflight.header("access-control-allow-origin"), "*");
+  EXPECT_NE(preflight.header("access-control-allow-headers").find("If-Match"), std::string::npos);
   EXPECT_EQ(http_request(port(), "GET", "/v1/textures/XYZ/bricks/0/0/0/0").status, 400);
   EXPECT_EQ(http_request(port(), "CONNECT", "soltex.example:443").status, 501);
 }

@@ -36,6 +36,15 @@ TEST(HttpRouter, RoutesEachResource) {
   const Route preflight = route_request("OPTIONS", "/v1/textures");
   EXPECT_EQ(preflight.kind, RouteKind::preflight);
   EXPECT_EQ(preflight.allow, "POST, OPTIONS");
+
+  // Absolute form names the same routes; its empty path is "/".
+  const Route absolute = route_request(
+      "GET", std::string("HTTP://soltex.example:8080/v1/textures/") + kId + "/bricks/1/2/3/4");
+  ASSERT_EQ(absolute.kind, RouteKind::brick) << absolute.message;
+  EXPECT_EQ(absolute.z, 4u);
+  const Route root = route_request("GET", "http://soltex.example?codec=raw");
+  EXPECT_EQ(root.status, 404u);
+  EXPECT_NE(root.message.find("no resource at '/'"), std::string::npos) << root.message;
 }
 
 TEST(HttpRouter, RefusesWithTheStatusAndWhatWasWrong) {
