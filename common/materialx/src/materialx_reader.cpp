@@ -198,6 +198,10 @@ graph::TextureGraph read_nodegraph(const MaterialxSource& source) {
         if (std::string(child.attribute("type").value()) != "color3") {
           doc.fail(child.offset_debug(), "output \"" + source.output + "\" must be color3");
         }
+        if (!child.attribute("nodename")) {
+          doc.fail(child.offset_debug(), "output \"" + source.output +
+                                             "\" needs a nodename: the node whose colour it is");
+        }
         result.outputs.push_back({Channel::colour, child.attribute("nodename").value()});
         found = true;
       }

@@ -123,6 +123,10 @@ TEST(MaterialxReader, AnInputIsAValueOrANodeOfItsOwnType) {
   std::string both = kNoise;
   both.replace(both.find(R"(nodename="n" />)"), 15, R"(nodename="n" value="0.5" />)");
   EXPECT_THAT(error_of(source(both)), HasSubstr("a value or a nodename, not both"));
+  std::string constant_output = kNoise;
+  constant_output.replace(constant_output.find(R"(nodename="c" />)"), 15, R"(value="1, 0, 0" />)");
+  EXPECT_THAT(error_of(source(constant_output)),
+              AllOf(HasSubstr("hand.mtlx:"), HasSubstr("\"out\" needs a nodename")));
 }
 
 TEST(MaterialxReader, DocumentProblems) {
