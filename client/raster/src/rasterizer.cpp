@@ -313,7 +313,7 @@ RasterStats Rasterizer::draw(const RasterView& view, std::span<const RasterObjec
   Impl& impl = *impl_;
   const int plane_count = static_cast<int>(view.clip_planes.size());
 
-  const TriangleSetup setup(view.width, view.height, plane_count);
+  const TriangleSetup setup(view.width, view.height, plane_count, view.edge_sampling);
   impl.transform_vertices(view, objects, setup);
   const TileGrid grid{(view.width + kTileSize - 1) / kTileSize,
                       (view.height + kTileSize - 1) / kTileSize};

@@ -24,7 +24,7 @@ HWY_BEFORE_NAMESPACE();
 namespace soltex::raster_internal::HWY_NAMESPACE {
 
 // Orientation, the screen triangle's corners and bounds, and what emit() decides.
-void orient_lanes(SetupLanes& s, std::size_t n, int width, int height) {
+void orient_lanes(SetupLanes& s, std::size_t n, int width, int height, bool keep_between_centres) {
   constexpr int32_t kHalf = static_cast<int32_t>(kSubpixelScale / 2);
   for (std::size_t l = 0; l < n; ++l) {
     const int32_t x0 = s.x[0][l], x1 = s.x[1][l], x2 = s.x[2][l];
@@ -49,10 +49,16 @@ void orient_lanes(SetupLanes& s, std::size_t n, int width, int height) {
     const int32_t high_x = x0 > x1 ? (x0 > x2 ? x0 : x2) : (x1 > x2 ? x1 : x2);
     const int32_t low_y = y0 < y1 ? (y0 < y2 ? y0 : y2) : (y1 < y2 ? y1 : y2);
     const int32_t high_y = y0 > y1 ? (y0 > y2 ? y0 : y2) : (y1 > y2 ? y1 : y2);
-    const int32_t first_x = -((kHalf - low_x) >> kSubpixelBits);
-    const int32_t first_y = -((kHalf - low_y) >> kSubpixelBits);
-    const int32_t last_x = (high_x - kHalf) >> kSubpixelBits;
-    const int32_t last_y = (high_y - kHalf) >> kSubpixelBits;
+    int32_t first_x = -((kHalf - low_x) >> kSubpixelBits);
+    int32_t first_y = -((kHalf - low_y) >> kSubpixelBits);
+    int32_t last_x = (high_x - kHalf) >> kSubpixelBits;
+    int32_t last_y = (high_y - kHalf) >> kSubpixelBits;
+    if (keep_between_centres && (first_x > last_x || first_y > last_y)) {
+      first_x = low_x >> kSubpixelBits;  // the pixels it touches, as emit() takes them
+      last_x = high_x >> kSubpixelBits;
+      first_y = low_y >> kSubpixelBits;
+      last_y = high_y >> kSubpixelBits;
+    }
     const int32_t min_px = first_x > 0 ? first_x : 0;
     const int32_t min_py = first_y > 0 ? first_y : 0;
     const int32_t max_px = last_x < width - 1 ? last_x : width - 1;
@@ -131,9 +137,9 @@ void inverse_w_lanes(SetupLanes& s, std::size_t n) {
   }
 }
 
-void set_up_lanes_target(SetupLanes& s, int width, int height) {
+void set_up_lanes_target(SetupLanes& s, int width, int height, bool keep_between_centres) {
   const std::size_t n = s.count;
-  orient_lanes(s, n, width, height);
+  orient_lanes(s, n, width, height, keep_between_centres);
   depth_lanes(s, n);
   inverse_w_lanes(s, n);
   // Per component: the texture positions' x with the normals' x, and so on.
@@ -156,8 +162,8 @@ namespace soltex::raster_internal {
 
 HWY_EXPORT(set_up_lanes_target);
 
-void set_up_lanes(SetupLanes& lanes, int width, int height) {
-  HWY_DYNAMIC_DISPATCH(set_up_lanes_target)(lanes, width, height);
+void set_up_lanes(SetupLanes& lanes, int width, int height, bool keep_between_centres) {
+  HWY_DYNAMIC_DISPATCH(set_up_lanes_target)(lanes, width, height, keep_between_centres);
 }
 
 int64_t setup_kernels_compiled_targets() {

@@ -64,8 +64,9 @@ struct SetupLanes {
   }
 };
 
-// The outputs of lanes [0, lanes.count) for a viewport of width x height pixels.
-void set_up_lanes(SetupLanes& lanes, int width, int height);
+// The outputs of lanes [0, lanes.count) for a viewport of width x height pixels;
+// keep_between_centres as TriangleSetup's.
+void set_up_lanes(SetupLanes& lanes, int width, int height, bool keep_between_centres);
 
 // For tests: the Highway targets compiled into setup_kernels.cpp.
 int64_t setup_kernels_compiled_targets();

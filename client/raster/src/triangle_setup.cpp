@@ -115,10 +115,11 @@ glm::vec3 face_normal(const ObjectFrame& object, uint32_t i0, uint32_t i1, uint3
 
 }  // namespace
 
-TriangleSetup::TriangleSetup(int width, int height, int clip_plane_count)
+TriangleSetup::TriangleSetup(int width, int height, int clip_plane_count, bool keep_between_centres)
     : width_(width),
       height_(height),
       clip_plane_count_(clip_plane_count),
+      keep_between_centres_(keep_between_centres),
       clip_planes_(
           1.0f + 2.0f * static_cast<float>(kGuardBandPixels) / static_cast<float>(width),
           1.0f + 2.0f * static_cast<float>(kGuardBandPixels) / static_cast<float>(height)) {}
@@ -196,7 +197,7 @@ std::size_t TriangleSetup::setup_range(
 
 void TriangleSetup::flush(SetupLanes& lanes, ScreenTriangles& triangles, RasterStats& stats) const {
   if (lanes.count == 0) return;
-  set_up_lanes(lanes, width_, height_);
+  set_up_lanes(lanes, width_, height_, keep_between_centres_);
   // Where the lanes' triangles will go, asked for ahead of their stores (while the storage
   // kept from earlier frames has room): the stores write whole lines last touched a frame
   // ago, and each waited for its line to be fetched.
@@ -381,10 +382,19 @@ void TriangleSetup::emit(
     x[k] = vertex(static_cast<int>(k)).x;
     y[k] = vertex(static_cast<int>(k)).y;
   }
-  const auto [min_px, max_px] = pixel_centre_span(*std::min_element(x.begin(), x.end()),
-                                                  *std::max_element(x.begin(), x.end()));
-  const auto [min_py, max_py] = pixel_centre_span(*std::min_element(y.begin(), y.end()),
-                                                  *std::max_element(y.begin(), y.end()));
+  const int64_t low_x = *std::min_element(x.begin(), x.end());
+  const int64_t high_x = *std::max_element(x.begin(), x.end());
+  const int64_t low_y = *std::min_element(y.begin(), y.end());
+  const int64_t high_y = *std::max_element(y.begin(), y.end());
+  auto [min_px, max_px] = pixel_centre_span(low_x, high_x);
+  auto [min_py, max_py] = pixel_centre_span(low_y, high_y);
+  if (keep_between_centres_ && (min_px > max_px || min_py > max_py)) {
+    // Between pixel centres: the pixels it touches, for the edge samples inside them.
+    min_px = floor_subpixels(low_x);
+    max_px = floor_subpixels(high_x);
+    min_py = floor_subpixels(low_y);
+    max_py = floor_subpixels(high_y);
+  }
   const auto first_px = static_cast<int32_t>(std::max<int64_t>(min_px, 0));
   const auto first_py = static_cast<int32_t>(std::max<int64_t>(min_py, 0));
   const auto last_px = static_cast<int32_t>(std::min<int64_t>(max_px, width_ - 1));

@@ -29,7 +29,8 @@ inline constexpr int kGuardBandPixels = 8192;
 
 class TriangleSetup {
  public:
-  TriangleSetup(int width, int height, int clip_plane_count);
+  // keep_between_centres: RasterView::edge_sampling.
+  TriangleSetup(int width, int height, int clip_plane_count, bool keep_between_centres = false);
 
   // Projects vertices [begin, end) (indices into `vertices`) one at a time, for setup() to
   // reuse in every triangle that uses them and needs no clipping: the same values it would
@@ -86,6 +87,7 @@ class TriangleSetup {
   int width_;
   int height_;
   int clip_plane_count_;
+  bool keep_between_centres_;
   ClipPlanes clip_planes_;
 };
 

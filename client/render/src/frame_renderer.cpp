@@ -199,7 +199,8 @@ Frame FrameRenderer::render_pixels(const PreparedScene& scene, const Camera& cam
   const auto start = Clock::now();
   const EyeRelative relative = eye_relative(scene, camera, width, height, true);
   const glm::dmat4& vp = relative.view_projection;
-  const RasterView view{width, height, glm::mat4(vp), relative.clip_planes};
+  const RasterView view{width, height, glm::mat4(vp), relative.clip_planes,
+                        options.edge_antialias > 0};
   cache_.begin_frame();
   prepare_readers(scene);
   const render::FrameShading shading = frame_shading(

@@ -145,14 +145,16 @@ TEST(TriangleSetup, RangesInLanesSetUpWhatSetupDoes) {
     objects[o].clip_plane_mask = o == 0 ? 1u : 0u;
   }
   const std::vector<glm::dvec4> plane = {{0.3, 0.0, 1.0, 3.0}};
-  for (const bool with_plane : {false, true}) {
+  // With edge sampling too: triangles between pixel centres are kept, by the pixels they touch.
+  for (const auto [with_plane, edge_sampling] :
+       {std::pair{false, false}, std::pair{true, false}, std::pair{false, true}}) {
     RasterView view{kWidth,
                     kHeight,
                     raster_test::perspective_look_at({0, 0, 0}, {0, 0, -1}, kWidth, kHeight),
                     {}};
     if (with_plane) view.clip_planes = plane;
     const auto plane_count = static_cast<int>(view.clip_planes.size());
-    const TriangleSetup setup(kWidth, kHeight, plane_count);
+    const TriangleSetup setup(kWidth, kHeight, plane_count, edge_sampling);
     std::array<ObjectFrame, kObjects> frames;
     TransformedVertices vertices;
     std::size_t vertex_count = 0;
@@ -178,7 +180,8 @@ TEST(TriangleSetup, RangesInLanesSetUpWhatSetupDoes) {
               0u);
     for (const int64_t target : targets) {
       const test::ForcedTarget forced(target);
-      SCOPED_TRACE(std::string(hwy::TargetName(target)) + (with_plane ? ", clip plane" : ""));
+      SCOPED_TRACE(std::string(hwy::TargetName(target)) + (with_plane ? ", clip plane" : "") +
+                   (edge_sampling ? ", edge sampling" : ""));
       auto lanes = std::make_unique<SetupLanes>();
       Output ranges;
       std::size_t in_lanes = 0;

@@ -99,6 +99,41 @@ TEST(EdgeAntialiasing, BlendWeighsColoursBySamplesAndRoundsHalfUp) {
   EXPECT_EQ(out, (std::array<uint8_t, 3>{133, 8, 135}));
 }
 
+// A triangle inside pixel (3, 2) that covers no pixel centre (x and y from 3.1 to 3.45 pixels):
+// culled before anything is drawn, unless the frame samples its edges, where its samples count.
+TEST(EdgeAntialiasing, ATriangleBetweenPixelCentresIsSeenByTheSamples) {
+  const auto ndc_x = [](float x) { return x / 4.0f - 1.0f; };
+  const auto ndc_y = [](float y) { return 1.0f - y / 4.0f; };
+  const std::vector<glm::vec3> positions{{ndc_x(3.1f), ndc_y(2.1f), 0.0f},
+                                         {ndc_x(3.45f), ndc_y(2.1f), 0.0f},
+                                         {ndc_x(3.1f), ndc_y(2.45f), 0.0f}};
+  const std::vector<glm::vec3> normals(3, glm::vec3(0.0f, 0.0f, 1.0f));
+  const std::vector<uint32_t> indices{0, 2, 1};
+  RasterObject object;
+  object.mesh = {positions, normals, indices};
+  object.object_id = 0;
+  object.closed = false;
+  for (const bool edge_sampling : {false, true}) {
+    Rasterizer rasterizer({.threads = 1});
+    RasterView view{8, 8, glm::mat4(1.0f), {}};
+    view.edge_sampling = edge_sampling;
+    EdgeSurfaces surfaces;
+    const std::vector<glm::ivec2> pixels{{3, 2}};
+    rasterizer.render_tiles(view, std::span(&object, 1),
+                            [&](const GBuffer&, int x0, int y0, int, int, int worker) {
+                              rasterizer.sample_edges(x0, y0, pixels, 4, worker, surfaces);
+                            });
+    if (!edge_sampling) {
+      EXPECT_TRUE(surfaces.pixels.empty()) << "culled: no sample can see it";
+      continue;
+    }
+    // Samples at 3.125 and 3.375 on each axis; the triangle holds (3.125, 2.125),
+    // (3.375, 2.125) and (3.125, 2.375), below its diagonal.
+    ASSERT_EQ(surfaces.pixels.size(), 1u);
+    EXPECT_EQ(surfaces.pixels.front().extra[0], 3);
+  }
+}
+
 // A triangle whose right edge runs down x = 3.4 pixels of an 8 x 8 view: pixel (3, y) has its
 // centre outside and the left two of its four sample columns (x = 3.125, 3.375) inside.
 TEST(EdgeAntialiasing, SamplesCountTheCoverageOfAnEdgePixel) {

@@ -25,6 +25,11 @@ struct RasterView {
   // At most kMaxClipPlanes, each finite with a non-zero normal. Empty: no clipping or capping
   // work is done at all.
   std::span<const glm::dvec4> clip_planes;
+  // The frame's edge pixels are sampled between pixel centres afterwards
+  // (Rasterizer::sample_edges): triangles that cover no pixel centre are kept and binned by the
+  // pixels they touch, where otherwise they are culled, so that a silhouette of triangles
+  // smaller than a pixel is not thinned.
+  bool edge_sampling = false;
 };
 
 }  // namespace soltex
