@@ -1,6 +1,7 @@
 #include "client_access.h"
 
 #include <algorithm>
+#include <boost/beast/core/string.hpp>
 #include <stdexcept>
 #include <string_view>
 
@@ -96,9 +97,7 @@ grpc::Status ClientAccess::check_token(const std::string_view* authorization,
   // The scheme's name is case-insensitive (RFC 9110 11.1), and spaces may follow it.
   const bool bearer =
       value.size() > kBearer.size() &&
-      std::equal(kBearer.begin(), kBearer.end(), value.begin(), [](char want, char got) {
-        return want == (got >= 'A' && got <= 'Z' ? static_cast<char>(got + 32) : got);
-      });
+      boost::beast::iequals({value.data(), kBearer.size()}, {kBearer.data(), kBearer.size()});
   if (!bearer) {
     return {grpc::StatusCode::UNAUTHENTICATED,
             "the 'authorization' metadata must read 'Bearer <token>'"};

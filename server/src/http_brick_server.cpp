@@ -186,12 +186,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
   void refuse_request(unsigned status, const std::string& message) {
     metrics_.http.count(HttpMetrics::Route::other, status);
     HttpResponse response = handler_.error(11, status, message);
-    // A HEAD's answer has no content, whatever its status (its length stays, as for GET).
-    if (parser_ && parser_->get().method() == http::verb::head) {
-      const auto length = response.body().size();
-      response.body().clear();
-      response.content_length(length);
-    }
+    if (parser_ && parser_->get().method() == http::verb::head) without_content(response);
     send(std::move(response), /*close=*/true);
   }
 

@@ -1,5 +1,6 @@
 #include "http_message_checks.h"
 
+#include <boost/beast/core/string.hpp>
 #include <boost/beast/http/field.hpp>
 #include <string_view>
 
@@ -8,19 +9,8 @@ namespace {
 
 namespace http = boost::beast::http;
 
-std::string_view trimmed(std::string_view text) {
-  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
-  while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
-  return text;
-}
-
 bool iequals(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const auto lower = [](char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c + 32) : c; };
-    if (lower(a[i]) != lower(b[i])) return false;
-  }
-  return true;
+  return boost::beast::iequals({a.data(), a.size()}, {b.data(), b.size()});
 }
 
 // The last coding of every Transfer-Encoding line together, or empty when there is none.
@@ -30,7 +20,7 @@ std::string_view last_transfer_coding(const HttpRequest& request) {
     std::string_view value(it->value().data(), it->value().size());
     const std::size_t comma = value.rfind(',');
     if (comma != std::string_view::npos) value.remove_prefix(comma + 1);
-    last = trimmed(value);
+    last = without_ows(value);
   }
   return last;
 }
@@ -47,6 +37,20 @@ bool valid_host(std::string_view host) {
 }
 
 }  // namespace
+
+std::string_view without_ows(std::string_view text) {
+  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+  return text;
+}
+
+void without_content(HttpResponse& response) {
+  const bool sized = response.result() != http::status::not_modified &&
+                     response.result() != http::status::no_content;
+  const auto length = response.body().size();
+  response.body().clear();
+  if (sized) response.content_length(length);
+}
 
 std::optional<std::string> framing_problem(const HttpRequest& request) {
   if (request.count(http::field::transfer_encoding) > 0 &&
@@ -71,7 +75,7 @@ bool expects_continue(const HttpRequest& request) {
   if (request.version() < 11) return false;  // RFC 9110 10.1.1: ignored from HTTP/1.0
   const auto expect = request.find(http::field::expect);
   if (expect == request.end()) return false;
-  return iequals(trimmed(std::string_view(expect->value().data(), expect->value().size())),
+  return iequals(without_ows(std::string_view(expect->value().data(), expect->value().size())),
                  "100-continue");
 }
 

@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "http_request_handler.h"
 
@@ -12,6 +13,13 @@ namespace soltex::server {
 // rest as another request: answered 400 and the connection closed), and a missing, repeated or
 // malformed Host. Returns the problem, named, or nothing.
 std::optional<std::string> framing_problem(const HttpRequest& request);
+
+// `text` without the optional whitespace (spaces and tabs) around a field value or list item.
+std::string_view without_ows(std::string_view text);
+
+// A response to HEAD: no content, and the length a GET's content would have, where the status
+// has content at all (RFC 9110 9.3.2, 8.6).
+void without_content(HttpResponse& response);
 
 // Whether the client waits for "100 Continue" before sending its body (HTTP/1.1 only).
 bool expects_continue(const HttpRequest& request);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "base64url.h"
+#include "http_message_checks.h"
 #include "registration_json.h"
 #include "soltex/common/texture_id.h"
 #include "texture_registration.h"
@@ -82,8 +83,7 @@ bool tag_list_names(std::string_view header, const std::string& etag, bool weak)
     const std::size_t comma = header.find(',');
     std::string_view tag = header.substr(0, comma);
     header.remove_prefix(comma == std::string_view::npos ? header.size() : comma + 1);
-    while (!tag.empty() && (tag.front() == ' ' || tag.front() == '\t')) tag.remove_prefix(1);
-    while (!tag.empty() && (tag.back() == ' ' || tag.back() == '\t')) tag.remove_suffix(1);
+    tag = without_ows(tag);
     if (tag.starts_with("W/")) {
       if (!weak) continue;
       tag.remove_prefix(2);
@@ -165,15 +165,11 @@ void HttpRequestHandler::finish(Call& call, HttpResponse response) {
   response.keep_alive(call.keep_alive);
   response.set(http::field::date, http_date(std::time(nullptr)));
   add_cors(response);
-  const bool sized = response.result() != http::status::not_modified &&
-                     response.result() != http::status::no_content;
-  if (sized) response.prepare_payload();
-  if (call.head) {
-    // The length a GET's content would have, and no content (RFC 9110 9.3.2, 8.6).
-    const auto length = response.body().size();
-    response.body().clear();
-    if (sized) response.content_length(length);
+  if (response.result() != http::status::not_modified &&
+      response.result() != http::status::no_content) {
+    response.prepare_payload();
   }
+  if (call.head) without_content(response);
   context_.metrics.http.count(metrics_route(call.kind), response.result_int());
   call.lease.reset();
   call.respond(std::move(response));
