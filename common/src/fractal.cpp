@@ -20,6 +20,11 @@ float basis_mean(NoiseBasis basis, bool absolute) noexcept {
   return absolute ? kGradientAbsMean : 0.0f;
 }
 
+float basis_variance(NoiseBasis basis, bool absolute) noexcept {
+  if (basis == NoiseBasis::value) return kValueNoiseVariance;
+  return absolute ? kGradientAbsVariance : kGradientVariance;
+}
+
 int OctavePlan::evaluated_octaves() const {
   int n = 0;
   for (int k = 0; k < count; ++k) n += octaves[k].noise_weight != 0.0f ? 1 : 0;
@@ -53,6 +58,8 @@ void OctavePlan::add(const Octave& octave, float weight) {
   lane_mean_term[count] = octave.mean_term;
   octaves[count++] = octave;
   total_weight += weight;
+  const double left_out = static_cast<double>(weight) - static_cast<double>(octave.noise_weight);
+  unresolved_variance += left_out * left_out * static_cast<double>(basis_variance(basis, absolute));
 }
 
 float basis_noise(NoiseBasis basis, const glm::dvec3& t) noexcept {

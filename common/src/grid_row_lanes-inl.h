@@ -55,20 +55,27 @@ HWY_INLINE hn::Vec<D> PortableSinLanes(D d, hn::Vec<D> x) {
   return hn::Mul(r, hn::Add(hn::Set(d, 1.0), p));
 }
 
-// fields::marble along a row whose ripple follows one axis (so its width, and the fade, is the
-// grid's): `field` holds the row's fractal sums on entry and the marble field on exit.
-inline void MarbleAxisRow(const MarbleParams& m, const double* xs, double y, double z,
-                          const glm::dvec3& box, float* field, std::size_t nx) {
-  const double ripple_width = fields::ripple_width(m, glm::dvec3(0.0), box);
+// fields::marble along a row whose ripple follows one axis (so its width, the fade and the
+// spread's terms are the grid's, in `filter`): `field` holds the row's fractal sums on entry
+// and the marble field on exit, `spread` receives fields::marble_spread.
+inline void MarbleAxisRow(const MarbleParams& m, const fields::MarbleAxisFilter& filter,
+                          const double* xs, double y, double z, float* field, float* spread,
+                          std::size_t nx) {
+  const fields::MarbleSpreadTerms& terms = filter.terms;
   const hn::ScalableTag<double> dd;
   const hn::Rebind<float, decltype(dd)> df;
   const std::size_t lanes = hn::Lanes(dd);
-  const auto fade = hn::Set(dd, fields::marble_fade(ripple_width));
+  const auto fade = hn::Set(dd, filter.fade);
   const auto row_ripple = hn::Set(dd, fields::ripple(m, glm::dvec3(0.0, y, z)));
   const auto frequency = hn::Set(dd, m.frequency);
   const auto two_pi = hn::Set(dd, 2.0 * std::numbers::pi);
   const auto amplitude = hn::Set(dd, m.amplitude);
   const auto half = hn::Set(dd, 0.5);
+  const auto one = hn::Set(dd, 1.0);
+  const auto steady = hn::Set(dd, terms.steady);
+  const auto by_sine_squared = hn::Set(dd, terms.by_sine_squared);
+  const auto phase_variance = hn::Set(dd, terms.phase_variance);
+  const auto largest_variance = hn::Set(dd, 0.125);
   const bool along_x = m.axis == Axis::x;
   std::size_t i = 0;
   for (; i + lanes <= nx; i += lanes) {
@@ -78,12 +85,23 @@ inline void MarbleAxisRow(const MarbleParams& m, const double* xs, double y, dou
     const auto fraction = hn::IfThenZeroElse(hn::IsNaN(whole), whole);
     const auto turbulence = hn::PromoteTo(dd, hn::LoadU(df, field + i));
     const auto phase = hn::Add(hn::Mul(two_pi, fraction), hn::Mul(amplitude, turbulence));
-    const auto value = hn::Add(half, hn::Mul(half, hn::Mul(PortableSinLanes(dd, phase), fade)));
+    const auto sine = PortableSinLanes(dd, phase);
+    const auto value = hn::Add(half, hn::Mul(half, hn::Mul(sine, fade)));
     hn::StoreU(hn::DemoteTo(df, value), df, field + i);
+    const auto s2 = hn::Mul(sine, sine);
+    const auto variance =
+        hn::Mul(hn::Set(dd, 0.25), hn::Add(hn::Add(steady, hn::Mul(s2, by_sine_squared)),
+                                           hn::Mul(hn::Sub(one, s2), phase_variance)));
+    const auto capped =
+        hn::IfThenElse(hn::Lt(variance, largest_variance), variance, largest_variance);
+    const auto kept = hn::IfThenElseZero(hn::Gt(variance, hn::Zero(dd)), capped);
+    hn::StoreU(hn::Sqrt(hn::DemoteTo(df, hn::Mul(hn::Set(dd, 3.0), kept))), df, spread + i);
   }
   for (; i < nx; ++i) {
     const glm::dvec3 p(xs[i], y, z);
-    field[i] = fields::marble(m, fields::ripple(m, p), field[i], ripple_width);
+    const double sine = fields::marble_sine(m, fields::ripple(m, p), field[i]);
+    field[i] = fields::marble_of_sine(sine, filter.fade);
+    spread[i] = fields::marble_spread(terms, sine);
   }
 }
 
@@ -242,43 +260,152 @@ inline void WoodRow(const WoodParams& w, const fields::WoodFrame& frame,
   }
 }
 
-// ColourRamp::at for a row of fields, into three colour planes. The first key at or above t
-// decides in at(); here the keys are visited from the last down, each overriding the lanes it
-// covers, so the lowest such key is the one left. Needs at least one key.
-inline void RampRow(const ColourRamp& ramp, const float* t, std::size_t nx, float* red,
-                    float* green, float* blue) {
-  const std::vector<RampKey>& keys = ramp.keys;
+// ColourRamp::at in lanes. The first key at or above t decides in at(); here the keys are
+// visited from the last down, each overriding the lanes it covers, so the lowest such key is
+// the one left. Needs at least one key.
+template <class DF>
+HWY_INLINE void RampAtLanes(DF df, const std::vector<RampKey>& keys, hn::Vec<DF> tv,
+                            hn::Vec<DF> (&colour)[3]) {
+  for (int c = 0; c < 3; ++c) colour[c] = hn::Set(df, keys.back().colour[c]);
+  for (std::size_t k = keys.size() - 1; k >= 1; --k) {
+    const RampKey& hi = keys[k];
+    const RampKey& lo = keys[k - 1];
+    const auto at_hi = hn::Eq(tv, hn::Set(df, hi.position));
+    const auto covered = hn::Le(tv, hn::Set(df, hi.position));
+    const auto u =
+        hn::Div(hn::Sub(tv, hn::Set(df, lo.position)), hn::Set(df, hi.position - lo.position));
+    for (int c = 0; c < 3; ++c) {
+      const auto mixed =
+          hn::Add(hn::Set(df, lo.colour[c]), hn::Mul(u, hn::Set(df, hi.colour[c] - lo.colour[c])));
+      const auto value = hn::IfThenElse(at_hi, hn::Set(df, hi.colour[c]), mixed);
+      colour[c] = hn::IfThenElse(covered, value, colour[c]);
+    }
+  }
+  // !(t > first key): the first key's colour, NaN included.
+  const auto below = hn::Not(hn::Gt(tv, hn::Set(df, keys.front().position)));
+  for (int c = 0; c < 3; ++c) {
+    colour[c] = hn::IfThenElse(below, hn::Set(df, keys.front().colour[c]), colour[c]);
+  }
+}
+
+// ColourRamp::RampBox::step_share in lanes: every case computed, then chosen in the scalar's
+// order. `half_inverse_width` is 0.5 / width, as the scalar's first product makes it. A NaN
+// field's lanes differ from the scalar's here, and the caller gives them at()'s colour.
+template <class DF>
+HWY_INLINE hn::Vec<DF> RampStepShareLanes(DF df, hn::Vec<DF> t, hn::Vec<DF> spread,
+                                          hn::Vec<DF> width, hn::Vec<DF> inverse_width,
+                                          hn::Vec<DF> half_inverse_width, float start,
+                                          float length_value, float inverse_length_value) {
+  const auto length = hn::Set(df, length_value);
+  const auto inverse_length = hn::Set(df, inverse_length_value);
+  const auto length_narrower = hn::Lt(length, width);
+  const auto narrow = hn::IfThenElse(length_narrower, length, width);
+  const auto wide = hn::IfThenElse(length_narrower, width, length);
+  const auto inverse_wide = hn::IfThenElse(length_narrower, inverse_width, inverse_length);
+  const auto whole = hn::Add(narrow, wide);
+  const auto e = hn::Add(hn::Sub(t, hn::Set(df, start)), spread);
+  const auto inverse_curve = hn::Mul(half_inverse_width, inverse_length);
+  const auto one = hn::Set(df, 1.0f);
+  const auto rise = hn::Mul(hn::Mul(e, e), inverse_curve);
+  const auto rest = hn::Sub(whole, e);
+  const auto fall = hn::Sub(one, hn::Mul(hn::Mul(rest, rest), inverse_curve));
+  const auto flat = hn::Mul(hn::Sub(e, hn::Mul(hn::Set(df, 0.5f), narrow)), inverse_wide);
+  auto share = hn::IfThenElse(hn::Lt(e, narrow), rise, hn::IfThenElse(hn::Gt(e, wide), fall, flat));
+  share = hn::IfThenElse(hn::Ge(e, whole), one, share);
+  return hn::IfThenZeroElse(hn::Le(e, hn::Zero(df)), share);
+}
+
+// ColourRamp::at for n fields, into three colour planes. Needs at least one key.
+inline void RampPlanes(const ColourRamp& ramp, const float* t, std::size_t nx, float* red,
+                       float* green, float* blue) {
+  const hn::ScalableTag<float> df;
+  const std::size_t lanes = hn::Lanes(df);
+  float* planes[3] = {red, green, blue};
+  std::size_t i = 0;
+  for (; i + lanes <= nx; i += lanes) {
+    hn::Vec<decltype(df)> colour[3];
+    RampAtLanes(df, ramp.keys, hn::LoadU(df, t + i), colour);
+    for (int c = 0; c < 3; ++c) hn::StoreU(colour[c], df, planes[c] + i);
+  }
+  for (; i < nx; ++i) {
+    const glm::vec3 c = ramp.at(t[i]);
+    red[i] = c.r;
+    green[i] = c.g;
+    blue[i] = c.b;
+  }
+}
+
+// A ramp's key steps as ColourRamp::average makes them (start, length, 1 / length and the
+// colour change), once per grid instead of once per point.
+struct RampSteps {
+  struct Step {
+    float start, length, inverse_length;
+    glm::vec3 change;
+  };
+  glm::vec3 first{0.0f};
+  std::size_t count = 0;
+  Step steps[SpecLimits::kMaxRampKeys];
+
+  explicit RampSteps(const ColourRamp& ramp) {
+    const std::vector<RampKey>& keys = ramp.keys;
+    if (keys.empty()) return;
+    first = keys.front().colour;
+    count = keys.size() - 1;
+    for (std::size_t k = 0; k < count; ++k) {
+      const float length = keys[k + 1].position - keys[k].position;
+      steps[k] = {keys[k].position, length, 1.0f / length, keys[k + 1].colour - keys[k].colour};
+    }
+  }
+
+  // ColourRamp::average(t, spread) for spread > 0 and t not NaN, from the steps.
+  glm::vec3 average(float t, float spread) const {
+    const ColourRamp::RampBox box(t, spread);
+    glm::vec3 colour = first;
+    for (std::size_t k = 0; k < count; ++k) {
+      const Step& step = steps[k];
+      colour += step.change * box.step_share(step.start, step.length, step.inverse_length);
+    }
+    return colour;
+  }
+};
+
+// ColourRamp::average for n fields and their spreads, into three colour planes: each key
+// step adds its colour change times its share, and lanes with no spread (or a NaN field) take
+// at()'s colour, as average() does. Needs at least one key.
+inline void RampAveragePlanes(const ColourRamp& ramp, const RampSteps& steps, const float* t,
+                              const float* spread, std::size_t nx, float* red, float* green,
+                              float* blue) {
   const hn::ScalableTag<float> df;
   const std::size_t lanes = hn::Lanes(df);
   float* planes[3] = {red, green, blue};
   std::size_t i = 0;
   for (; i + lanes <= nx; i += lanes) {
     const auto tv = hn::LoadU(df, t + i);
+    const auto sv = hn::LoadU(df, spread + i);
+    const auto width = hn::Mul(hn::Set(df, 2.0f), sv);
+    const auto inverse_width = hn::Div(hn::Set(df, 1.0f), width);
+    const auto half_inverse_width = hn::Mul(hn::Set(df, 0.5f), inverse_width);
     hn::Vec<decltype(df)> colour[3];
-    for (int c = 0; c < 3; ++c) colour[c] = hn::Set(df, keys.back().colour[c]);
-    for (std::size_t k = keys.size() - 1; k >= 1; --k) {
-      const RampKey& hi = keys[k];
-      const RampKey& lo = keys[k - 1];
-      const auto at_hi = hn::Eq(tv, hn::Set(df, hi.position));
-      const auto covered = hn::Le(tv, hn::Set(df, hi.position));
-      const auto u =
-          hn::Div(hn::Sub(tv, hn::Set(df, lo.position)), hn::Set(df, hi.position - lo.position));
+    for (int c = 0; c < 3; ++c) colour[c] = hn::Set(df, steps.first[c]);
+    for (std::size_t k = 0; k < steps.count; ++k) {
+      const RampSteps::Step& step = steps.steps[k];
+      const auto share = RampStepShareLanes(df, tv, sv, width, inverse_width, half_inverse_width,
+                                            step.start, step.length, step.inverse_length);
       for (int c = 0; c < 3; ++c) {
-        const auto mixed = hn::Add(hn::Set(df, lo.colour[c]),
-                                   hn::Mul(u, hn::Set(df, hi.colour[c] - lo.colour[c])));
-        const auto value = hn::IfThenElse(at_hi, hn::Set(df, hi.colour[c]), mixed);
-        colour[c] = hn::IfThenElse(covered, value, colour[c]);
+        colour[c] = hn::Add(colour[c], hn::Mul(hn::Set(df, step.change[c]), share));
       }
     }
-    // !(t > first key): the first key's colour, NaN included.
-    const auto below = hn::Not(hn::Gt(tv, hn::Set(df, keys.front().position)));
-    for (int c = 0; c < 3; ++c) {
-      colour[c] = hn::IfThenElse(below, hn::Set(df, keys.front().colour[c]), colour[c]);
-      hn::StoreU(colour[c], df, planes[c] + i);
+    const auto at_point = hn::Or(hn::Not(hn::Gt(sv, hn::Zero(df))), hn::IsNaN(tv));
+    if (!hn::AllFalse(df, at_point)) {
+      hn::Vec<decltype(df)> point[3];
+      RampAtLanes(df, ramp.keys, tv, point);
+      for (int c = 0; c < 3; ++c) colour[c] = hn::IfThenElse(at_point, point[c], colour[c]);
     }
+    for (int c = 0; c < 3; ++c) hn::StoreU(colour[c], df, planes[c] + i);
   }
   for (; i < nx; ++i) {
-    const glm::vec3 c = ramp.at(t[i]);
+    const bool at_point = !(spread[i] > 0.0f) || std::isnan(t[i]);
+    const glm::vec3 c = at_point ? ramp.at(t[i]) : steps.average(t[i], spread[i]);
     red[i] = c.r;
     green[i] = c.g;
     blue[i] = c.b;

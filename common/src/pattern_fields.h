@@ -141,6 +141,22 @@ inline float normalise_fractal(const OctavePlan& plan, float sum) {
   return std::clamp(t, 0.0f, 1.0f);
 }
 
+// The half-width of an even spread with the given variance: sqrt(3) standard deviations.
+// ColourRamp::average takes the field's variation within a box in this form.
+inline float even_spread(double variance) {
+  return std::sqrt(static_cast<float>(3.0 * variance));
+}
+
+// A fractal field's spread within the box: the faded octaves' variance, normalised as
+// normalise_fractal() normalises the sum.
+inline float fractal_spread(const OctavePlan& plan) {
+  if (plan.total_weight == 0.0f) return 0.0f;
+  const double weight = plan.total_weight;
+  double variance = plan.unresolved_variance / (weight * weight);
+  if (plan.basis == NoiseBasis::gradient && !plan.absolute) variance *= 0.25;
+  return even_spread(variance);
+}
+
 inline double ripple(const MarbleParams& m, const glm::dvec3& p) {
   return m.ripple == Ripple::axis ? m.frequency * coordinate(p, m.axis)
                                   : m.frequency * p.x * p.y * p.z;
@@ -182,11 +198,67 @@ inline double marble_fade(double ripple_width) {
   return 1.0;
 }
 
-inline float marble(const MarbleParams& m, double ripple_value, float turbulence,
-                    double ripple_width) {
+inline double marble_sine(const MarbleParams& m, double ripple_value, float turbulence) {
   const double phase =
       2.0 * std::numbers::pi * fract(ripple_value) + m.amplitude * static_cast<double>(turbulence);
-  return static_cast<float>(0.5 + 0.5 * (portable_sin(phase) * marble_fade(ripple_width)));
+  return portable_sin(phase);
+}
+
+inline float marble_of_sine(double sine, double fade) {
+  return static_cast<float>(0.5 + 0.5 * (sine * fade));
+}
+
+inline float marble(const MarbleParams& m, double ripple_value, float turbulence,
+                    double ripple_width) {
+  return marble_of_sine(marble_sine(m, ripple_value, turbulence), marble_fade(ripple_width));
+}
+
+// What the marble field's variance within a box is made of, where s is the sine at the box's
+// centre (marble_spread() adds them up). Over the box the ripple's phase runs through a span
+// 2h, so sin averages to s sin(h)/h (the fade f1) and sin^2 = (1 - cos 2phase) / 2 to
+// (1 - f2 (1 - 2 s^2)) / 2 with f2 = sin(2h)/(2h): the field 0.5 + 0.5 sin varies by
+// 0.25 (steady + s^2 by_sine_squared). The faded turbulence octaves move the phase by a
+// deviation sigma, which moves the field by 0.5 cos(phase) sigma: 0.25 (1 - s^2) sigma^2.
+struct MarbleSpreadTerms {
+  double steady;           // (1 - f2) / 2
+  double by_sine_squared;  // f2 - f1^2
+  double phase_variance;   // (amplitude * the turbulence's unresolved deviation)^2
+};
+
+// `turbulence_variance`: the unresolved variance of the turbulence's raw sum.
+inline MarbleSpreadTerms marble_spread_terms(const MarbleParams& m, double ripple_width,
+                                             double turbulence_variance) {
+  const double once = marble_fade(ripple_width);
+  const double twice = marble_fade(2.0 * ripple_width);
+  const double phase_deviation = m.amplitude * std::sqrt(turbulence_variance);
+  return {0.5 * (1.0 - twice), twice - once * once, phase_deviation * phase_deviation};
+}
+
+// The field's variance within the box, at most that of a sine's whole period, 1/8; 0 where
+// the box is a point or the sine is not finite.
+inline double marble_variance(const MarbleSpreadTerms& terms, double sine) {
+  const double s2 = sine * sine;
+  const double variance =
+      0.25 * ((terms.steady + s2 * terms.by_sine_squared) + (1.0 - s2) * terms.phase_variance);
+  if (!(variance > 0.0)) return 0.0;
+  return variance < 0.125 ? variance : 0.125;
+}
+
+inline float marble_spread(const MarbleSpreadTerms& terms, double sine) {
+  return even_spread(marble_variance(terms, sine));
+}
+
+// What a grid's points share when the ripple follows an axis: its width is the grid's, and so
+// are the fade and the spread's terms.
+struct MarbleAxisFilter {
+  double fade;
+  MarbleSpreadTerms terms;
+};
+
+inline MarbleAxisFilter marble_axis_filter(const MarbleParams& m, const glm::dvec3& box,
+                                           double turbulence_variance) {
+  const double width = ripple_width(m, glm::dvec3(0.0), box);
+  return {marble_fade(width), marble_spread_terms(m, width, turbulence_variance)};
 }
 
 }  // namespace soltex::fields

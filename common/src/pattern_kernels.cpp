@@ -16,6 +16,7 @@
 
 #include "pattern_kernels.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <optional>
 #include <variant>
@@ -47,22 +48,34 @@ HWY_FLATTEN void SamplePointsKernel(const PatternSource& source, std::span<const
                                     std::span<Texel> out) {
   const std::size_t n = points.size();
   const TextureSpec& spec = *source.spec;
+  const ColourRamp& ramp = *source.ramp;
+  // A field of two values (stripes, checkers, rings, wood): the ramp's colour of the box average
+  // is the blend of the two values' colours, which source.ramp holds as its keys.
   const auto each = [&](auto&& field) {
-    for (std::size_t i = 0; i < n; ++i) out[i].field = field(points[i], footprints[i].box);
+    for (std::size_t i = 0; i < n; ++i) {
+      out[i].field = field(points[i], footprints[i].box);
+      out[i].colour = ramp.at(out[i].field);
+    }
   };
   // Noise: a plan per point of its own width, made where it is used. (Keeping one plan across
   // a run of equal widths was slower: pixels' widths all differ, and a plan copied in just
   // before it is read stalls the loads that read it.)
-  const auto each_fractal = [&](auto&& field) {
+  const auto each_fractal = [&](auto&& texel) {
     for (std::size_t i = 0; i < n; ++i) {
       const double w = footprints[i].width;
       if (w > 0.0) {
         const OctavePlan plan = plan_octaves(*source.fractal, w);
-        out[i].field = field(plan, points[i], footprints[i].box);
+        texel(plan, points[i], footprints[i].box, out[i]);
       } else {
-        out[i].field = field(*source.point_plan, points[i], footprints[i].box);
+        texel(*source.point_plan, points[i], footprints[i].box, out[i]);
       }
     }
+  };
+  const auto fractal_texel = [&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3&,
+                                 Texel& texel) {
+    texel.field =
+        fields::normalise_fractal(plan, noise_kernels::HWY_NAMESPACE::FractalSumAt(plan, p));
+    texel.colour = ramp.average(texel.field, fields::fractal_spread(plan));
   };
   const fields::WoodFrame frame{source.wood_cos_tilt_z, source.wood_sin_tilt_z};
   std::visit(
@@ -73,7 +86,10 @@ HWY_FLATTEN void SamplePointsKernel(const PatternSource& source, std::span<const
             });
           },
           // Its own kernel: the filter's branches as selects across the points.
-          [&](const CheckerParams& c) { checker_fields(c, points, footprints, out); },
+          [&](const CheckerParams& c) {
+            checker_fields(c, points, footprints, out);
+            for (std::size_t i = 0; i < n; ++i) out[i].colour = ramp.at(out[i].field);
+          },
           [&](const ColourCubeParams& c) {
             for (std::size_t i = 0; i < n; ++i) {
               out[i].colour = fields::colour_cube(c, points[i], footprints[i].box);
@@ -90,38 +106,34 @@ HWY_FLATTEN void SamplePointsKernel(const PatternSource& source, std::span<const
               return fields::wood(w, frame, fields::wood_rotation(w, p.y), p, box);
             });
           },
-          [&](const NoiseParams&) {
-            each_fractal([&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3&) {
-              return fields::normalise_fractal(plan,
-                                               noise_kernels::HWY_NAMESPACE::FractalSumAt(plan, p));
-            });
-          },
-          [&](const TurbulenceParams&) {
-            each_fractal([&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3&) {
-              return fields::normalise_fractal(plan,
-                                               noise_kernels::HWY_NAMESPACE::FractalSumAt(plan, p));
-            });
-          },
+          [&](const NoiseParams&) { each_fractal(fractal_texel); },
+          [&](const TurbulenceParams&) { each_fractal(fractal_texel); },
           [&](const MarbleParams& m) {
-            each_fractal([&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3& box) {
-              return fields::marble(m, fields::ripple(m, p),
-                                    noise_kernels::HWY_NAMESPACE::FractalSumAt(plan, p),
-                                    fields::ripple_width(m, p, box));
+            each_fractal([&](const OctavePlan& plan, const glm::dvec3& p, const glm::dvec3& box,
+                             Texel& texel) {
+              const double ripple_width = fields::ripple_width(m, p, box);
+              const double sine = fields::marble_sine(
+                  m, fields::ripple(m, p), noise_kernels::HWY_NAMESPACE::FractalSumAt(plan, p));
+              texel.field = fields::marble_of_sine(sine, fields::marble_fade(ripple_width));
+              texel.colour = ramp.average(
+                  texel.field, fields::marble_spread(fields::marble_spread_terms(
+                                                         m, ripple_width, plan.unresolved_variance),
+                                                     sine));
             });
           },
       },
       spec.pattern);
-  if (!std::holds_alternative<ColourCubeParams>(spec.pattern)) {
-    for (std::size_t i = 0; i < n; ++i) out[i].colour = spec.ramp.at(out[i].field);
-  }
 }
 
-// Per row: the x coordinates (the same in every row), the field, and the colour cube's colours;
-// per grid, what a separable pattern's points share along x (the checker's x factors, the
-// colour cube's red).
+// Per grid: the x coordinates (the same in every row), the field and its spread within a
+// sample's box (ColourRamp::average) at every point, so that the ramp runs over the whole grid
+// at once (a row of 17 would leave a scalar tail per row), and what a separable pattern's
+// points share along x (the checker's x factors, the colour cube's red); per row, the colour
+// cube's colours.
 struct RowScratch {
   std::vector<double> x;
   std::vector<float> field;
+  std::vector<float> spread;
   std::vector<glm::vec3> colour;
   std::vector<double> checker_x;
   std::vector<float> cube_red;
@@ -129,7 +141,7 @@ struct RowScratch {
   std::vector<fields::WoodRotation> wood_rotations;  // per y index: wood's rotation about y
 };
 
-// One row's field (and the colour cube's colours) at (xs[i], y, z).
+// One row's field (and the colour cube's colours, and marble's spreads) at (xs[i], y, z).
 struct RowFields {
   const Pattern& pattern;
   const OctavePlan& plan;
@@ -137,15 +149,15 @@ struct RowFields {
   const glm::dvec3& box;
   const std::optional<FractalRows>& fractal_rows;
   std::span<const double> xs;
-  float* field;
   glm::vec3* colour;
   const double* checker_x;  // fields::checker_factor along x at xs, for a checker
   const float* cube_red;    // fields::colour_cube_channel along x at xs, for a colour cube
   double* wood_scratch;     // 3 * xs.size() doubles, for wood
-  const fields::WoodRotation* wood_rotations;  // by the row's y index, for wood
+  const fields::WoodRotation* wood_rotations;   // by the row's y index, for wood
+  const fields::MarbleAxisFilter* marble_axis;  // for marble rippling along an axis
 
-  // The row at y index j: (xs[i], y, z).
-  void operator()(int j, double y, double z) const {
+  // The row at y index j, (xs[i], y, z), into the row's `field` and (for marble) `spread`.
+  void operator()(int j, double y, double z, float* field, float* spread) const {
     const std::size_t nx = xs.size();
     const auto each_point = [&](auto&& fn) {
       for (std::size_t i = 0; i < nx; ++i) field[i] = fn(glm::dvec3(xs[i], y, z));
@@ -185,13 +197,16 @@ struct RowFields {
                    [&](const MarbleParams& m) {
                      fractal_rows->sum(y, z, {field, nx});
                      if (m.ripple == Ripple::axis) {
-                       MarbleAxisRow(m, xs.data(), y, z, box, field, nx);
+                       MarbleAxisRow(m, *marble_axis, xs.data(), y, z, field, spread, nx);
                        return;
                      }
                      for (std::size_t i = 0; i < nx; ++i) {
                        const glm::dvec3 p(xs[i], y, z);
-                       field[i] = fields::marble(m, fields::ripple(m, p), field[i],
-                                                 fields::ripple_width(m, p, box));
+                       const double width = fields::ripple_width(m, p, box);
+                       const double sine = fields::marble_sine(m, fields::ripple(m, p), field[i]);
+                       field[i] = fields::marble_of_sine(sine, fields::marble_fade(width));
+                       spread[i] = fields::marble_spread(
+                           fields::marble_spread_terms(m, width, plan.unresolved_variance), sine);
                      }
                    },
                },
@@ -227,7 +242,8 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
   thread_local RowScratch scratch;
   const auto nx = static_cast<std::size_t>(grid.count.x);
   scratch.x.resize(nx);
-  scratch.field.resize(nx);
+  scratch.field.resize(n);
+  scratch.spread.resize(n);
   scratch.colour.resize(nx);
   for (std::size_t i = 0; i < nx; ++i) scratch.x[i] = grid.point(static_cast<int>(i), 0, 0).x;
   const std::span<const double> xs(scratch.x.data(), nx);
@@ -242,6 +258,10 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
   }
   float* field = scratch.field.data();
   glm::vec3* colour = scratch.colour.data();
+  fields::MarbleAxisFilter marble_axis{};
+  if (const auto* m = std::get_if<MarbleParams>(&spec.pattern)) {
+    marble_axis = fields::marble_axis_filter(*m, box, plan.unresolved_variance);
+  }
   std::optional<FractalRows> fractal_rows;
   if (plan.count > 0) fractal_rows.emplace(plan, xs);
   const RowFields row_field{spec.pattern,
@@ -250,42 +270,61 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
                             box,
                             fractal_rows,
                             xs,
-                            field,
                             colour,
                             scratch.checker_x.data(),
                             scratch.cube_red.data(),
                             scratch.wood.data(),
-                            scratch.wood_rotations.data()};
+                            scratch.wood_rotations.data(),
+                            &marble_axis};
 
   const ChannelSet& wanted = spec.channels;
-  const bool ramp_in_lanes = !is_cube && !spec.ramp.keys.empty();
+  const ColourRamp& ramp = *source.ramp;
+  // A fractal's spread is the grid's (one plan); marble's is each point's; the other fields
+  // have two values, which the ramp's keys already blend.
+  const bool is_marble = std::holds_alternative<MarbleParams>(spec.pattern);
+  const float fractal_spread = is_marble ? 0.0f : fields::fractal_spread(plan);
+  if (fractal_spread > 0.0f) std::fill_n(scratch.spread.begin(), n, fractal_spread);
+  const bool has_spread = is_marble || fractal_spread > 0.0f;
   std::size_t row_start = 0;
   for (int k = 0; k < grid.count.z; ++k) {
     for (int j = 0; j < grid.count.y; ++j, row_start += nx) {
       const glm::dvec3 row_origin = grid.point(0, j, k);
-      row_field(j, row_origin.y, row_origin.z);
-      float* plane = out.data() + row_start;
-      if (wanted.colour && ramp_in_lanes) {
-        RampRow(spec.ramp, field, nx, plane, plane + n, plane + 2 * n);
-        plane += 3 * n;
-      } else if (wanted.colour) {
+      row_field(j, row_origin.y, row_origin.z, field + row_start,
+                scratch.spread.data() + row_start);
+      if (is_cube && wanted.colour) {
         for (std::size_t i = 0; i < nx; ++i) {
-          const glm::vec3 c = is_cube ? colour[i] : spec.ramp.at(field[i]);
-          plane[i] = c.r;
-          plane[n + i] = c.g;
-          plane[2 * n + i] = c.b;
+          out[row_start + i] = colour[i].r;
+          out[n + row_start + i] = colour[i].g;
+          out[2 * n + row_start + i] = colour[i].b;
         }
-        plane += 3 * n;
-      }
-      for (const auto* range :
-           {wanted.opacity ? &spec.opacity : nullptr, wanted.specular ? &spec.specular : nullptr}) {
-        if (range == nullptr) continue;
-        for (std::size_t i = 0; i < nx; ++i) {
-          plane[i] = range->low + (range->high - range->low) * field[i];
-        }
-        plane += n;
       }
     }
+  }
+  float* plane = out.data();
+  if (wanted.colour) {
+    if (is_cube) {
+      // written row by row above
+    } else if (ramp.keys.empty()) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const glm::vec3 c = ramp.average(field[i], has_spread ? scratch.spread[i] : 0.0f);
+        plane[i] = c.r;
+        plane[n + i] = c.g;
+        plane[2 * n + i] = c.b;
+      }
+    } else if (has_spread) {
+      RampAveragePlanes(ramp, RampSteps(ramp), field, scratch.spread.data(), n, plane, plane + n,
+                        plane + 2 * n);
+    } else {
+      RampPlanes(ramp, field, n, plane, plane + n, plane + 2 * n);
+    }
+    plane += 3 * n;
+  }
+  for (const auto* range :
+       {wanted.opacity ? &spec.opacity : nullptr, wanted.specular ? &spec.specular : nullptr}) {
+    if (range == nullptr) continue;
+    for (std::size_t i = 0; i < n; ++i)
+      plane[i] = range->low + (range->high - range->low) * field[i];
+    plane += n;
   }
 }
 

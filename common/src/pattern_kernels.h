@@ -21,6 +21,7 @@ namespace soltex::pattern_kernels {
 // What the kernels need of a TextureEvaluator.
 struct PatternSource {
   const TextureSpec* spec;
+  const ColourRamp* ramp;        // the ramp the colour planes apply (TextureEvaluator's)
   const FractalParams* fractal;  // the pattern's fractal, nullptr for patterns without noise
   const OctavePlan* point_plan;  // plan_octaves(*fractal, 0) (empty without a fractal)
   double wood_cos_tilt_z, wood_sin_tilt_z;

@@ -1,8 +1,10 @@
 #include "soltex/common/texture_evaluator.h"
 
+#include <algorithm>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pattern_fields.h"
@@ -30,6 +32,29 @@ glm::dvec2 wood_tilt_z(const Pattern& pattern) {
     return {std::cos(wood->tilt_z), std::sin(wood->tilt_z)};
   }
   return {1.0, 0.0};
+}
+
+// The ramp the colour planes apply. A field of two values (stripes, checkers, wood's grain,
+// rings) averaged over a box is the share of the box at the second value, so the box's colour
+// is the blend of the two values' colours: the spec's ramp with those two as its only keys.
+// (A ramp with keys between them would colour an edge's average as if the field passed
+// through them.) Other fields keep the spec's ramp, averaged over their spread.
+ColourRamp applied_ramp(const TextureSpec& spec) {
+  const auto two_valued = [&](float low, float high) {
+    if (high < low) std::swap(low, high);
+    return ColourRamp{{{low, spec.ramp.at(low)}, {high, spec.ramp.at(high)}}};
+  };
+  if (std::holds_alternative<StripesParams>(spec.pattern) ||
+      std::holds_alternative<CheckerParams>(spec.pattern) ||
+      std::holds_alternative<WoodParams>(spec.pattern)) {
+    return two_valued(0.0f, 1.0f);
+  }
+  if (const auto* rings = std::get_if<RingsParams>(&spec.pattern)) {
+    const double inner = std::clamp(rings->base, 0.0, 1.0);
+    const double outer = std::clamp(rings->base + rings->amplitude, 0.0, 1.0);
+    return two_valued(static_cast<float>(inner), static_cast<float>(outer));
+  }
+  return spec.ramp;
 }
 
 // Graphs: the field a Texel carries is the graph's opacity output, else its specular output.
@@ -86,7 +111,9 @@ void evaluate_graph_grid(const GraphField& graph, const TextureSpec& spec, const
 }  // namespace
 
 TextureEvaluator::TextureEvaluator(const TextureSpec& spec)
-    : spec_(validated(spec)), wood_tilt_z_(wood_tilt_z(spec_.pattern)) {
+    : spec_(validated(spec)),
+      colour_ramp_(spec_.graph ? ColourRamp{} : applied_ramp(spec_)),
+      wood_tilt_z_(wood_tilt_z(spec_.pattern)) {
   FractalParams storage;
   if (const FractalParams* fractal = fractal_of(spec_.pattern, storage)) {
     fractal_ = *fractal;
@@ -100,7 +127,8 @@ OctavePlan TextureEvaluator::plan_for(double filter_width) const {
 }
 
 pattern_kernels::PatternSource TextureEvaluator::pattern_source() const {
-  return {&spec_, has_fractal_ ? &fractal_ : nullptr, &point_plan_, wood_tilt_z_.x, wood_tilt_z_.y};
+  return {&spec_,       &colour_ramp_,  has_fractal_ ? &fractal_ : nullptr,
+          &point_plan_, wood_tilt_z_.x, wood_tilt_z_.y};
 }
 
 int TextureEvaluator::evaluated_octaves(double filter_width) const {

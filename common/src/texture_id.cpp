@@ -13,8 +13,8 @@ namespace {
 
 // Bumped whenever the encoding or the meaning of a texture changes, bricks' bytes included: a
 // brick URL is cached as immutable, so new bytes need a new name. v2: wood's band limit counts
-// the twist.
-constexpr char kFormatTag[] = "soltex.texture.v2";
+// the twist. v3: colours are the ramp averaged over the field's spread within a sample's box.
+constexpr char kFormatTag[] = "soltex.texture.v3";
 
 class CanonicalWriter {
  public:

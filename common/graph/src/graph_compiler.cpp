@@ -57,6 +57,7 @@ class Lowering {
        : channel == Channel::opacity ? program_->opacity
                                      : program_->specular) = reg;
     }
+    add_variances();
     return std::move(program_);
   }
   std::vector<uint8_t> canonical() { return writer_.take(); }
@@ -82,6 +83,20 @@ class Lowering {
     writer_.u8(static_cast<uint8_t>(comps));
     for (int c = 0; c < comps; ++c) writer_.f64(v[c]);
     return new_register(comps, true, v, 0.0, {0, 0, 0});
+  }
+
+  // A variance register for each scalar noise and each marble node, numbered after every
+  // other register, so the canonical form (which names registers) does not depend on them.
+  void add_variances() {
+    for (Instruction& instr : program_->instructions) {
+      const bool noise =
+          instr.op == Op::noise3d || instr.op == Op::fractal3d || instr.op == Op::turbulence;
+      if (!(noise && program_->registers[instr.out].components == 1) && instr.op != Op::marble) {
+        continue;
+      }
+      instr.variance_out = new_register(1, false, glm::dvec3(0.0), 0.0, deps_[instr.out]);
+      program_->registers[instr.out].variance = instr.variance_out;
+    }
   }
 
   int lower(std::size_t node_index);

@@ -76,6 +76,16 @@ void run_fractal(const Program& program, const Instruction& instr, Batch& batch)
       out[i] = finite_or_zero(pivot ? scaled + pivot[i] : scaled);
     }
   }
+  if (instr.variance_out >= 0) {
+    // The faded octaves' variance, scaled as the sum is.
+    PlanCache plans(instr.noise);
+    const double* amplitude = batch.operand(program, instr.in[0], 0);
+    double* variance = batch.plane(instr.variance_out, 0);
+    for (std::size_t i = 0; i < batch.size; ++i) {
+      const double raw = plans.at(position.width_scale * batch.widths[i]).unresolved_variance;
+      variance[i] = finite_or_zero(raw * (amplitude[i] * amplitude[i]));
+    }
+  }
 }
 
 template <typename F>

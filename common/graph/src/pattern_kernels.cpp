@@ -11,10 +11,13 @@ namespace soltex::graph {
 void run_pattern(const Program& program, const Instruction& instr, Batch& batch) {
   if (instr.op == Op::ramp) {
     const double* t = batch.plane(instr.in[0], 0);
+    const int variance_reg = program.registers[static_cast<std::size_t>(instr.in[0])].variance;
+    const double* variance = variance_reg >= 0 ? batch.plane(variance_reg, 0) : nullptr;
     double *r = batch.plane(instr.out, 0), *g = batch.plane(instr.out, 1),
            *b = batch.plane(instr.out, 2);
     for (std::size_t i = 0; i < batch.size; ++i) {
-      const glm::vec3 colour = instr.ramp.at(static_cast<float>(t[i]));
+      const float spread = variance ? fields::even_spread(variance[i]) : 0.0f;
+      const glm::vec3 colour = instr.ramp.average(static_cast<float>(t[i]), spread);
       r[i] = colour.r;
       g[i] = colour.g;
       b[i] = colour.b;
@@ -70,10 +73,24 @@ void run_pattern(const Program& program, const Instruction& instr, Batch& batch)
                  },
                  [&](const MarbleParams& m) {
                    const double* turbulence = batch.plane(instr.in[1], 0);
+                   const int turbulence_variance_reg =
+                       program.registers[static_cast<std::size_t>(instr.in[1])].variance;
+                   const double* turbulence_variance = turbulence_variance_reg >= 0
+                                                           ? batch.plane(turbulence_variance_reg, 0)
+                                                           : nullptr;
+                   double* variance =
+                       instr.variance_out >= 0 ? batch.plane(instr.variance_out, 0) : nullptr;
                    each([&](const glm::dvec3& p, const glm::dvec3& box, std::size_t i) {
-                     return fields::marble(m, fields::ripple(m, p),
-                                           static_cast<float>(turbulence[i]),
-                                           fields::ripple_width(m, p, box));
+                     const double width = fields::ripple_width(m, p, box);
+                     const double sine = fields::marble_sine(m, fields::ripple(m, p),
+                                                             static_cast<float>(turbulence[i]));
+                     if (variance != nullptr) {
+                       variance[i] = fields::marble_variance(
+                           fields::marble_spread_terms(
+                               m, width, turbulence_variance ? turbulence_variance[i] : 0.0),
+                           sine);
+                     }
+                     return fields::marble_of_sine(sine, fields::marble_fade(width));
                    });
                  },
                  [&](const auto&) {},

@@ -23,6 +23,11 @@ struct Register {
   // Each component depends only on the same texture-space axis (position scaled and shifted
   // per axis): along a grid row, x varies alone and y, z are the row's.
   bool separable = true;
+  // The register holding, per sample, the variance within the sample's box of what this value
+  // does not show (faded octaves, ripples finer than the box), or -1 where none is kept. A
+  // ramp reading the value averages its colours over it, as a built-in pattern's ramp does;
+  // only a noise or marble node's own output carries one.
+  int variance = -1;
 };
 
 struct NoiseSetup {
@@ -48,7 +53,8 @@ struct Instruction {
   int out = -1;
   int operand_count = 0;
   std::array<int, kMaxOperands> in{-1, -1, -1, -1, -1};
-  int index = 0;  // extract's component
+  int index = 0;          // extract's component
+  int variance_out = -1;  // where the output's variance goes (Register::variance), or -1
   NoiseSetup noise;
   WorleySetup worley;
   ColourRamp ramp;

@@ -121,6 +121,38 @@ TEST(FractalSum, GradientAbsMeanConstantIsMeasured) {
   EXPECT_NEAR(sum / n, kGradientAbsMean, 0.002);
 }
 
+TEST(FractalSum, BasisVarianceConstantsAreMeasured) {
+  // The variances that size a faded octave's share of a box's spread must be the actual ones.
+  std::mt19937_64 rng(22);
+  std::uniform_real_distribution<double> u(0.0, 256.0);
+  double value = 0.0, value2 = 0.0, gradient2 = 0.0, absolute = 0.0;
+  const int n = 1 << 20;
+  for (int i = 0; i < n; ++i) {
+    const glm::dvec3 p(u(rng), u(rng), u(rng));
+    const double v = value_noise(p), g = gradient_noise(p);
+    value += v;
+    value2 += v * v;
+    gradient2 += g * g;
+    absolute += std::fabs(g);
+  }
+  const double value_mean = value / n, absolute_mean = absolute / n;
+  EXPECT_NEAR(value2 / n - value_mean * value_mean, kValueNoiseVariance, 3e-4);
+  EXPECT_NEAR(gradient2 / n, kGradientVariance, 6e-4);
+  EXPECT_NEAR(gradient2 / n - absolute_mean * absolute_mean, kGradientAbsVariance, 3e-4);
+}
+
+TEST(FractalSum, FadedOctavesAddTheirVarianceToThePlan) {
+  const FractalParams fractal{4.0, 0, 5, NoiseBasis::value, false};
+  EXPECT_EQ(plan_octaves(fractal, 0.0).unresolved_variance, 0.0);
+  // Every octave gone: the weights' squares times the basis variance.
+  double all = 0.0;
+  for (int k = 0; k <= 5; ++k) all += std::ldexp(1.0, -2 * k) * kValueNoiseVariance;
+  EXPECT_NEAR(plan_octaves(fractal, 10.0).unresolved_variance, all, 1e-9);
+  const double some = plan_octaves(fractal, 1.0 / 64.0).unresolved_variance;
+  EXPECT_GT(some, 0.0);
+  EXPECT_LT(some, all);
+}
+
 TEST(FractalSum, ManyOctavesAndHugeInputsStayFinite) {
   const FractalParams many{1.0, 8, 23, NoiseBasis::gradient, false};
   const OctavePlan plan = plan_octaves(many, 0.0);

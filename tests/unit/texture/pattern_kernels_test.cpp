@@ -12,11 +12,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dispatch_targets.h"
@@ -57,37 +59,56 @@ float scalar_fractal_sum(const OctavePlan& plan, const glm::dvec3& p) {
   return sum;
 }
 
-// A texel by the definition: the pattern's field at one point, then the ramp.
+// The colour of a field of two values, low and high, averaged to t: the blend of the two
+// values' colours.
+glm::vec3 two_valued_colour(const ColourRamp& ramp, float low, float high, float t) {
+  if (high < low) std::swap(low, high);
+  return ColourRamp{{{low, ramp.at(low)}, {high, ramp.at(high)}}}.at(t);
+}
+
+// A texel by the definition: the pattern's field at one point, then its colour: the ramp
+// averaged over the field's spread within the box, or for a field of two values their blend.
 Texel reference(const TextureSpec& spec, const glm::dvec3& p, const SampleFootprint& f) {
   const glm::dvec3& box = f.box;
   Texel t;
   const auto plan_of = [&](const FractalParams& fractal) { return plan_octaves(fractal, f.width); };
+  const auto fractal_texel = [&](const OctavePlan& plan) {
+    t.field = fields::normalise_fractal(plan, scalar_fractal_sum(plan, p));
+    t.colour = spec.ramp.average(t.field, fields::fractal_spread(plan));
+  };
   if (const auto* s = std::get_if<StripesParams>(&spec.pattern)) {
     t.field = fields::stripes(*s, p, box);
+    t.colour = two_valued_colour(spec.ramp, 0.0f, 1.0f, t.field);
   } else if (const auto* c = std::get_if<CheckerParams>(&spec.pattern)) {
     t.field = fields::checker(*c, p, box);
+    t.colour = two_valued_colour(spec.ramp, 0.0f, 1.0f, t.field);
   } else if (const auto* cube = std::get_if<ColourCubeParams>(&spec.pattern)) {
     t.colour = fields::colour_cube(*cube, p, box);
     t.field = (t.colour.r + t.colour.g + t.colour.b) * (1.0f / 3.0f);
-    return t;
   } else if (const auto* r = std::get_if<RingsParams>(&spec.pattern)) {
     t.field = fields::rings(*r, p, box);
+    const double inner = std::clamp(r->base, 0.0, 1.0);
+    const double outer = std::clamp(r->base + r->amplitude, 0.0, 1.0);
+    t.colour =
+        two_valued_colour(spec.ramp, static_cast<float>(inner), static_cast<float>(outer), t.field);
   } else if (const auto* w = std::get_if<WoodParams>(&spec.pattern)) {
     const fields::WoodFrame frame{std::cos(w->tilt_z), std::sin(w->tilt_z)};
     t.field = fields::wood(*w, frame, fields::wood_rotation(*w, p.y), p, box);
+    t.colour = two_valued_colour(spec.ramp, 0.0f, 1.0f, t.field);
   } else if (const auto* n = std::get_if<NoiseParams>(&spec.pattern)) {
-    const OctavePlan plan = plan_of(fields::single_octave(*n));
-    t.field = fields::normalise_fractal(plan, scalar_fractal_sum(plan, p));
+    fractal_texel(plan_of(fields::single_octave(*n)));
   } else if (const auto* turbulence = std::get_if<TurbulenceParams>(&spec.pattern)) {
-    const OctavePlan plan = plan_of(turbulence->fractal);
-    t.field = fields::normalise_fractal(plan, scalar_fractal_sum(plan, p));
+    fractal_texel(plan_of(turbulence->fractal));
   } else {
     const auto& m = std::get<MarbleParams>(spec.pattern);
     const OctavePlan plan = plan_of(m.turbulence);
-    t.field = fields::marble(m, fields::ripple(m, p), scalar_fractal_sum(plan, p),
-                             fields::ripple_width(m, p, box));
+    const double width = fields::ripple_width(m, p, box);
+    const double sine = fields::marble_sine(m, fields::ripple(m, p), scalar_fractal_sum(plan, p));
+    t.field = fields::marble_of_sine(sine, fields::marble_fade(width));
+    t.colour = spec.ramp.average(
+        t.field, fields::marble_spread(
+                     fields::marble_spread_terms(m, width, plan.unresolved_variance), sine));
   }
-  t.colour = spec.ramp.at(t.field);
   return t;
 }
 

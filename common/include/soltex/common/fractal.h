@@ -22,6 +22,11 @@ namespace soltex {
 // Mean of |gradient noise| over space: 0.22035, measured over 2^24 uniform random points in
 // one period (the fractal test re-measures it).
 inline constexpr float kGradientAbsMean = 0.2204f;
+// The variance of one octave over space, per basis, measured the same way over 2^22 points
+// (the fractal test re-measures them): value noise, signed gradient noise, |gradient| noise.
+inline constexpr float kValueNoiseVariance = 0.02393f;
+inline constexpr float kGradientVariance = 0.07299f;
+inline constexpr float kGradientAbsVariance = 0.02440f;
 
 struct Octave {
   double frequency;    // lattice cells per texture unit
@@ -36,6 +41,11 @@ struct OctavePlan {
   int count = 0;
   std::array<Octave, SpecLimits::kMaxOctaveCount> octaves{};
   float total_weight = 0.0f;  // sum of (1/2)^k: the largest possible raw sum for value noise
+  // The variance, in raw-sum units, of what the faded octaves leave out: each contributes
+  // (1/2)^k (1 - alpha_k) (noise - mean), taken as independent. A box of the filter's width
+  // holds that much variation that the sum at its centre does not show; the colour ramp is
+  // averaged over it (fields::fractal_spread).
+  double unresolved_variance = 0.0;
   // The octaves again, one array per field and zero-padded past `count`, for the single-point
   // kernel, which loads them as vectors (one octave per lane).
   static constexpr int kLaneRoom = 2 * SpecLimits::kMaxOctaveCount;
@@ -43,8 +53,9 @@ struct OctavePlan {
   alignas(64) std::array<float, kLaneRoom> lane_noise_weight{};
   alignas(64) std::array<float, kLaneRoom> lane_mean_term{};
   int evaluated_octaves() const;  // octaves with a nonzero noise weight
-  // Appends one octave to both layouts; `weight` is its (1/2)^k before fading. Every plan is
-  // built through it, so the per-lane copies never disagree with `octaves`.
+  // Appends one octave to both layouts and its faded part to unresolved_variance; `weight` is
+  // its (1/2)^k before fading. Every plan is built through it (after `basis` and `absolute`
+  // are set), so the per-lane copies never disagree with `octaves`.
   void add(const Octave& octave, float weight);
 };
 
@@ -55,6 +66,8 @@ float octave_visibility(float cells_per_sample) noexcept;
 // The mean a faded octave is replaced by: value noise's table mean, |gradient| noise's
 // measured mean, or 0 for signed gradient noise.
 float basis_mean(NoiseBasis basis, bool absolute) noexcept;
+// The variance of one octave of the basis (the constants above).
+float basis_variance(NoiseBasis basis, bool absolute) noexcept;
 
 // filter_width = 0 means point sampling: every octave is fully present.
 OctavePlan plan_octaves(const FractalParams& params, double filter_width);

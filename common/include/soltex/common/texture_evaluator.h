@@ -64,6 +64,8 @@ struct SampleFootprint {
 // filter_width is the sample spacing in texture units: octaves of noise finer than it can
 // show are faded to their mean (see fractal.h), and hard edges are averaged over a box of that
 // width on every axis (SampleFootprint::isotropic); 0 samples the function as it is.
+// A sample's colour is the ramp averaged over the field's values within its box, not the ramp
+// of the field's average: marble or noise finer than a box takes the mean of its colours.
 // sample() and evaluate_grid() give bit-identical results at the same point.
 namespace pattern_kernels {
 struct PatternSource;  // common/src/pattern_kernels.h
@@ -97,6 +99,7 @@ class TextureEvaluator {
   pattern_kernels::PatternSource pattern_source() const;
 
   TextureSpec spec_;
+  ColourRamp colour_ramp_;   // what the colour planes apply (applied_ramp() in the .cpp)
   FractalParams fractal_{};  // the pattern's fractal, when has_fractal_
   bool has_fractal_ = false;
   OctavePlan point_plan_;   // the plan for filter_width = 0, used most often

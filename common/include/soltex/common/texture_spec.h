@@ -117,6 +117,55 @@ struct ColourRamp {
     }
     return keys.back().colour;
   }
+
+  // The ramp averaged over a field spread evenly across [t - spread, t + spread]: the colour of
+  // a box over which the field varies, where at(t) would colour only the field's mean. A
+  // nonlinear ramp makes the two differ: marble finer than a box is not the ramp's mid colour.
+  // spread <= 0 (or NaN) is at(t).
+  glm::vec3 average(float t, float spread) const noexcept {
+    if (!(spread > 0.0f) || std::isnan(t)) return at(t);
+    const RampBox box(t, spread);
+    if (keys.empty()) return glm::vec3(box.step_share(0.0f, 1.0f, 1.0f));
+    glm::vec3 colour = keys.front().colour;
+    for (std::size_t i = 1; i < keys.size(); ++i) {
+      const RampKey& lo = keys[i - 1];
+      const RampKey& hi = keys[i];
+      const float length = hi.position - lo.position;
+      colour += (hi.colour - lo.colour) * box.step_share(lo.position, length, 1.0f / length);
+    }
+    return colour;
+  }
+
+  // The box average() takes, and the share of one key step (a linear rise from 0 at `start` to
+  // 1 over `length`, a jump if the length is 0) that it averages to. That is the integral of
+  // the box's and the rise's convolution, a trapezoid of width 2 spread + length with sides as
+  // wide as the narrower of the two: quadratic on the sides, linear between, divided only by
+  // reciprocals (of the box, once per box, and of the length, once per key), so a length of 0
+  // is never a divisor that is reached. RampAverageRow repeats it operation for operation.
+  struct RampBox {
+    float t, spread, width, inverse_width;
+    RampBox(float t_, float spread_)
+        : t(t_), spread(spread_), width(2.0f * spread_), inverse_width(1.0f / width) {}
+
+    float step_share(float start, float length, float inverse_length) const noexcept {
+      const bool length_narrower = length < width;
+      const float narrow = length_narrower ? length : width;
+      const float wide = length_narrower ? width : length;
+      const float inverse_wide = length_narrower ? inverse_width : inverse_length;
+      const float whole = narrow + wide;
+      const float e = (t - start) + spread;  // from where the trapezoid begins
+      if (!(e > 0.0f)) return 0.0f;
+      if (!(e < whole)) return 1.0f;
+      // 1 / (2 narrow wide), and narrow * wide is width * length either way.
+      const float inverse_curve = 0.5f * inverse_width * inverse_length;
+      if (e < narrow) return e * e * inverse_curve;
+      if (e > wide) {
+        const float rest = whole - e;
+        return 1.0f - rest * rest * inverse_curve;
+      }
+      return (e - 0.5f * narrow) * inverse_wide;
+    }
+  };
 };
 
 ColourRamp default_ramp(const Pattern& pattern);
