@@ -342,7 +342,8 @@ struct RampSteps {
     float start, length, inverse_length;
     glm::vec3 change;
   };
-  glm::vec3 first{0.0f};
+  glm::vec3 first{0.0f}, last{0.0f};
+  float last_position = 0.0f;
   std::size_t count = 0;
   Step steps[SpecLimits::kMaxRampKeys];
 
@@ -350,6 +351,8 @@ struct RampSteps {
     const std::vector<RampKey>& keys = ramp.keys;
     if (keys.empty()) return;
     first = keys.front().colour;
+    last = keys.back().colour;
+    last_position = keys.back().position;
     count = keys.size() - 1;
     for (std::size_t k = 0; k < count; ++k) {
       const float length = keys[k + 1].position - keys[k].position;
@@ -359,13 +362,14 @@ struct RampSteps {
 
   // ColourRamp::average(t, spread) for spread > 0 and t not NaN, from the steps.
   glm::vec3 average(float t, float spread) const {
+    if (t - spread >= last_position) return last;
     const ColourRamp::RampBox box(t, spread);
     glm::vec3 colour = first;
     for (std::size_t k = 0; k < count; ++k) {
       const Step& step = steps[k];
       colour += step.change * box.step_share(step.start, step.length, step.inverse_length);
     }
-    return colour;
+    return ColourRamp::unit_clamped(colour);
   }
 };
 
@@ -394,6 +398,15 @@ inline void RampAveragePlanes(const ColourRamp& ramp, const RampSteps& steps, co
       for (int c = 0; c < 3; ++c) {
         colour[c] = hn::Add(colour[c], hn::Mul(hn::Set(df, step.change[c]), share));
       }
+    }
+    // As average(): past the last key its colour, else the sum clamped to [0, 1].
+    const auto past_last = hn::Ge(hn::Sub(tv, sv), hn::Set(df, steps.last_position));
+    const auto zero = hn::Zero(df);
+    const auto one = hn::Set(df, 1.0f);
+    for (int c = 0; c < 3; ++c) {
+      colour[c] = hn::IfThenElse(hn::Lt(colour[c], zero), zero,
+                                 hn::IfThenElse(hn::Lt(one, colour[c]), one, colour[c]));
+      colour[c] = hn::IfThenElse(past_last, hn::Set(df, steps.last[c]), colour[c]);
     }
     const auto at_point = hn::Or(hn::Not(hn::Gt(sv, hn::Zero(df))), hn::IsNaN(tv));
     if (!hn::AllFalse(df, at_point)) {

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "graph_checks.h"
 #include "noise_kernels.h"
@@ -85,13 +86,27 @@ class Lowering {
     return new_register(comps, true, v, 0.0, {0, 0, 0});
   }
 
-  // A variance register for each scalar noise and each marble node, numbered after every
-  // other register, so the canonical form (which names registers) does not depend on them.
+  // A variance register for each scalar noise and each marble node whose value a ramp reads
+  // (or, for a noise node, a marble node that a ramp reads), numbered after every other
+  // register, so the canonical form (which names registers) does not depend on them.
   void add_variances() {
-    for (Instruction& instr : program_->instructions) {
+    std::vector<Instruction>& instructions = program_->instructions;
+    std::vector<bool> wanted(program_->registers.size(), false);
+    for (const Instruction& instr : instructions) {
+      if (instr.op == Op::ramp) wanted[static_cast<std::size_t>(instr.in[0])] = true;
+    }
+    // Instructions come after their inputs: from the last, a wanted marble wants its turbulence.
+    for (auto it = instructions.rbegin(); it != instructions.rend(); ++it) {
+      if (it->op == Op::marble && wanted[static_cast<std::size_t>(it->out)]) {
+        wanted[static_cast<std::size_t>(it->in[1])] = true;
+      }
+    }
+    for (Instruction& instr : instructions) {
       const bool noise =
           instr.op == Op::noise3d || instr.op == Op::fractal3d || instr.op == Op::turbulence;
-      if (!(noise && program_->registers[instr.out].components == 1) && instr.op != Op::marble) {
+      const bool scalar_noise = noise && program_->registers[instr.out].components == 1;
+      if (!(scalar_noise || instr.op == Op::marble) ||
+          !wanted[static_cast<std::size_t>(instr.out)]) {
         continue;
       }
       instr.variance_out = new_register(1, false, glm::dvec3(0.0), 0.0, deps_[instr.out]);

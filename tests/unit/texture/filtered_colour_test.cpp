@@ -69,6 +69,25 @@ TEST(ColourRampAverage, IsTheRampsMeanOverTheSpread) {
   }
 }
 
+// The steps' changes summed in float could land an ulp outside the colours; past the last key
+// the colour is that key's, exactly, as at() gives it.
+TEST(ColourRampAverage, StaysInTheUnitRangeAndHitsTheLastKey) {
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int trial = 0; trial < 2000; ++trial) {
+    ColourRamp ramp = random_ramp(rng);
+    ramp.keys.back().colour = glm::vec3(trial % 2 == 0 ? 0.0f : 1.0f);
+    const float t = unit(rng) * 1.5f - 0.25f, spread = 0.5f * unit(rng) + 1e-3f;
+    const glm::vec3 c = ramp.average(t, spread);
+    for (int i = 0; i < 3; ++i) {
+      ASSERT_GE(c[i], 0.0f) << trial;
+      ASSERT_LE(c[i], 1.0f) << trial;
+    }
+    const float past = ramp.keys.back().position + spread + 0.01f;
+    ASSERT_EQ(ramp.average(past, spread), ramp.keys.back().colour) << trial;
+  }
+}
+
 TEST(ColourRampAverage, AJumpIsTheShareOfTheBoxPastIt) {
   const glm::vec3 black(0.0f), white(1.0f);
   const ColourRamp jump{{{0.5f, black}, {0.5f, white}}};

@@ -197,7 +197,9 @@ TEST(PatternKernels, EveryTargetSamplesPointsAsTheScalarDefinition) {
 std::vector<ColourRamp> ramps_to_check() {
   const glm::vec3 a{0.1f, 0.7f, 0.3f}, b{0.9f, 0.2f, 0.6f}, c{0.33f, 0.33f, 1.0f};
   return {ColourRamp{{{0.2f, a}, {0.2f, b}, {0.45f, c}, {0.9f, a}}}, ColourRamp{{{0.6f, c}}},
-          ColourRamp{}};
+          ColourRamp{},
+          // Ending at 0 and at 1: sums of the steps' changes that could miss the range.
+          ColourRamp{{{0.0f, c}, {0.3f, b}, {0.5f, glm::vec3(1.0f)}, {0.7f, glm::vec3(0.0f)}}}};
 }
 
 // A grid of `spec`'s texture against the scalar definition, point by point, every plane.
@@ -226,16 +228,23 @@ void expect_grid_as_definition(const TextureEvaluator& evaluator, const Grid& gr
 }
 
 TEST(PatternKernels, EveryTargetMapsGridsThroughAnyRampAsTheScalarDefinition) {
-  // A brick's row of 17 and a longer one: whole vectors and a scalar remainder on every target.
+  // Rows of 17 and of 41, and grids of 255 and 123 points (the ramp runs over a whole grid):
+  // whole vectors and a scalar remainder on every target.
   const Grid grids[] = {
-      {{-1.0, -0.5, 0.25}, {0.037, 0.05, 0.11}, {17, 4, 3}},
-      {{3.0, -2.0, 1e9}, {0.3, 0.013, 0.2}, {41, 2, 2}},
+      {{-1.0, -0.5, 0.25}, {0.037, 0.05, 0.11}, {17, 5, 3}},
+      {{3.0, -2.0, 1e9}, {0.3, 0.013, 0.2}, {41, 3, 1}},
+      {{-0.5, -0.25, 0.3}, {0.0625, 0.0625, 0.1}, {17, 5, 3}},  // x = y = 0 at (8, 4)
   };
   for (const int64_t target : targets_to_run()) {
     const test::ForcedTarget forced(target);
     ASSERT_EQ(pattern_kernels::dispatched_target(), target) << hwy::TargetName(target);
+    // Marble's product ripple through the origin with no faded octave: the points at x = 0 have
+    // no spread, their neighbours do, so vectors mix averaged lanes with at()'s.
+    MarbleParams product;
+    product.ripple = Ripple::product;
+    product.turbulence = {0.5, 0, 1, NoiseBasis::value, false};
     for (const Pattern& pattern :
-         {Pattern{MarbleParams{}}, Pattern{WoodParams{}},
+         {Pattern{MarbleParams{}}, Pattern{WoodParams{}}, Pattern{product},
           Pattern{TurbulenceParams{{3.0, 0, 7, NoiseBasis::value, true}}}}) {
       for (const ColourRamp& ramp : ramps_to_check()) {
         TextureSpec spec;

@@ -126,6 +126,7 @@ struct ColourRamp {
     if (!(spread > 0.0f) || std::isnan(t)) return at(t);
     const RampBox box(t, spread);
     if (keys.empty()) return glm::vec3(box.step_share(0.0f, 1.0f, 1.0f));
+    if (t - spread >= keys.back().position) return keys.back().colour;
     glm::vec3 colour = keys.front().colour;
     for (std::size_t i = 1; i < keys.size(); ++i) {
       const RampKey& lo = keys[i - 1];
@@ -133,7 +134,14 @@ struct ColourRamp {
       const float length = hi.position - lo.position;
       colour += (hi.colour - lo.colour) * box.step_share(lo.position, length, 1.0f / length);
     }
-    return colour;
+    return unit_clamped(colour);
+  }
+
+  // The steps' changes, summed in float, can miss the colours' range by an ulp; the average of
+  // colours in [0, 1] is in it. (A comparison for each bound, as the lanes make them.)
+  static glm::vec3 unit_clamped(glm::vec3 c) noexcept {
+    for (int i = 0; i < 3; ++i) c[i] = c[i] < 0.0f ? 0.0f : (1.0f < c[i] ? 1.0f : c[i]);
+    return c;
   }
 
   // The box average() takes, and the share of one key step (a linear rise from 0 at `start` to
