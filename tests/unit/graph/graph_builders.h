@@ -20,8 +20,7 @@ inline Node node(std::string name, std::string category, std::vector<NodeInput> 
 
 // The built-in marble (MarbleParams{} with its default ramp) as a graph: value fBm of six
 // octaves at scale 4 feeding the marble node, through the marble ramp.
-inline TextureGraph builtin_marble_graph() {
-  const ColourRamp ramp = default_ramp(MarbleParams{});
+inline TextureGraph builtin_marble_graph(const ColourRamp& ramp = default_ramp(MarbleParams{})) {
   return TextureGraph{
       {node("p", "position"), node("p4", "multiply", {{"in1", ref("p")}, {"in2", 4.0}}),
        node("turb", "fractal3d",

@@ -88,19 +88,28 @@ TEST(GraphEvaluation, PointAndGridAgreeForEveryNoiseAndPattern) {
 // Scaling the position by a constant carries the filter width exactly: the graph form of the
 // built-in marble (position * 4 into a fractal at scale 1) is the built-in marble, bit for bit,
 // at every level of a brick layout.
+// With its default ramp, and with one whose averaged colours sum to the edge of [0, 1] (the
+// graph clamps its outputs there, so the built-in must not leave it by an ulp).
 TEST(GraphEvaluation, GraphMarbleEqualsBuiltinMarble) {
-  TextureSpec builtin;
-  builtin.pattern = MarbleParams{};
-  const TextureEvaluator a(builtin);
-  const TextureEvaluator b(spec_of(testing::builtin_marble_graph()));
-  const BrickLayout layout(Volume{}, 16);
-  std::vector<float> pa(layout.samples_per_brick() * 3), pb(pa.size());
-  for (int level : {0, 2, 4}) {
-    evaluate_brick(a, layout, level, {0, 0, 0}, MipSettings{}, pa);
-    evaluate_brick(b, layout, level, {0, 0, 0}, MipSettings{}, pb);
-    EXPECT_EQ(std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(float)), 0) << level;
-    EXPECT_EQ(a.evaluated_octaves(layout.filter_width(level)),
-              b.evaluated_octaves(layout.filter_width(level)));
+  const ColourRamp to_one{{{0.0f, glm::vec3(0.452404827f)},
+                           {0.2f, glm::vec3(0.982142389f)},
+                           {0.4f, glm::vec3(0.450086743f)},
+                           {0.6f, glm::vec3(1.0f)}}};
+  for (const ColourRamp& ramp : {default_ramp(MarbleParams{}), to_one}) {
+    TextureSpec builtin;
+    builtin.pattern = MarbleParams{};
+    builtin.ramp = ramp;
+    const TextureEvaluator a(builtin);
+    const TextureEvaluator b(spec_of(testing::builtin_marble_graph(ramp)));
+    const BrickLayout layout(Volume{}, 16);
+    std::vector<float> pa(layout.samples_per_brick() * 3), pb(pa.size());
+    for (int level : {0, 1, 2, 3, 4}) {
+      evaluate_brick(a, layout, level, {0, 0, 0}, MipSettings{}, pa);
+      evaluate_brick(b, layout, level, {0, 0, 0}, MipSettings{}, pb);
+      EXPECT_EQ(std::memcmp(pa.data(), pb.data(), pa.size() * sizeof(float)), 0) << level;
+      EXPECT_EQ(a.evaluated_octaves(layout.filter_width(level)),
+                b.evaluated_octaves(layout.filter_width(level)));
+    }
   }
 }
 
