@@ -24,6 +24,7 @@
 
 #include "checker_kernel.h"
 #include "pattern_fields.h"
+#include "soltex/common/check.h"
 #include "soltex/common/overloaded.h"
 
 #undef HWY_TARGET_INCLUDE
@@ -233,6 +234,35 @@ void fill_separable_x(const Pattern& pattern, std::span<const double> xs, const 
   }
 }
 
+// A grid's planes from its fields (and their spreads, or nullptr where there are none): the
+// colours through the ramp (the colour cube writes its own), then the scalar channels' ranges.
+void WritePlanes(const PatternSource& source, const float* field, const float* spread,
+                 std::size_t n, std::span<float> out) {
+  const TextureSpec& spec = *source.spec;
+  const ChannelSet& wanted = spec.channels;
+  float* plane = out.data();
+  if (wanted.colour) {
+    const ColourRamp& ramp = *source.ramp;
+    SOLTEX_DCHECK(!ramp.keys.empty());  // validated() fills an empty ramp with the default
+    if (std::holds_alternative<ColourCubeParams>(spec.pattern)) {
+      // written row by row
+    } else if (spread != nullptr) {
+      RampAveragePlanes(ramp, RampSteps(ramp), field, spread, n, plane, plane + n, plane + 2 * n);
+    } else {
+      RampPlanes(ramp, field, n, plane, plane + n, plane + 2 * n);
+    }
+    plane += 3 * n;
+  }
+  for (const auto* range :
+       {wanted.opacity ? &spec.opacity : nullptr, wanted.specular ? &spec.specular : nullptr}) {
+    if (range == nullptr) continue;
+    for (std::size_t i = 0; i < n; ++i) {
+      plane[i] = range->low + (range->high - range->low) * field[i];
+    }
+    plane += n;
+  }
+}
+
 HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& grid,
                                     const OctavePlan& plan, const glm::dvec3& box,
                                     std::span<float> out) {
@@ -278,7 +308,6 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
                             &marble_axis};
 
   const ChannelSet& wanted = spec.channels;
-  const ColourRamp& ramp = *source.ramp;
   // A fractal's spread is the grid's (one plan); marble's is each point's; the other fields
   // have two values, which the ramp's keys already blend.
   const bool is_marble = std::holds_alternative<MarbleParams>(spec.pattern);
@@ -300,32 +329,7 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
       }
     }
   }
-  float* plane = out.data();
-  if (wanted.colour) {
-    if (is_cube) {
-      // written row by row above
-    } else if (ramp.keys.empty()) {
-      for (std::size_t i = 0; i < n; ++i) {
-        const glm::vec3 c = ramp.average(field[i], has_spread ? scratch.spread[i] : 0.0f);
-        plane[i] = c.r;
-        plane[n + i] = c.g;
-        plane[2 * n + i] = c.b;
-      }
-    } else if (has_spread) {
-      RampAveragePlanes(ramp, RampSteps(ramp), field, scratch.spread.data(), n, plane, plane + n,
-                        plane + 2 * n);
-    } else {
-      RampPlanes(ramp, field, n, plane, plane + n, plane + 2 * n);
-    }
-    plane += 3 * n;
-  }
-  for (const auto* range :
-       {wanted.opacity ? &spec.opacity : nullptr, wanted.specular ? &spec.specular : nullptr}) {
-    if (range == nullptr) continue;
-    for (std::size_t i = 0; i < n; ++i)
-      plane[i] = range->low + (range->high - range->low) * field[i];
-    plane += n;
-  }
+  WritePlanes(source, field, has_spread ? scratch.spread.data() : nullptr, n, out);
 }
 
 int64_t TargetOfKernel() {
