@@ -1,13 +1,15 @@
-// The per-point ends of a grid row in vector lanes: the marble field from the row's fractal
-// sums, the wood field (its jitter's value noise gathered per lane), and the colour ramp's
-// lookup into the three colour planes. A brick is 17 x 17 rows of 17 points, and all three
-// ran point by point, the marble's after the row's noise was already in lanes.
+// The per-point ends of a grid row in vector lanes: the marble field and its spread from the
+// row's fractal sums, the wood field (its jitter's value noise gathered per lane), and the
+// colour ramp, at points or averaged over their spreads, into the three colour planes (over a
+// whole grid at once). A brick is 17 x 17 rows of 17 points, and all of these ran point by
+// point, the marble's after the row's noise was already in lanes.
 //
 // Highway's "-inl.h" convention (a toggled guard instead of #pragma once): included under
 // hwy/foreach_target.h by pattern_kernels.cpp. Every lane executes the scalar path's
-// operations in its order (pattern_fields.h's marble(), portable_sin() and wood(),
-// value_noise.h, box_filtered_waves.h's filtered_pulse(), ColourRamp::at()), Mul then Add, so
-// every target gives the scalar bits; a row's last points that do not fill a vector take the
+// operations in its order (pattern_fields.h's marble_sine(), marble_of_sine(),
+// marble_variance(), even_spread(), portable_sin() and wood(), value_noise.h,
+// box_filtered_waves.h's filtered_pulse(), ColourRamp::at() and average()), Mul then Add, so
+// every target gives the scalar bits; the last points that do not fill a vector take the
 // scalar functions themselves, and std::hypot stays the library's, called per point.
 
 #if defined(SOLTEX_COMMON_GRID_ROW_LANES_INL_H_) == defined(HWY_TARGET_TOGGLE)
@@ -55,7 +57,7 @@ HWY_INLINE hn::Vec<D> PortableSinLanes(D d, hn::Vec<D> x) {
   return hn::Mul(r, hn::Add(hn::Set(d, 1.0), p));
 }
 
-// fields::marble along a row whose ripple follows one axis (so its width, the fade and the
+// The marble field along a row whose ripple follows one axis (so its width, the fade and the
 // spread's terms are the grid's, in `filter`): `field` holds the row's fractal sums on entry
 // and the marble field on exit, `spread` receives fields::marble_spread.
 inline void MarbleAxisRow(const MarbleParams& m, const fields::MarbleAxisFilter& filter,

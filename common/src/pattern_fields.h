@@ -208,13 +208,8 @@ inline float marble_of_sine(double sine, double fade) {
   return static_cast<float>(0.5 + 0.5 * (sine * fade));
 }
 
-inline float marble(const MarbleParams& m, double ripple_value, float turbulence,
-                    double ripple_width) {
-  return marble_of_sine(marble_sine(m, ripple_value, turbulence), marble_fade(ripple_width));
-}
-
 // What the marble field's variance within a box is made of, where s is the sine at the box's
-// centre (marble_spread() adds them up). Over the box the ripple's phase runs through a span
+// centre (marble_variance() adds them up). Over the box the ripple's phase runs through a span
 // 2h, so sin averages to s sin(h)/h (the fade f1) and sin^2 = (1 - cos 2phase) / 2 to
 // (1 - f2 (1 - 2 s^2)) / 2 with f2 = sin(2h)/(2h): the field 0.5 + 0.5 sin varies by
 // 0.25 (steady + s^2 by_sine_squared). The faded turbulence octaves move the phase by a
