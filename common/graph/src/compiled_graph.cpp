@@ -50,6 +50,14 @@ void run(const Program& program, Batch& batch) {
       run_pattern(program, instr, batch);
     } else {
       run_arithmetic(program, instr, batch);
+      if (instr.variance_out >= 0) {
+        // A scaling by constants: its input's variance times the scale's square.
+        const double* in = batch.plane(instr.variance_in, 0);
+        double* out = batch.plane(instr.variance_out, 0);
+        for (std::size_t i = 0; i < batch.size; ++i) {
+          out[i] = finite_or_zero(in[i] * instr.variance_gain);
+        }
+      }
     }
   }
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,39 @@ class CanonicalWriter {
  private:
   std::vector<uint8_t> bytes_;
 };
+
+// A scalar instruction that scales and shifts one input by constants: that input and the
+// scale. Its output varies within a sample's box as the input does, times the scale.
+struct Affine {
+  int input;
+  double gain;
+};
+
+std::optional<Affine> affine_of(const Instruction& instr, const std::vector<Register>& regs) {
+  if (regs[static_cast<std::size_t>(instr.out)].components != 1) return std::nullopt;
+  const auto constant = [&](int k) { return regs[static_cast<std::size_t>(instr.in[k])].constant; };
+  const auto value = [&](int k) { return regs[static_cast<std::size_t>(instr.in[k])].value.x; };
+  switch (instr.op) {
+    case Op::add:
+    case Op::subtract:
+    case Op::multiply:
+      if (constant(0) == constant(1)) return std::nullopt;
+      if (instr.op != Op::multiply) return Affine{constant(0) ? instr.in[1] : instr.in[0], 1.0};
+      return Affine{constant(0) ? instr.in[1] : instr.in[0], constant(0) ? value(0) : value(1)};
+    case Op::divide:
+      if (constant(0) || !constant(1)) return std::nullopt;
+      return Affine{instr.in[0], value(1) != 0.0 ? 1.0 / value(1) : 0.0};  // x / 0 is 0
+    case Op::remap: {
+      if (constant(0) || !(constant(1) && constant(2) && constant(3) && constant(4))) {
+        return std::nullopt;
+      }
+      const double span = value(2) - value(1);
+      return Affine{instr.in[0], span != 0.0 ? (value(4) - value(3)) / span : 0.0};
+    }
+    default:
+      return std::nullopt;
+  }
+}
 
 // Per-component texture-space axes a value depends on (bit 0 x, 1 y, 2 z).
 using Deps = std::array<uint8_t, 3>;
@@ -86,27 +120,38 @@ class Lowering {
     return new_register(comps, true, v, 0.0, {0, 0, 0});
   }
 
-  // A variance register for each scalar noise and each marble node whose value a ramp reads
-  // (or, for a noise node, a marble node that a ramp reads), numbered after every other
-  // register, so the canonical form (which names registers) does not depend on them.
+  // A variance register for each scalar noise and marble node, and each scaling or shift of
+  // one by constants, whose value a ramp reads (or, for a noise node, a marble node that a ramp
+  // reads), numbered after every other register, so the canonical form (which names
+  // registers) does not depend on them.
   void add_variances() {
     std::vector<Instruction>& instructions = program_->instructions;
-    std::vector<bool> wanted(program_->registers.size(), false);
+    const std::vector<Register>& regs = program_->registers;
+    std::vector<bool> wanted(regs.size(), false);
     for (const Instruction& instr : instructions) {
       if (instr.op == Op::ramp) wanted[static_cast<std::size_t>(instr.in[0])] = true;
     }
-    // Instructions come after their inputs: from the last, a wanted marble wants its turbulence.
+    // Instructions come after their inputs: from the last, a wanted marble wants its
+    // turbulence, and a wanted scaling its input.
     for (auto it = instructions.rbegin(); it != instructions.rend(); ++it) {
-      if (it->op == Op::marble && wanted[static_cast<std::size_t>(it->out)]) {
-        wanted[static_cast<std::size_t>(it->in[1])] = true;
+      if (!wanted[static_cast<std::size_t>(it->out)]) continue;
+      if (it->op == Op::marble) wanted[static_cast<std::size_t>(it->in[1])] = true;
+      if (const std::optional<Affine> affine = affine_of(*it, regs)) {
+        wanted[static_cast<std::size_t>(affine->input)] = true;
       }
     }
     for (Instruction& instr : instructions) {
+      if (!wanted[static_cast<std::size_t>(instr.out)]) continue;
       const bool noise =
           instr.op == Op::noise3d || instr.op == Op::fractal3d || instr.op == Op::turbulence;
-      const bool scalar_noise = noise && program_->registers[instr.out].components == 1;
-      if (!(scalar_noise || instr.op == Op::marble) ||
-          !wanted[static_cast<std::size_t>(instr.out)]) {
+      const std::optional<Affine> affine = affine_of(instr, program_->registers);
+      if (affine) {
+        const int input_variance = program_->registers[affine->input].variance;
+        if (input_variance < 0) continue;
+        instr.variance_in = input_variance;
+        instr.variance_gain = affine->gain * affine->gain;
+      } else if (!(noise && program_->registers[instr.out].components == 1) &&
+                 instr.op != Op::marble) {
         continue;
       }
       instr.variance_out = new_register(1, false, glm::dvec3(0.0), 0.0, deps_[instr.out]);

@@ -55,6 +55,11 @@ struct Instruction {
   std::array<int, kMaxOperands> in{-1, -1, -1, -1, -1};
   int index = 0;          // extract's component
   int variance_out = -1;  // where the output's variance goes (Register::variance), or -1
+  // For arithmetic that scales and shifts one input by constants (add, subtract, multiply,
+  // divide, remap): that input, whose variance times `variance_gain` (the scale's square) is
+  // the output's.
+  int variance_in = -1;
+  double variance_gain = 0.0;
   NoiseSetup noise;
   WorleySetup worley;
   ColourRamp ramp;

@@ -113,24 +113,34 @@ TEST(GraphEvaluation, GraphMarbleEqualsBuiltinMarble) {
   }
 }
 
-// Value fBm at half amplitude (fields in [0, 1]) through a ramp that is far from linear, the
-// ramp reading the fractal node directly or through a multiplication by 1 (which carries no
-// spread).
-TextureGraph faded_noise_ramp(bool direct) {
+// Value fBm at amplitude 0.25 (fields in [0, 0.5]) through a ramp that is far from linear: the
+// ramp reads it doubled by a `multiply`, doubled by a `remap` (both carry the fractal's
+// spread, scaled), or through `absval` as well (which carries none).
+enum class Path { multiply, remap, abs };
+
+TextureGraph faded_noise_ramp(Path path) {
   std::vector<Node> nodes{node("p", "position"),
                           node("p8", "multiply", {{"in1", ref("p")}, {"in2", 8.0}}),
                           node("f", "fractal3d",
                                {{"position", ref("p8")},
                                 {"octaves", 6.0},
-                                {"amplitude", 0.5},
-                                {"basis", std::string("value")}}),
-                          node("g", "multiply", {{"in1", ref("f")}, {"in2", 1.0}}),
-                          node("c", "ramp",
-                               {{"in", ref(direct ? "f" : "g")},
-                                {"keys", RampKeys{{0.3f, glm::vec3(0.0f)},
-                                                  {0.45f, glm::vec3(1.0f)},
-                                                  {0.6f, glm::vec3(0.2f)}}}})};
-  if (direct) nodes.erase(nodes.begin() + 3);
+                                {"amplitude", 0.25},
+                                {"basis", std::string("value")}})};
+  if (path == Path::remap) {
+    nodes.push_back(node("t", "remap", {{"in", ref("f")}, {"inhigh", 0.5}}));
+  } else {
+    nodes.push_back(node("t", "multiply", {{"in1", ref("f")}, {"in2", 2.0}}));
+  }
+  std::string last = "t";
+  if (path == Path::abs) {
+    nodes.push_back(node("a", "absval", {{"in", ref("t")}}));
+    last = "a";
+  }
+  nodes.push_back(node(
+      "c", "ramp",
+      {{"in", ref(last)},
+       {"keys",
+        RampKeys{{0.3f, glm::vec3(0.0f)}, {0.45f, glm::vec3(1.0f)}, {0.6f, glm::vec3(0.2f)}}}}));
   return TextureGraph{nodes, {{Channel::colour, "c"}}};
 }
 
@@ -153,15 +163,20 @@ double faded_colour_error(const TextureEvaluator& texture) {
   return error / 8;
 }
 
-// A ramp reading a fractal node averages its colours over the faded octaves' spread, as the
-// built-in turbulence does, instead of colouring the box's mean field.
+// A ramp reading a fractal node, directly or scaled and shifted by constants, averages its
+// colours over the faded octaves' spread, as the built-in turbulence does, instead of
+// colouring the box's mean field.
 TEST(GraphEvaluation, ARampOfFadedNoiseTakesTheMeanOfItsColours) {
-  const double averaged = faded_colour_error(TextureEvaluator(spec_of(faded_noise_ramp(true))));
-  const double of_mean = faded_colour_error(TextureEvaluator(spec_of(faded_noise_ramp(false))));
+  const double scaled =
+      faded_colour_error(TextureEvaluator(spec_of(faded_noise_ramp(Path::multiply))));
+  const double remapped =
+      faded_colour_error(TextureEvaluator(spec_of(faded_noise_ramp(Path::remap))));
+  const double of_mean = faded_colour_error(TextureEvaluator(spec_of(faded_noise_ramp(Path::abs))));
   // The even spread is a model of the faded octaves' distribution: within 0.08 on this steep
   // ramp, where the ramp of the mean field is off by several times that.
-  EXPECT_LT(averaged, 0.08);
-  EXPECT_GT(of_mean, 3.0 * averaged);
+  EXPECT_LT(scaled, 0.08);
+  EXPECT_LT(remapped, 0.08);
+  EXPECT_GT(of_mean, 3.0 * scaled);
 }
 
 TEST(GraphEvaluation, CoarseWidthsFadeOctaves) {
