@@ -338,7 +338,7 @@ inline void RampPlanes(const ColourRamp& ramp, const float* t, std::size_t nx, f
 }
 
 // A ramp's key steps as ColourRamp::average makes them (start, length, 1 / length and the
-// colour change), once per grid instead of once per point.
+// colour change), once per grid for the lanes instead of once per point.
 struct RampSteps {
   struct Step {
     float start, length, inverse_length;
@@ -360,18 +360,6 @@ struct RampSteps {
       const float length = keys[k + 1].position - keys[k].position;
       steps[k] = {keys[k].position, length, 1.0f / length, keys[k + 1].colour - keys[k].colour};
     }
-  }
-
-  // ColourRamp::average(t, spread) for spread > 0 and t not NaN, from the steps.
-  glm::vec3 average(float t, float spread) const {
-    if (t - spread >= last_position) return last;
-    const ColourRamp::RampBox box(t, spread);
-    glm::vec3 colour = first;
-    for (std::size_t k = 0; k < count; ++k) {
-      const Step& step = steps[k];
-      colour += step.change * box.step_share(step.start, step.length, step.inverse_length);
-    }
-    return ColourRamp::unit_clamped(colour);
   }
 };
 
@@ -419,8 +407,7 @@ inline void RampAveragePlanes(const ColourRamp& ramp, const RampSteps& steps, co
     for (int c = 0; c < 3; ++c) hn::StoreU(colour[c], df, planes[c] + i);
   }
   for (; i < nx; ++i) {
-    const bool at_point = !(spread[i] > 0.0f) || std::isnan(t[i]);
-    const glm::vec3 c = at_point ? ramp.at(t[i]) : steps.average(t[i], spread[i]);
+    const glm::vec3 c = ramp.average(t[i], spread[i]);
     red[i] = c.r;
     green[i] = c.g;
     blue[i] = c.b;

@@ -35,6 +35,21 @@ GBuffer empty_tile(int size) {
   return g;
 }
 
+// One open triangle facing the view (object id 0), with the storage its mesh points at.
+struct FlatTriangle {
+  std::vector<glm::vec3> positions;
+  std::vector<uint32_t> indices;
+  std::vector<glm::vec3> normals = std::vector<glm::vec3>(3, glm::vec3(0.0f, 0.0f, 1.0f));
+
+  RasterObject object() const {
+    RasterObject o;
+    o.mesh = {positions, normals, indices};
+    o.object_id = 0;
+    o.closed = false;
+    return o;
+  }
+};
+
 void cover(GBuffer& g, int x, int y, uint32_t object, float depth) {
   const std::size_t i = g.index(x, y);
   g.flags[i] = GBuffer::kCovered;
@@ -104,15 +119,11 @@ TEST(EdgeAntialiasing, BlendWeighsColoursBySamplesAndRoundsHalfUp) {
 TEST(EdgeAntialiasing, ATriangleBetweenPixelCentresIsSeenByTheSamples) {
   const auto ndc_x = [](float x) { return x / 4.0f - 1.0f; };
   const auto ndc_y = [](float y) { return 1.0f - y / 4.0f; };
-  const std::vector<glm::vec3> positions{{ndc_x(3.1f), ndc_y(2.1f), 0.0f},
-                                         {ndc_x(3.45f), ndc_y(2.1f), 0.0f},
-                                         {ndc_x(3.1f), ndc_y(2.45f), 0.0f}};
-  const std::vector<glm::vec3> normals(3, glm::vec3(0.0f, 0.0f, 1.0f));
-  const std::vector<uint32_t> indices{0, 2, 1};
-  RasterObject object;
-  object.mesh = {positions, normals, indices};
-  object.object_id = 0;
-  object.closed = false;
+  const FlatTriangle triangle{{{ndc_x(3.1f), ndc_y(2.1f), 0.0f},
+                               {ndc_x(3.45f), ndc_y(2.1f), 0.0f},
+                               {ndc_x(3.1f), ndc_y(2.45f), 0.0f}},
+                              {0, 2, 1}};
+  const RasterObject object = triangle.object();
   for (const bool edge_sampling : {false, true}) {
     Rasterizer rasterizer({.threads = 1});
     RasterView view{8, 8, glm::mat4(1.0f), {}};
@@ -138,14 +149,9 @@ TEST(EdgeAntialiasing, ATriangleBetweenPixelCentresIsSeenByTheSamples) {
 // centre outside and the left two of its four sample columns (x = 3.125, 3.375) inside.
 TEST(EdgeAntialiasing, SamplesCountTheCoverageOfAnEdgePixel) {
   const float edge_x = 3.4f / 4.0f - 1.0f;  // NDC of x = 3.4 pixels
-  const std::vector<glm::vec3> positions{
-      {-3.0f, -3.0f, 0.0f}, {edge_x, -3.0f, 0.0f}, {edge_x, 3.0f, 0.0f}};
-  const std::vector<glm::vec3> normals(3, glm::vec3(0.0f, 0.0f, 1.0f));
-  const std::vector<uint32_t> indices{0, 1, 2};
-  RasterObject object;
-  object.mesh = {positions, normals, indices};
-  object.object_id = 0;
-  object.closed = false;
+  const FlatTriangle triangle{{{-3.0f, -3.0f, 0.0f}, {edge_x, -3.0f, 0.0f}, {edge_x, 3.0f, 0.0f}},
+                              {0, 1, 2}};
+  const RasterObject object = triangle.object();
   Rasterizer rasterizer({.threads = 1});
   const RasterView view{8, 8, glm::mat4(1.0f), {}};
   EdgeSurfaces surfaces;

@@ -149,7 +149,7 @@ struct ColourRamp {
   // the box's and the rise's convolution, a trapezoid of width 2 spread + length with sides as
   // wide as the narrower of the two: quadratic on the sides, linear between, divided only by
   // reciprocals (of the box, once per box, and of the length, once per key), so a length of 0
-  // is never a divisor that is reached. RampAverageRow repeats it operation for operation.
+  // is never a divisor that is reached. RampStepShareLanes repeats it operation for operation.
   struct RampBox {
     float t, spread, width, inverse_width;
     RampBox(float t_, float spread_)
