@@ -4,8 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/mat4x4.hpp>
 #include <glm/trigonometric.hpp>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -15,6 +18,7 @@
 #include "soltex/net/local_brick_source.h"
 #include "soltex/render/frame_renderer.h"
 #include "soltex/render/prepared_scene.h"
+#include "soltex/scene/texture_volume.h"
 
 namespace soltex::capability {
 namespace {
@@ -271,21 +275,92 @@ void choose_frame(const Capability& capability, int width, int height, const Cho
       << " Mpixel/s, a frame must fit " << limits.target_frame_seconds * 1000 << " ms\n";
 }
 
-// The largest object's size on screen, in pixels (at least 64).
-double largest_object_pixels(const Scene& scene, int frame_height) {
-  double largest = 64.0;
-  const double tan_half = std::tan(glm::radians(scene.camera.fov_y_degrees) * 0.5);
-  for (const SceneObject& object : scene.objects) {
-    const glm::dvec3 size = glm::dvec3(object.mesh->bounds.size()) * object.transform.scale;
-    const double radius = 0.5 * glm::length(size);
-    // Where the mesh is, not where its model origin is: a model written far from its origin
-    // (not normalized) sits at its bounds' centre.
-    const glm::dvec3 centre = glm::dvec3(object.transform.matrix() *
-                                         glm::dvec4(glm::dvec3(object.mesh->bounds.centre()), 1.0));
-    const double distance = std::max(glm::length(centre - scene.camera.position), 1e-6);
-    largest = std::max(largest, radius / (distance * tan_half) * frame_height);
+// The camera's distance to the nearest point of the object's bounds in the world (0 inside).
+double nearest_distance(const SceneObject& object, const Camera& camera) {
+  const BoundingBox& bounds = object.mesh->bounds;
+  const glm::dmat4 to_world = object.transform.matrix();
+  glm::dvec3 low(std::numeric_limits<double>::infinity());
+  glm::dvec3 high(-std::numeric_limits<double>::infinity());
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 model((corner & 1) ? bounds.max.x : bounds.min.x,
+                           (corner & 2) ? bounds.max.y : bounds.min.y,
+                           (corner & 4) ? bounds.max.z : bounds.min.z);
+    const glm::dvec3 world(to_world * glm::dvec4(model, 1.0));
+    low = glm::min(low, world);
+    high = glm::max(high, world);
   }
-  return largest;
+  return glm::length(glm::max(glm::max(low - camera.position, camera.position - high), 0.0));
+}
+
+// The finest level at which one texel of the object's texture is no larger than a pixel where
+// the object comes nearest the camera (the near plane, if the camera is inside its bounds),
+// or 0 when the object's material fixes its own level or it has no mesh.
+int object_screen_level(const SceneObject& object, const Camera& camera, int frame_height) {
+  if (!object.mesh || object.mesh->bounds.empty() || object.material.volume.finest_level_log2) {
+    return 0;
+  }
+  const Volume volume = texture_volume(object, 8);
+  const double side = std::max(
+      {volume.max.x - volume.min.x, volume.max.y - volume.min.y, volume.max.z - volume.min.z});
+  // A texture-space unit in the world: the transform's largest scale for object space.
+  const glm::dvec3& scale = object.transform.scale;
+  const double world_per_unit =
+      object.material.space == TextureSpace::object ? std::max({scale.x, scale.y, scale.z}) : 1.0;
+  const double distance = std::max(nearest_distance(object, camera), camera.near);
+  const double pixel = 2.0 * distance * std::tan(glm::radians(camera.fov_y_degrees) * 0.5) /
+                       static_cast<double>(frame_height);
+  const double texels = side * world_per_unit / pixel;
+  if (!(texels > 1.0)) return 0;
+  return static_cast<int>(std::ceil(std::log2(std::min(texels, 0x1p30))));
+}
+
+// Bricks a frame reads with the finest level at L (16^3-cell bricks): the visible half of each
+// object's surface, about 3 faces * (2^L / 16)^2, but never more than the frame's pixels hold,
+// since each pixel reads about one texel at the level it draws from. A brick's face of 16^2
+// texels covers about 256 pixels face-on; `screen` is the frame's pixels over 128, which allows
+// for surfaces crossing bricks at a slant and the coarser level trilinear filtering blends in.
+struct FrameBricks {
+  double objects = 1.0;
+  double screen = 0.0;
+  double operator()(int level) const {
+    const double per_axis = std::ldexp(1.0, level - 4);
+    return std::min(objects * 3.0 * per_axis * per_axis, screen);
+  }
+};
+
+// Finest level: one texel per pixel where an object comes nearest the camera, no finer than
+// the cache can hold. The link does not enter: it only sets where to start.
+void choose_finest_level(const Scene& scene, const ChoiceLimits& limits,
+                         const FrameBricks& frame_bricks, Choice& choice, std::ostringstream& why) {
+  int screen_level = 4;
+  const SceneObject* nearest = nullptr;
+  for (const SceneObject& object : scene.objects) {
+    const int object_level = object_screen_level(object, scene.camera, choice.height);
+    if (object_level > screen_level) {
+      screen_level = object_level;
+      nearest = &object;
+    }
+  }
+  const double decoded_brick_bytes = 17.0 * 17.0 * 17.0 * 3.0 + 64.0;
+  const int wanted = std::min(screen_level, limits.max_level_log2);
+  int level = wanted;
+  while (level > 4 && frame_bricks(level) * decoded_brick_bytes > 0.5 * choice.cache_budget_bytes) {
+    --level;
+  }
+  choice.finest_level_log2 = level;
+  why << "finest level 2^" << level << ": ";
+  if (nearest == nullptr) {
+    why << "no object needs finer than 2^4";
+  } else {
+    why << "a texel per pixel at 2^" << screen_level << " where "
+        << (nearest->name.empty() ? std::string("an object") : "\"" + nearest->name + "\"")
+        << " comes nearest, "
+        << static_cast<float>(std::max(nearest_distance(*nearest, scene.camera), scene.camera.near))
+        << " from the camera";
+  }
+  if (wanted < screen_level) why << "; at most 2^" << wanted;
+  if (level < wanted) why << "; the cache holds 2^" << level;
+  why << "\n";
 }
 
 }  // namespace
@@ -303,32 +378,15 @@ Choice choose(const Capability& capability, const Scene& scene, int width, int h
   why << "cache " << budget_mb << " MiB: 1/8 of " << capability.available_memory_mb
       << " MiB available\n";
 
-  // Finest level: fine enough for the largest object on screen (one texel per pixel), no
-  // finer than the cache can hold. The link does not enter: it only sets where to start.
-  const double largest_pixels = largest_object_pixels(scene, choice.height);
-  const int screen_level =
-      std::clamp(static_cast<int>(std::ceil(std::log2(largest_pixels))), 4, limits.max_level_log2);
-  const double objects = static_cast<double>(std::max<std::size_t>(scene.objects.size(), 1));
-  // Bricks on the visible half of an object's surface at level L with 16^3-cell bricks:
-  // about 3 faces * (2^L / 16)^2.
-  const auto surface_bricks = [&](int level) {
-    const double per_axis = std::ldexp(1.0, level - 4);
-    return objects * 3.0 * per_axis * per_axis;
-  };
-  const double decoded_brick_bytes = 17.0 * 17.0 * 17.0 * 3.0 + 64.0;
-  int level = screen_level;
-  while (level > 4 &&
-         surface_bricks(level) * decoded_brick_bytes > 0.5 * choice.cache_budget_bytes) {
-    --level;
-  }
-  choice.finest_level_log2 = level;
-  why << "finest level 2^" << level << ": objects span up to " << static_cast<int>(largest_pixels)
-      << " pixels (2^" << screen_level << ")\n";
+  const FrameBricks frame_bricks{
+      static_cast<double>(std::max<std::size_t>(scene.objects.size(), 1)),
+      static_cast<double>(choice.width) * choice.height / 128.0};
+  choose_finest_level(scene, limits, frame_bricks, choice, why);
 
-  // Start: the finest level whose surface bricks arrive within fetch_seconds: a round of
+  // Start: the finest level whose frame bricks arrive within fetch_seconds: a round of
   // requests costs the latency once, their bytes cost the bandwidth.
   const auto fetch_seconds = [&](int l) {
-    const double bricks = surface_bricks(l);
+    const double bricks = frame_bricks(l);
     const double rounds = 1.0 + std::ceil(bricks / static_cast<double>(limits.in_flight_bricks));
     const double transfer =
         capability.bandwidth_mb_per_s > 0.0
@@ -336,11 +394,11 @@ Choice choose(const Capability& capability, const Scene& scene, int width, int h
             : 0.0;
     return rounds * capability.brick_latency_ms / 1e3 + transfer;
   };
-  int start = level;
+  int start = choice.finest_level_log2;
   while (start > 4 && fetch_seconds(start) > limits.fetch_seconds) --start;
   choice.start_level_log2 = start;
   why << "start at 2^" << start << ", refine when idle: about "
-      << static_cast<long>(surface_bricks(start) * capability.bytes_per_brick / 1e3)
+      << static_cast<long>(frame_bricks(start) * capability.bytes_per_brick / 1e3)
       << " kB of bricks in " << static_cast<long>(fetch_seconds(start) * 1e3) << " ms over ";
   if (capability.bandwidth_mb_per_s > 0.0) {
     why << "a " << capability.bandwidth_mb_per_s << " MB/s link";

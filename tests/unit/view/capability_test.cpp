@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <glm/trigonometric.hpp>
 #include <stdexcept>
 #include <string>
 
 #include "soltex/scene/default_scene.h"
+#include "soltex/scene/scene_loader.h"
 
 namespace soltex::capability {
 namespace {
@@ -121,7 +124,9 @@ TEST(MeasureLink, FiftyMillisecondsAwayIsNotASlowLink) {
   EXPECT_NEAR(c.bandwidth_mb_per_s, 200.0, 0.5)
       << c.bandwidth_mb_per_s << " MB/s: a 200 MB/s link measured as another";
   EXPECT_DOUBLE_EQ(c.bytes_per_brick, 3000.0);
-  const Choice choice = choose(c, default_scene(), 1280, 720);
+  // At 640x360 the frame holds about 1,800 bricks: eight rounds of 256 at 50 ms fit the
+  // window's 1.5 s (at 1280x720 four times as many would not: the start would be coarser).
+  const Choice choice = choose(c, default_scene(), 640, 360);
   EXPECT_EQ(choice.start_level_log2, choice.finest_level_log2) << choice.reason;
 }
 
@@ -175,16 +180,16 @@ TEST(FitLink, NothingMovedLeavesTheCapabilityAsItWas) {
   EXPECT_EQ(c.brick_latency_ms, 0.0);
 }
 
-// 50 ms away but fast: the same start as a link next door. The latency costs a round of
-// requests, not the picture.
+// 50 ms away but fast: the same start as a link next door while the frame's bricks take few
+// rounds of requests (640x360: about 1,800 bricks). The latency costs rounds, not the picture.
 TEST(Choose, LatencyAloneDoesNotMakeASlowLink) {
   const Scene scene = default_scene();
   Capability near = strong_machine();
   fit_link(timing(8, 0.0005, 100e6), timing(64, 0.0005, 100e6), near);
   Capability far = strong_machine();
   fit_link(timing(8, 0.050, 100e6), timing(64, 0.050, 100e6), far);
-  const Choice near_choice = choose(near, scene, 1280, 720);
-  const Choice far_choice = choose(far, scene, 1280, 720);
+  const Choice near_choice = choose(near, scene, 640, 360);
+  const Choice far_choice = choose(far, scene, 640, 360);
   EXPECT_EQ(far_choice.start_level_log2, near_choice.start_level_log2) << far_choice.reason;
   EXPECT_EQ(far_choice.start_level_log2, far_choice.finest_level_log2) << far_choice.reason;
 }
@@ -251,6 +256,49 @@ TEST(Choose, TheFinestLevelFollowsWhereTheMeshIsNotItsOrigin) {
   const Choice in_place = choose(c, scene, 1280, 720);
   EXPECT_EQ(in_place.finest_level_log2, translated.finest_level_log2) << in_place.reason;
   EXPECT_GT(in_place.finest_level_log2, 6) << in_place.reason;
+}
+
+// A 20-unit floor in world space under a camera 1.2 above it, looking down its length.
+Scene floor_scene(double height, double fov_y_degrees) {
+  return parse_scene(R"({"camera": {"position": [0, )" + std::to_string(height) +
+                         R"(, 9.5], "target": [0, 0, -10], "fov_y_degrees": )" +
+                         std::to_string(fov_y_degrees) + R"(, "far": 1000},
+    "objects": [{"name": "floor", "mesh": {"plane": {"size": 20}},
+                 "material": {"texture": {"marble": {}}, "space": "world"}}]})",
+                     "<floor scene>");
+}
+
+// The finest level gives a texel per pixel where the floor comes nearest (straight below the
+// camera), not where its centre is: the texture volume's side (20 units padded by 1/16) over
+// a pixel's width at that distance.
+TEST(Choose, ATexelPerPixelWhereTheObjectComesNearest) {
+  Capability c = strong_machine();
+  ChoiceLimits headless;
+  headless.scale_frame = false;
+  for (const double height : {1.2, 12.0}) {
+    const Choice choice = choose(c, floor_scene(height, 40.0), 480, 270, headless);
+    const double pixel = 2.0 * height * std::tan(glm::radians(20.0)) / 270.0;
+    const int expected = static_cast<int>(std::ceil(std::log2(20.0 * (1.0 + 2.0 / 32.0) / pixel)));
+    EXPECT_EQ(choice.finest_level_log2, expected) << choice.reason;
+  }
+  // 1.2 above the floor: 2^13, where its centre's distance (about 10) would give 2^10.
+  EXPECT_EQ(choose(c, floor_scene(1.2, 40.0), 480, 270, headless).finest_level_log2, 13);
+}
+
+// No finer than the format allows, however near the camera comes.
+TEST(Choose, TheFinestLevelStaysWithinTheFormat) {
+  Capability c = strong_machine();
+  const Choice choice = choose(c, floor_scene(1e-3, 40.0), 1280, 720);
+  EXPECT_EQ(choice.finest_level_log2, SpecLimits::kMaxFinestLevelLog2) << choice.reason;
+  EXPECT_NE(choice.reason.find("at most 2^14"), std::string::npos) << choice.reason;
+}
+
+// A material that names its own finest level keeps it and does not set the others'.
+TEST(Choose, AMaterialsOwnLevelDoesNotDriveTheChoice) {
+  Capability c = strong_machine();
+  Scene scene = floor_scene(1.2, 40.0);
+  scene.objects[0].material.volume.finest_level_log2 = 9;
+  EXPECT_EQ(choose(c, scene, 480, 270).finest_level_log2, 4);
 }
 
 TEST(Choose, HeadlessKeepsTheSizeAskedForAWindowShrinksToTheMachine) {

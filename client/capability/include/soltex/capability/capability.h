@@ -7,6 +7,7 @@
 #include <string>
 
 #include "soltex/common/brick_codec.h"
+#include "soltex/common/texture_spec.h"
 #include "soltex/net/brick_source.h"
 #include "soltex/scene/scene.h"
 
@@ -119,10 +120,10 @@ struct Choice {
 struct ChoiceLimits {
   double target_frame_seconds = 0.1;  // a full frame should not take longer than this
   double fetch_seconds = 1.5;         // the start level's surface bricks should arrive within this
-  // The finest level a picture refines to where its objects would take finer: level 8 is
-  // the default the accuracy report measures (README.md, "What accuracy costs"). A material's
-  // own volume, or --finest-level, may ask for finer.
-  int max_level_log2 = 8;
+  // The finest level a picture may refine to: the scene's objects (a texel per pixel where
+  // they come nearest) and the cache budget choose below it. A material's own volume, or
+  // --finest-level, sets a level outright.
+  int max_level_log2 = SpecLimits::kMaxFinestLevelLog2;
   std::size_t in_flight_bricks = 256;  // bricks a client asks for per round (FetcherOptions)
   // Shrink the frame to what the machine draws in target_frame_seconds (a window); false:
   // keep the size asked for (headless output is the size the scene or command line asks).
