@@ -19,6 +19,7 @@ struct ImageCase {
   double max_share_off = 0.0;  // of covered pixels, a channel off by more than 16 steps
   int finest_level_log2 = 8;   // where the scene's material does not set one
   int antialias = 1;
+  TextureAccess access = TextureAccess::automatic;  // the frame's; the reference evaluates
   std::string same_as;  // compare with this case's cached image, not the reference
   // Set: the image may be at most twice as rough from pixel to pixel as this scene's, a smooth
   // texture on the same object (a pattern finer than a pixel must look flat, not moire).

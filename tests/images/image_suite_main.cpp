@@ -48,6 +48,7 @@ Drawn draw(const ImageCase& c, const std::filesystem::path& scratch, bool with_r
   const PreparedScene prepared = prepare_scene(scene, resolution, source);
   RenderOptions options;
   options.antialias = c.antialias;
+  options.access = c.access;
   FrameRenderer renderer(cache, options);
   const int width = scene.image.width, height = scene.image.height;
   // The loop soltex-view --headless runs.

@@ -21,8 +21,11 @@
 //  - looked up in a brick of level l, trilinear interpolation reads samples up to h_l away,
 //    each averaged over a box of width h_l, so the step must be 1.5 h_l (kCachedInset) for
 //    every sample read to lie inside. Only textures whose edges are planes need it (stripes,
-//    checkers): a face or a cap can lie on a plane, but not all over a ring's cylinder, and on
-//    a curved surface the step would move a ring's edge by a good part of a pixel.
+//    checkers), and only on a surface that faces one of the texture's axes, as their planes
+//    do: a step of d elsewhere moves the edges of the planes across axis a along the surface
+//    by d |n_a| / sqrt(1 - n_a^2), several pixels on a face at a slant and more near
+//    grazing, so there the lookup stays where it is (axis_face_inset()). Nor can a face or
+//    cap lie all over a ring's cylinder.
 namespace soltex::render {
 
 inline constexpr double kEvaluatedInset = 1.0 / 16.0;  // of the pixel's footprint
@@ -63,6 +66,24 @@ inline SampleFootprint surface_footprint(double footprint, const glm::dvec3& n) 
     return footprint * std::sqrt(std::fmax(0.0, 1.0 - c * c)) + depth * std::fabs(c);
   };
   return {footprint, {extent(n.x), extent(n.y), extent(n.z)}};
+}
+
+// A surface whose unit texture-space normal is within this of an axis (|n_a| >= 1 - it,
+// 0.8 degrees) faces that axis: a box's face, or a cap, on a pattern plane. A curved surface
+// faces an axis only within 0.8 degrees of where it touches a plane across that axis.
+inline constexpr double kAxisFaceTolerance = 1e-4;
+
+// p moved inward by `distance` along the texture axis the surface faces, if it faces one;
+// otherwise unmoved.
+inline glm::dvec3 axis_face_inset(const glm::dvec3& p, const glm::dvec3& n, double distance) {
+  if (!std::isfinite(distance)) return p;
+  glm::dvec3 moved = p;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (std::fabs(n[axis]) >= 1.0 - kAxisFaceTolerance) {
+      moved[axis] -= std::copysign(distance, n[axis]);
+    }
+  }
+  return moved;
 }
 
 // p moved inward (against the outward unit normal n) by `distance`.

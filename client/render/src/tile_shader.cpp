@@ -252,7 +252,8 @@ void TileShader::shade_cached(const GBuffer& g, Pixel pixel, const ObjectShading
   if (object.cached_inset > 0.0) {
     // The coarser of the levels a lookup may read sets the step (quadrilinear reads two).
     const double spacing = std::ldexp(object.level0_spacing, static_cast<int>(std::ceil(lod)));
-    p = inset(p, object.surface.normal(g.normal[pixel.index]), object.cached_inset * spacing);
+    p = axis_face_inset(p, object.surface.normal(g.normal[pixel.index]),
+                        object.cached_inset * spacing);
   }
   if (object.rgb_fast_path) {
     add_cached(pixel, p, static_cast<int>(lod), object, sampler, image);
