@@ -120,15 +120,21 @@ BrickStream::ServerReactor* BrickServiceImpl::StreamBricks(grpc::CallbackServerC
   return stream->start();
 }
 
-void BrickServiceImpl::shut_down_streams() {
+std::vector<std::shared_ptr<BrickStream>> BrickServiceImpl::open_streams() {
   std::vector<std::shared_ptr<BrickStream>> open;
-  {
-    std::lock_guard lock(streams_mutex_);
-    for (const auto& [id, weak] : streams_) {
-      if (auto stream = weak.lock()) open.push_back(std::move(stream));
-    }
+  std::lock_guard lock(streams_mutex_);
+  for (const auto& [id, weak] : streams_) {
+    if (auto stream = weak.lock()) open.push_back(std::move(stream));
   }
-  for (const auto& stream : open) stream->shut_down();
+  return open;
+}
+
+void BrickServiceImpl::drain_streams() {
+  for (const auto& stream : open_streams()) stream->drain();
+}
+
+void BrickServiceImpl::shut_down_streams() {
+  for (const auto& stream : open_streams()) stream->shut_down();
 }
 
 }  // namespace soltex::server

@@ -33,10 +33,14 @@ class BrickServiceImpl final : public BrickServiceBase {
                                             grpc::ByteBuffer* response) override;
   BrickStream::ServerReactor* StreamBricks(grpc::CallbackServerContext* context) override;
 
+  // Stops reading every open stream; each finishes once it has sent what it was asked for.
+  void drain_streams();
   // Finishes every open stream (UNAVAILABLE) once its current write is done.
   void shut_down_streams();
 
  private:
+  std::vector<std::shared_ptr<BrickStream>> open_streams();
+
   // OK with `client` set to the caller's identity, or the status the call is refused with
   // (counted, and logged at most once a second per client).
   grpc::Status admit(const grpc::CallbackServerContext& context, std::string& client);

@@ -196,6 +196,7 @@ std::size_t BrickStream::accept_request() {
   }
   std::size_t added = 0;
   const auto now = std::chrono::steady_clock::now();
+  answered_from_cache_.clear();
   TexturePtr texture;  // consecutive keys usually name the same texture
   for (const v1::BrickWant& want : request_.want()) {
     const v1::BrickKey& k = want.key();
@@ -238,7 +239,11 @@ std::size_t BrickStream::accept_request() {
       continue;
     }
     const BrickKey key{k.texture_id(), level, {k.x(), k.y(), k.z()}};
-    if (answer_from_cache(key, now)) continue;
+    if (answered_from_cache_.contains(key)) continue;
+    if (answer_from_cache(key, now)) {
+      answered_from_cache_.insert(key);
+      continue;
+    }
     WorkItem item;
     item.key = key;
     item.priority = want.priority();
@@ -495,7 +500,8 @@ void BrickStream::pump() {
   // the stream owes: queued, being produced, and made but not yet written (a client that
   // stops reading must not make the server hold its answers without bound).
   const bool room = owed() + limits.max_keys_per_request <= limits.max_queued_per_stream;
-  if (!reading_ && !request_unhandled_ && !reads_done_ && !shutting_down_ && !cancelled_ && room) {
+  if (!reading_ && !request_unhandled_ && !reads_done_ && !draining_ && !shutting_down_ &&
+      !cancelled_ && room) {
     reading_ = true;
     reactor_->StartRead(&request_bytes_);
   }
@@ -511,6 +517,10 @@ void BrickStream::pump() {
     status = grpc::Status(grpc::StatusCode::UNAVAILABLE, "soltexd is shutting down");
   } else if (reads_done_ && idle) {
     finish = true;
+  } else if (draining_ && idle) {
+    finish = true;
+    status = grpc::Status(grpc::StatusCode::UNAVAILABLE,
+                          "soltexd is shutting down; every brick asked for was sent");
   }
   if (finish) {
     finished_ = true;
@@ -545,6 +555,12 @@ void BrickStream::on_cancel() {
   std::lock_guard lock(mutex_);
   cancelled_ = true;
   drop_queue();
+  pump();
+}
+
+void BrickStream::drain() {
+  std::lock_guard lock(mutex_);
+  draining_ = true;
   pump();
 }
 

@@ -12,6 +12,7 @@
 #include <span>
 #include <string>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "brick_producer.h"
 #include "brick_scheduler.h"
@@ -86,7 +87,11 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   // Creates the gRPC reactor bound to this stream and starts reading.
   ServerReactor* start();
 
-  // Server shutdown: drop queued work and finish with UNAVAILABLE once the current write is done.
+  // Server shutdown, first step: read no more requests, send every brick already asked for,
+  // then finish: OK if the client had half-closed, else UNAVAILABLE (ask another server).
+  void drain();
+  // Server shutdown, at the end of the grace: drop queued work and finish with UNAVAILABLE once
+  // the current write is done.
   void shut_down();
 
   std::function<void()> take() override;
@@ -168,8 +173,12 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   bool reads_done_ = false;
   bool writing_ = false;
   bool finished_ = false;
-  bool shutting_down_ = false;
+  bool draining_ = false;       // drain(): no more reads
+  bool shutting_down_ = false;  // shut_down(): no more bricks
   bool cancelled_ = false;
+  // Keys of the request being accepted that the brick cache answered: a key wanted twice in one
+  // message is sent once, as queued keys are merged. Kept to reuse its buckets.
+  std::unordered_set<BrickKey, BrickKeyHash> answered_from_cache_;
 
   // Every texture the stream registered or asked for, kept from eviction until it ends.
   std::unordered_map<uint64_t, TexturePin> pins_;

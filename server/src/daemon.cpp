@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <thread>
@@ -15,6 +17,8 @@
 #include "soltex/graph/graph_limits.h"
 
 namespace soltex::server {
+
+using namespace std::chrono_literals;
 namespace {
 
 int worker_count(int configured) {
@@ -211,15 +215,40 @@ void Daemon::reload() {
   }
 }
 
+// Streams stop reading and send what they were asked for; those still sending near the
+// grace's end drop the rest and end UNAVAILABLE, a little before gRPC would cancel them.
+void Daemon::finish_calls_within_grace() {
+  const auto grace = std::chrono::duration_cast<std::chrono::milliseconds>(
+      std::chrono::duration<double>(config_.shutdown_grace_seconds));
+  const auto now = std::chrono::system_clock::now();
+  const auto cut = now + grace - std::min<std::chrono::milliseconds>(grace / 10, 500ms);
+  service_->drain_streams();
+  std::mutex mutex;
+  std::condition_variable calls_done;
+  bool done = false;
+  std::thread cutter([&] {
+    std::unique_lock lock(mutex);
+    if (!calls_done.wait_until(lock, cut, [&] { return done; })) {
+      spdlog::info("shutting down: the grace is nearly over; open streams end UNAVAILABLE");
+      service_->shut_down_streams();
+    }
+  });
+  server_->Shutdown(now + grace);  // no new calls; returns once the open ones have ended
+  {
+    std::lock_guard lock(mutex);
+    done = true;
+  }
+  calls_done.notify_all();
+  cutter.join();
+}
+
 void Daemon::shut_down() {
   if (shut_down_) return;
   shut_down_ = true;
-  spdlog::info("shutting down: health NOT_SERVING, finishing open streams");
+  spdlog::info("shutting down: health NOT_SERVING, open streams get {} s to send what they owe",
+               config_.shutdown_grace_seconds);
   server_->GetHealthCheckService()->SetServingStatus(false);
-  service_->shut_down_streams();
-  const auto grace = std::chrono::duration_cast<std::chrono::milliseconds>(
-      std::chrono::duration<double>(config_.shutdown_grace_seconds));
-  server_->Shutdown(std::chrono::system_clock::now() + grace);
+  finish_calls_within_grace();
   scheduler_.stop();
   if (http_) http_->stop();
   metrics_->stop();

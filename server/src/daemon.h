@@ -33,8 +33,9 @@ class Daemon {
   int metrics_port() const { return metrics_->port(); }
   int http_port() const { return http_ ? http_->port() : 0; }  // 0: no --http-listen
 
-  // Graceful: health NOT_SERVING, open streams finished, gRPC shut down within the grace
-  // period, workers joined, metrics stopped. Idempotent.
+  // Graceful: health NOT_SERVING; open streams read no more requests and send the bricks
+  // already asked for within the grace period (those still owing at its end finish
+  // UNAVAILABLE); gRPC shut down; workers joined; metrics stopped. Idempotent.
   void shut_down();
 
   std::string render_metrics() const;
@@ -44,6 +45,7 @@ class Daemon {
   void reload();
 
  private:
+  void finish_calls_within_grace();
   ServerConfig config_;
   ServerMetrics metrics_state_;
   ClientAccess access_;

@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <boost/asio/connect.hpp>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/beast/core.hpp>
@@ -41,9 +42,13 @@ SoltexdProcess::SoltexdProcess(std::vector<std::string> extra_args, int port)
                                    "--metrics-listen",
                                    "127.0.0.1:0",
                                    "--ready-file",
-                                   ready,
-                                   "--shutdown-grace",
-                                   "2"};
+                                   ready};
+  // A short grace keeps tests that stop a busy server short, unless a test sets its own.
+  const bool grace_given =
+      std::find_if(extra_args.begin(), extra_args.end(), [](const std::string& arg) {
+        return arg.rfind("--shutdown-grace", 0) == 0;
+      }) != extra_args.end();
+  if (!grace_given) args.insert(args.end(), {"--shutdown-grace-s", "2"});
   args.insert(args.end(), extra_args.begin(), extra_args.end());
   pid_ = spawn_process(std::move(args), log_path);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
@@ -75,6 +80,11 @@ SoltexdProcess::~SoltexdProcess() {
 int SoltexdProcess::terminate() {
   if (pid_ <= 0) return -1;
   kill(pid_, SIGTERM);
+  return wait_for_exit();
+}
+
+int SoltexdProcess::wait_for_exit() {
+  if (pid_ <= 0) return -1;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   int status = 0;
   while (std::chrono::steady_clock::now() < deadline) {

@@ -26,6 +26,8 @@ class SoltexdProcess {
 
   // Sends SIGTERM and returns the exit status (or -signal if killed), waiting up to 30 s.
   int terminate();
+  // The exit status of a server already told to stop (send_signal), waiting up to 30 s.
+  int wait_for_exit();
   // SIGKILL: the server dies mid-stream, as in a crash.
   void kill_now();
   // Sends `signal` (SIGHUP: reload) and returns at once.

@@ -3,6 +3,7 @@
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 
+#include <csignal>
 #include <functional>
 #include <future>
 #include <map>
@@ -90,6 +91,21 @@ TEST(Soltexd, StreamedBricksEqualLocalEvaluationBitForBit) {
       ASSERT_EQ(decoded.samples, local_brick(registration, brick.key()))
           << "level " << brick.key().level();
     }
+  }
+}
+
+// A key wanted many times in one message is one brick, whether it is made for the message or
+// already in the server's brick cache (docs/PROTOCOL.md: duplicates are merged).
+TEST(Soltexd, AKeyWantedTwiceInOneMessageIsSentOnce) {
+  SoltexdProcess server;
+  auto stub = connect(server);
+  const v1::TextureHandle handle = register_texture(*stub, marble_request(6));
+  const std::vector<v1::BrickKey> copies(1024, key_of(handle.id(), 1, 0, 1, 0));
+  for (const char* when : {"made", "cached"}) {
+    const StreamResult result = stream_once(*stub, want(copies, v1::CODEC_RAW));
+    EXPECT_TRUE(result.status.ok()) << when << ": " << result.status.error_message();
+    EXPECT_EQ(result.bricks.size(), 1u) << when;
+    EXPECT_TRUE(result.errors.empty()) << when;
   }
 }
 
@@ -447,8 +463,11 @@ TEST(Soltexd, OversizeMessagesAreRefused) {
   EXPECT_EQ(register_texture(*stub, marble_request()).levels(), 4u);
 }
 
+// SIGTERM: health NOT_SERVING, and a stream that has not half-closed goes on receiving what
+// it asked for during the grace, then ends UNAVAILABLE (1,000 supersampled bricks on one
+// thread take far longer than the second of grace).
 TEST(Soltexd, HealthAndGracefulShutdownWithOpenStreams) {
-  SoltexdProcess server({"--threads", "1"});
+  SoltexdProcess server({"--threads", "1", "--shutdown-grace-s", "1"});
   EXPECT_EQ(health_status(server), 1);                                    // SERVING
   EXPECT_NE(reflection_status(server), grpc::StatusCode::UNIMPLEMENTED);  // offered without a token
   auto stub = connect(server);
@@ -465,12 +484,42 @@ TEST(Soltexd, HealthAndGracefulShutdownWithOpenStreams) {
   v1::BrickBatch batch;
   ASSERT_TRUE(stream->Read(&batch));  // the stream is live and producing
 
-  EXPECT_EQ(server.terminate(), 0) << server.log();
-  while (stream->Read(&batch)) {
-  }
+  server.send_signal(SIGTERM);
+  std::size_t after_signal = 0;
+  while (stream->Read(&batch)) after_signal += static_cast<std::size_t>(batch.bricks_size());
   const grpc::Status status = stream->Finish();
   EXPECT_EQ(status.error_code(), grpc::StatusCode::UNAVAILABLE) << status.error_message();
+  EXPECT_GT(after_signal, 0u) << "no brick was sent during the grace";
+  EXPECT_EQ(server.wait_for_exit(), 0) << server.log();
   EXPECT_NE(server.log().find("shutting down"), std::string::npos);
+}
+
+// A stream that half-closed before SIGTERM gets every brick it asked for within the grace and
+// ends OK.
+TEST(Soltexd, AHalfClosedStreamGetsEveryBrickItAskedForOnShutdown) {
+  SoltexdProcess server({"--threads", "1", "--shutdown-grace-s", "20"});
+  auto stub = connect(server);
+  v1::RegisterTextureRequest registration = marble_request(7, 8);
+  registration.set_mip_mode(v1::MIP_MODE_SUPERSAMPLED);
+  registration.set_supersample(2);
+  const v1::TextureHandle handle = register_texture(*stub, registration);
+
+  grpc::ClientContext context;
+  auto stream = stub->StreamBricks(&context);
+  std::vector<v1::BrickKey> keys = level_keys(handle.id(), 0, 16);
+  keys.resize(200);
+  ASSERT_TRUE(stream->Write(want(keys)));
+  ASSERT_TRUE(stream->WritesDone());
+  v1::BrickBatch batch;
+  ASSERT_TRUE(stream->Read(&batch));
+  std::size_t received = static_cast<std::size_t>(batch.bricks_size());
+
+  server.send_signal(SIGTERM);
+  while (stream->Read(&batch)) received += static_cast<std::size_t>(batch.bricks_size());
+  const grpc::Status status = stream->Finish();
+  EXPECT_TRUE(status.ok()) << status.error_message();
+  EXPECT_EQ(received, keys.size());
+  EXPECT_EQ(server.wait_for_exit(), 0) << server.log();
 }
 
 // Values are checked as sent, before any conversion: the message quotes the client's value.
