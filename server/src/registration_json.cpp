@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base64url.h"
+#include "soltex/common/quoted_text.h"
 #include "soltex/common/spec_error.h"
 #include "soltex/common/texture_id.h"
 #include "soltex/scene/scene_error.h"
@@ -65,7 +66,7 @@ v1::Volume volume_from(const json& value) {
     } else if (key == "finest_level_log2") {
       volume.set_finest_level_log2(unsigned_integer(field, "volume.finest_level_log2"));
     } else {
-      fail("volume." + key, "unknown key (known: min, max, finest_level_log2)");
+      fail("volume." + escaped_text(key), "unknown key (known: min, max, finest_level_log2)");
     }
   }
   return volume;
@@ -129,7 +130,8 @@ v1::RegisterTextureRequest registration_from_json(std::string_view text) {
     } else if (key == "supersample") {
       request.set_supersample(unsigned_integer(value, "supersample"));
     } else {
-      fail(key, "unknown key (known: texture, volume, brick_size, mip_mode, supersample)");
+      fail(escaped_text(key),
+           "unknown key (known: texture, volume, brick_size, mip_mode, supersample)");
     }
   }
   return request;

@@ -68,6 +68,26 @@ TEST(GraphTexture, InvalidGraphIsRefusedByNodeAndTheServerGoesOn) {
   EXPECT_EQ(result.bricks.size(), 1u);
 }
 
+TEST(GraphTexture, HugeCategoryIsRefusedWithAShortMessageAndTheServerGoesOn) {
+  SoltexdProcess server;
+  auto stub = connect(server);
+  v1::RegisterTextureRequest bad = graph_request(graph::testing::warped_graph());
+  bad.mutable_spec()->mutable_graph()->mutable_nodes(0)->set_category(std::string(100000, 'c'));
+  grpc::ClientContext context;
+  v1::TextureHandle handle;
+  const grpc::Status status = stub->RegisterTexture(&context, bad, &handle);
+  // Quoted whole, the category made a status larger than the client's metadata limit.
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << status.error_message();
+  EXPECT_LT(status.error_message().size(), 400u);
+  EXPECT_NE(status.error_message().find("(100000 bytes)"), std::string::npos)
+      << status.error_message();
+  const v1::TextureHandle good =
+      register_texture(*stub, graph_request(graph::testing::warped_graph()));
+  const StreamResult result = stream_once(*stub, want(level_keys(good.id(), 3, 1)));
+  EXPECT_TRUE(result.status.ok());
+  EXPECT_EQ(result.bricks.size(), 1u);
+}
+
 TEST(GraphTexture, ServerInfoPublishesGraphLimits) {
   SoltexdProcess server;
   auto stub = connect(server);

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 
+#include "soltex/common/quoted_text.h"
 #include "soltex/scene/scene_error.h"
 
 namespace soltex {
@@ -125,7 +126,9 @@ std::vector<JsonValue> JsonValue::elements(std::size_t max_count) const {
 }
 
 JsonValue JsonValue::child(const std::string& key) const {
-  return JsonValue(json_->at(key), path_.empty() ? key : path_ + "." + key, *file_);
+  // The key may be the client's own (an unknown field, a graph input's name): shown bounded.
+  const std::string shown = escaped_text(key);
+  return JsonValue(json_->at(key), path_.empty() ? shown : path_ + "." + shown, *file_);
 }
 
 JsonValue JsonValue::element(std::size_t index) const {

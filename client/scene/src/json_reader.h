@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "soltex/common/quoted_text.h"
+
 // Typed, bounded reading of a JSON document that knows where it is: every failure throws
 // SceneError naming the file, the field path ("objects[2].transform.scale") and the problem.
 namespace soltex {
@@ -51,7 +53,7 @@ class JsonValue {
       if (text == name) return value;
       expected += (expected.empty() ? "" : ", ") + std::string(name);
     }
-    fail("unknown value \"" + text + "\": expected one of " + expected);
+    fail("unknown value " + quoted_text(text) + ": expected one of " + expected);
   }
 
   JsonValue child(const std::string& key) const;

@@ -3,6 +3,7 @@
 #include <set>
 #include <vector>
 
+#include "soltex/common/quoted_text.h"
 #include "soltex/scene/scene_error.h"
 
 namespace soltex {
@@ -34,7 +35,7 @@ nlohmann::json parse_strict_json(std::string_view text, const std::string& file)
       if (level.array) {
         out += "[" + std::to_string(level.index) + "]";
       } else if (!level.key.empty()) {
-        out += (out.empty() ? "" : ".") + level.key;
+        out += (out.empty() ? "" : ".") + escaped_text(level.key);
       }
     }
     return out;
@@ -61,7 +62,7 @@ nlohmann::json parse_strict_json(std::string_view text, const std::string& file)
         const std::string key = parsed.get<std::string>();
         // nlohmann keeps the last of two equal keys; a repeated key is a mistake to name.
         if (!levels.back().keys.insert(key).second) {
-          throw SceneError(file, path(), "duplicate key \"" + key + "\" in one object");
+          throw SceneError(file, path(), "duplicate key " + quoted_text(key) + " in one object");
         }
         levels.back().key = key;
         break;

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string_view>
 
+#include "soltex/common/quoted_text.h"
 #include "soltex/common/spec_error.h"
 #include "soltex/graph/graph_limits.h"
 
@@ -17,8 +18,8 @@ std::string describe(const InputValue& value) {
     return "[" + spec_number_text(v->x) + ", " + spec_number_text(v->y) + ", " +
            spec_number_text(v->z) + "]";
   }
-  if (const auto* r = std::get_if<NodeRef>(&value)) return "node \"" + r->node + "\"";
-  if (const auto* s = std::get_if<std::string>(&value)) return "\"" + *s + "\"";
+  if (const auto* r = std::get_if<NodeRef>(&value)) return "node " + quoted_text(r->node);
+  if (const auto* s = std::get_if<std::string>(&value)) return quoted_text(*s);
   return std::to_string(std::get<RampKeys>(value).size()) + " ramp keys";
 }
 
@@ -92,7 +93,7 @@ void check_constant(const Node& node, const InputDef& def, const InputValue& val
 void check_node(const Node& node, const NodeIndex& index) {
   const NodeDef* def = find_node_def(node.category);
   if (def == nullptr) {
-    throw SpecError("graph.nodes[" + node.name + "].category", "\"" + node.category + "\"",
+    throw SpecError(node_field(node, "category"), quoted_text(node.category),
                     "is not a known node category (docs/SCENES.md lists them)");
   }
   for (std::size_t i = 0; i < node.inputs.size(); ++i) {
@@ -169,7 +170,7 @@ class TypeInference {
       std::string allowed;
       for (ValueType a : def.allowed)
         allowed += (allowed.empty() ? "" : ", ") + std::string(type_name(a));
-      throw SpecError("graph.nodes[" + node.name + "].type", "\"" + node.type + "\"",
+      throw SpecError(node_field(node, "type"), quoted_text(node.type),
                       "must be one of " + allowed + " for " + node.category);
     }
     return *t;
@@ -294,8 +295,12 @@ bool is_utf8(std::string_view text) {
 
 }  // namespace
 
+std::string node_field(const Node& node, std::string_view field) {
+  return "graph.nodes[" + escaped_text(node.name) + "]." + std::string(field);
+}
+
 std::string input_field(const Node& node, const std::string& input) {
-  return "graph.nodes[" + node.name + "]." + input;
+  return node_field(node, escaped_text(input));
 }
 
 const InputValue* find_input(const Node& node, const std::string& name) {
@@ -343,12 +348,11 @@ NodeIndex check_structure(const TextureGraph& graph) {
     if (name.empty() || name.size() > static_cast<std::size_t>(GraphLimits::kMaxNameLength) ||
         !is_utf8(name)) {
       throw SpecError(
-          "graph.nodes[" + std::to_string(i) + "].name",
-          is_utf8(name) ? "\"" + name + "\"" : "(not UTF-8)",
+          "graph.nodes[" + std::to_string(i) + "].name", quoted_text(name),
           "must be 1 to " + std::to_string(GraphLimits::kMaxNameLength) + " bytes of UTF-8");
     }
     if (!index.emplace(name, i).second) {
-      throw SpecError("graph.nodes[" + name + "].name", "\"" + name + "\"",
+      throw SpecError(node_field(graph.nodes[i], "name"), quoted_text(name),
                       "names two nodes: node names must be unique");
     }
   }
@@ -362,11 +366,11 @@ NodeIndex check_structure(const TextureGraph& graph) {
     const std::string field = std::string("graph.outputs.") + channel_name(out.channel);
     for (std::size_t j = 0; j < i; ++j) {
       if (graph.outputs[j].channel == out.channel) {
-        throw SpecError(field, "\"" + out.node + "\"", "is given twice");
+        throw SpecError(field, quoted_text(out.node), "is given twice");
       }
     }
     if (!index.contains(out.node)) {
-      throw SpecError(field, "\"" + out.node + "\"", "names no node of the graph");
+      throw SpecError(field, quoted_text(out.node), "names no node of the graph");
     }
   }
   return index;
@@ -383,7 +387,7 @@ void check_outputs(const TextureGraph& graph, const NodeIndex& index,
     const ValueType need = out.channel == Channel::colour ? ValueType::color3 : ValueType::float_;
     if (got != need) {
       throw SpecError(std::string("graph.outputs.") + channel_name(out.channel),
-                      "node \"" + out.node + "\" (" + type_name(got) + ")",
+                      "node " + quoted_text(out.node) + " (" + type_name(got) + ")",
                       std::string("must be ") + type_name(need));
     }
   }

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <unordered_map>
 #include <vector>
 
@@ -25,7 +26,10 @@ std::vector<ValueType> infer_types(const TextureGraph& graph, const NodeIndex& i
 void check_outputs(const TextureGraph& graph, const NodeIndex& index,
                    const std::vector<ValueType>& types);
 
-// "graph.nodes[<node>].<input>"
+// "graph.nodes[<node>].<field>", the node's name escaped and cut as quoted_text() does: it is
+// the client's, and may be long or hold control characters.
+std::string node_field(const Node& node, std::string_view field);
+// "graph.nodes[<node>].<input>", the input's name shown the same way.
 std::string input_field(const Node& node, const std::string& input);
 
 const InputValue* find_input(const Node& node, const std::string& name);

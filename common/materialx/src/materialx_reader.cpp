@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "soltex/common/quoted_text.h"
 #include "soltex/common/spec_error.h"
 
 namespace soltex::materialx {
@@ -52,7 +53,8 @@ class Document {
 };
 
 std::string node_words(const pugi::xml_node& node) {
-  return "node \"" + std::string(node.attribute("name").value()) + "\" (" + node.name() + ")";
+  return "node " + quoted_text(node.attribute("name").value()) + " (" + escaped_text(node.name()) +
+         ")";
 }
 
 // A value string's comma-separated numbers, decimal as MaterialX writes them (no hex, no
@@ -75,7 +77,8 @@ std::vector<double> numbers(const std::string& text) {
 
 graph::InputValue input_value(const Document& doc, const pugi::xml_node& node,
                               const pugi::xml_node& input) {
-  const std::string where = node_words(node) + " input \"" + input.attribute("name").value() + "\"";
+  const std::string where =
+      node_words(node) + " input " + quoted_text(input.attribute("name").value());
   const auto offset = input.offset_debug();
   if (input.attribute("interfacename")) {
     doc.fail(offset, where + ": interface inputs are not supported; give a value or a nodename");
@@ -97,7 +100,7 @@ graph::InputValue input_value(const Document& doc, const pugi::xml_node& node,
     }
     if (text == "true") return 1.0;
     if (text == "false") return 0.0;
-    doc.fail(offset, where + ": boolean \"" + text + "\" must be true or false");
+    doc.fail(offset, where + ": boolean " + quoted_text(text) + " must be true or false");
   }
   if (type == "string") return text;
   const std::vector<double> v = numbers(text);
@@ -105,7 +108,7 @@ graph::InputValue input_value(const Document& doc, const pugi::xml_node& node,
   if (v.size() == 3 && (type == "vector3" || type == "color3" || type.empty())) {
     return glm::dvec3(v[0], v[1], v[2]);
   }
-  doc.fail(offset, where + ": value \"" + text + "\" is not a " +
+  doc.fail(offset, where + ": value " + quoted_text(text) + " is not a " +
                        (type.empty() ? std::string("number") : type));
 }
 
@@ -120,8 +123,8 @@ graph::Node read_node(const Document& doc, const pugi::xml_node& node) {
   if (out.type == "vector3" || out.type == "color3" || out.type == "float") {
     // As written; compile() checks it against the node.
   } else {
-    doc.fail(node.offset_debug(), node_words(node) + ": type \"" + out.type +
-                                      "\" is not supported (float, vector3, color3)");
+    doc.fail(node.offset_debug(), node_words(node) + ": type " + quoted_text(out.type) +
+                                      " is not supported (float, vector3, color3)");
   }
   for (const pugi::xml_node& input : node.children("input")) {
     out.inputs.push_back({input.attribute("name").value(), input_value(doc, node, input)});
@@ -136,13 +139,13 @@ pugi::xml_node find_nodegraph(const Document& doc) {
   if (!root) doc.fail(0, "no <materialx> element");
   const std::string& wanted = doc.source().nodegraph;
   const auto graph = root.find_child_by_attribute("nodegraph", "name", wanted.c_str());
-  if (!graph) doc.fail(root.offset_debug(), "no nodegraph named \"" + wanted + "\"");
+  if (!graph) doc.fail(root.offset_debug(), "no nodegraph named " + quoted_text(wanted));
   // Which one was meant is not for the reader to guess.
   for (auto other = graph.next_sibling("nodegraph"); other;
        other = other.next_sibling("nodegraph")) {
     if (wanted == other.attribute("name").value()) {
-      doc.fail(other.offset_debug(), "a second nodegraph named \"" + wanted +
-                                         "\" (the first is on line " +
+      doc.fail(other.offset_debug(), "a second nodegraph named " + quoted_text(wanted) +
+                                         " (the first is on line " +
                                          std::to_string(doc.line_of(graph.offset_debug())) + ")");
     }
   }
@@ -169,7 +172,8 @@ pugi::xml_node element_of_field(const pugi::xml_node& nodegraph, const std::stri
   if (!field.starts_with("graph.nodes[") || close == std::string::npos) return nodegraph;
   const std::string key = field.substr(open + 1, close - open - 1);
   for (const pugi::xml_node& child : nodegraph.children()) {
-    if (is_graph_node(child) && key == child.attribute("name").value()) return child;
+    // The field shows the name as escaped_text() does.
+    if (is_graph_node(child) && key == escaped_text(child.attribute("name").value())) return child;
   }
   std::size_t index = 0;
   for (const pugi::xml_node& child : nodegraph.children()) {
@@ -196,11 +200,12 @@ graph::TextureGraph read_nodegraph(const MaterialxSource& source) {
     if (name == "output") {
       if (source.output == child.attribute("name").value()) {
         if (std::string(child.attribute("type").value()) != "color3") {
-          doc.fail(child.offset_debug(), "output \"" + source.output + "\" must be color3");
+          doc.fail(child.offset_debug(),
+                   "output " + quoted_text(source.output) + " must be color3");
         }
         if (!child.attribute("nodename")) {
-          doc.fail(child.offset_debug(), "output \"" + source.output +
-                                             "\" needs a nodename: the node whose colour it is");
+          doc.fail(child.offset_debug(), "output " + quoted_text(source.output) +
+                                             " needs a nodename: the node whose colour it is");
         }
         result.outputs.push_back({Channel::colour, child.attribute("nodename").value()});
         found = true;
@@ -211,8 +216,8 @@ graph::TextureGraph read_nodegraph(const MaterialxSource& source) {
     result.nodes.push_back(read_node(doc, child));
   }
   if (!found) {
-    doc.fail(nodegraph.offset_debug(),
-             "nodegraph \"" + source.nodegraph + "\" has no output \"" + source.output + "\"");
+    doc.fail(nodegraph.offset_debug(), "nodegraph " + quoted_text(source.nodegraph) +
+                                           " has no output " + quoted_text(source.output));
   }
   return result;
 }

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "soltex/common/overloaded.h"
+#include "soltex/common/quoted_text.h"
 #include "soltex/common/spec_error.h"
 
 namespace soltex {
@@ -54,7 +55,8 @@ graph::TextureGraph graph_from_proto(const v1::Graph& m) {
     graph::Node n{node.name(), node.category(), node.type(), {}};
     for (const auto& input : node.inputs()) {
       n.inputs.push_back(
-          {input.name(), input_from(input, "graph.nodes[" + node.name() + "]." + input.name())});
+          {input.name(), input_from(input, "graph.nodes[" + escaped_text(node.name()) + "]." +
+                                               escaped_text(input.name()))});
     }
     g.nodes.push_back(std::move(n));
   }

@@ -132,9 +132,37 @@ TEST(GraphValidation, NamesAreAtMost64BytesOfWellFormedUtf8) {
        {"\xff\xfe", "a\xc0\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80", "\xe2\x82"}) {
     const SpecError e = error_of(grey({node(bad, "position")}, bad));
     EXPECT_EQ(e.field(), "graph.nodes[0].name");
-    EXPECT_EQ(e.value(), "(not UTF-8)");
+    EXPECT_NE(e.value().find("\\x"), std::string::npos) << e.what();  // the bytes, escaped
     EXPECT_NE(e.bound().find("bytes of UTF-8"), std::string::npos) << e.what();
   }
+}
+
+TEST(GraphValidation, MessagesShowClientStringsShortAndEscaped) {
+  // However long a name or category is sent, the message names the field and the bound in a
+  // few hundred bytes: a gRPC status must fit the client's metadata limit.
+  const SpecError name = error_of(grey({node(std::string(10000, 'n'), "position")}, "a"));
+  EXPECT_EQ(name.field(), "graph.nodes[0].name");
+  EXPECT_NE(name.bound().find("must be 1 to 64 bytes of UTF-8"), std::string::npos);
+  EXPECT_NE(name.value().find("(10000 bytes)"), std::string::npos) << name.value();
+  EXPECT_LT(std::string(name.what()).size(), 300u) << name.what();
+
+  const SpecError category = error_of(grey({node("c", std::string(100000, 'x'))}, "c"));
+  EXPECT_EQ(category.field(), "graph.nodes[c].category");
+  EXPECT_NE(category.value().find("(100000 bytes)"), std::string::npos);
+  EXPECT_LT(std::string(category.what()).size(), 300u) << category.what();
+
+  // A NUL in a name is shown, not an end of the message.
+  const std::string nul_name("a\0b", 3);
+  const SpecError nul = error_of(grey({node(nul_name, "nonesuch")}, nul_name));
+  EXPECT_EQ(nul.field(), "graph.nodes[a\\x00b].category");
+  EXPECT_EQ(std::string(nul.what()).find('\0'), std::string::npos);
+
+  const SpecError input =
+      error_of(grey({node("a", "absval", {{std::string(5000, 'i'), 1.0}})}, "a"));
+  EXPECT_LT(std::string(input.what()).size(), 300u) << input.what();
+  const SpecError choice =
+      error_of(grey({node("a", "noise3d", {{"basis", std::string(5000, 'z')}})}, "a"));
+  EXPECT_LT(std::string(choice.what()).size(), 400u) << choice.what();
 }
 
 TEST(GraphValidation, OutputTypes) {

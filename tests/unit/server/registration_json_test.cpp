@@ -78,5 +78,30 @@ TEST(RegistrationJson, RefusalsNameTheField) {
   }
 }
 
+TEST(RegistrationJson, RefusalsQuoteWhatWasSentShortly) {
+  const std::string huge(1000000, 'k');
+  const std::string graph_with_category =
+      R"({"texture": {"graph": {"nodes": [{"name": "a", "category": ")" + huge +
+      R"("}], "outputs": {"colour": "a"}}}})";
+  const std::string bodies[] = {
+      graph_with_category,
+      R"({"texture": {"marble": {}}, ")" + huge + R"(": 1})",
+      R"({"texture": {"marble": {}}, "volume": {")" + huge + R"(": 1}})",
+      R"({"texture": {"marble": {")" + huge + R"(": 1}}})",
+      R"({"texture": {"marble": {}, ")" + huge + R"(": 1, ")" + huge + R"(": 2}})",
+  };
+  TextureRegistry registry(RegistryLimits{});
+  for (const std::string& body : bodies) {
+    try {
+      (void)register_json(registry, body);
+      ADD_FAILURE() << body.substr(0, 100) << " was accepted";
+    } catch (const RegistrationError& e) {
+      EXPECT_EQ(e.code(), grpc::StatusCode::INVALID_ARGUMENT);
+      EXPECT_LT(std::string(e.what()).size(), 400u) << e.what();
+      EXPECT_NE(std::string(e.what()).find("(1000000 bytes)"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace soltex::server
