@@ -4,36 +4,12 @@
 #include <cstdio>
 #include <utility>
 
+#include "soltex/common/utf8.h"
+
 namespace soltex {
 namespace {
 
 constexpr std::string_view kEllipsis = "\xe2\x80\xa6";  // U+2026
-
-// The length of the well-formed UTF-8 sequence that starts at text[i] (no overlong forms,
-// surrogates or code points past U+10FFFF), or 0 where none does.
-std::size_t utf8_length(std::string_view text, std::size_t i) {
-  const auto lead = static_cast<unsigned char>(text[i]);
-  std::size_t length = 0;
-  uint32_t code = 0, lowest = 0;
-  if (lead < 0x80) return 1;
-  if ((lead & 0xE0) == 0xC0) {
-    length = 2, code = lead & 0x1Fu, lowest = 0x80;
-  } else if ((lead & 0xF0) == 0xE0) {
-    length = 3, code = lead & 0x0Fu, lowest = 0x800;
-  } else if ((lead & 0xF8) == 0xF0) {
-    length = 4, code = lead & 0x07u, lowest = 0x10000;
-  } else {
-    return 0;
-  }
-  if (i + length > text.size()) return 0;
-  for (std::size_t k = 1; k < length; ++k) {
-    const auto next = static_cast<unsigned char>(text[i + k]);
-    if ((next & 0xC0) != 0x80) return 0;
-    code = (code << 6) | (next & 0x3Fu);
-  }
-  if (code < lowest || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return 0;
-  return length;
-}
 
 std::string byte_escape(unsigned char byte) {
   char buffer[5];
@@ -43,7 +19,7 @@ std::string byte_escape(unsigned char byte) {
 
 // The character at text[i] as a message shows it, and how many bytes of text it takes.
 std::pair<std::string, std::size_t> shown_character(std::string_view text, std::size_t i) {
-  const std::size_t length = utf8_length(text, i);
+  const std::size_t length = utf8_sequence_length(text, i);
   const auto byte = static_cast<unsigned char>(text[i]);
   if (length == 0) return {byte_escape(byte), 1};
   if (length > 1) return {std::string(text.substr(i, length)), length};

@@ -25,6 +25,15 @@ v1::RegisterTextureRequest graph_request(const graph::TextureGraph& g) {
   return request;
 }
 
+// After a refusal: a good graph texture registers and its brick is served.
+void expect_a_graph_is_still_served(v1::BrickService::Stub& stub) {
+  const v1::TextureHandle good =
+      register_texture(stub, graph_request(graph::testing::warped_graph()));
+  const StreamResult result = stream_once(stub, want(level_keys(good.id(), 3, 1)));
+  EXPECT_TRUE(result.status.ok());
+  EXPECT_EQ(result.bricks.size(), 1u);
+}
+
 TEST(GraphTexture, ServedBricksEqualLocalEvaluation) {
   SoltexdProcess server;
   auto stub = connect(server);
@@ -61,11 +70,7 @@ TEST(GraphTexture, InvalidGraphIsRefusedByNodeAndTheServerGoesOn) {
   EXPECT_NE(status.error_message().find("graph.nodes["), std::string::npos)
       << status.error_message();
   // Everyone else is still served.
-  const v1::TextureHandle good =
-      register_texture(*stub, graph_request(graph::testing::warped_graph()));
-  const StreamResult result = stream_once(*stub, want(level_keys(good.id(), 3, 1)));
-  EXPECT_TRUE(result.status.ok());
-  EXPECT_EQ(result.bricks.size(), 1u);
+  expect_a_graph_is_still_served(*stub);
 }
 
 TEST(GraphTexture, HugeCategoryIsRefusedWithAShortMessageAndTheServerGoesOn) {
@@ -81,11 +86,7 @@ TEST(GraphTexture, HugeCategoryIsRefusedWithAShortMessageAndTheServerGoesOn) {
   EXPECT_LT(status.error_message().size(), 400u);
   EXPECT_NE(status.error_message().find("(100000 bytes)"), std::string::npos)
       << status.error_message();
-  const v1::TextureHandle good =
-      register_texture(*stub, graph_request(graph::testing::warped_graph()));
-  const StreamResult result = stream_once(*stub, want(level_keys(good.id(), 3, 1)));
-  EXPECT_TRUE(result.status.ok());
-  EXPECT_EQ(result.bricks.size(), 1u);
+  expect_a_graph_is_still_served(*stub);
 }
 
 TEST(GraphTexture, ServerInfoPublishesGraphLimits) {

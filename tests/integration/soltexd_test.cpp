@@ -463,6 +463,19 @@ TEST(Soltexd, OversizeMessagesAreRefused) {
   EXPECT_EQ(register_texture(*stub, marble_request()).levels(), 4u);
 }
 
+// `count` keys of level 0 of a marble texture supersampled `supersample`^3 times per sample:
+// bricks that take a worker long enough to make for a shutdown to catch them being made.
+std::vector<v1::BrickKey> slow_keys(v1::BrickService::Stub& stub, int supersample,
+                                    std::size_t count) {
+  v1::RegisterTextureRequest registration = marble_request(7, 8);
+  registration.set_mip_mode(v1::MIP_MODE_SUPERSAMPLED);
+  registration.set_supersample(static_cast<uint32_t>(supersample));
+  const v1::TextureHandle handle = register_texture(stub, registration);
+  std::vector<v1::BrickKey> keys = level_keys(handle.id(), 0, 16);
+  keys.resize(count);
+  return keys;
+}
+
 // SIGTERM: health NOT_SERVING, and a stream that has not half-closed goes on receiving what
 // it asked for during the grace, then ends UNAVAILABLE (1,000 supersampled bricks on one
 // thread take far longer than the second of grace).
@@ -471,15 +484,9 @@ TEST(Soltexd, HealthAndGracefulShutdownWithOpenStreams) {
   EXPECT_EQ(health_status(server), 1);                                    // SERVING
   EXPECT_NE(reflection_status(server), grpc::StatusCode::UNIMPLEMENTED);  // offered without a token
   auto stub = connect(server);
-  v1::RegisterTextureRequest registration = marble_request(7, 8);
-  registration.set_mip_mode(v1::MIP_MODE_SUPERSAMPLED);
-  registration.set_supersample(4);
-  const v1::TextureHandle handle = register_texture(*stub, registration);
-
+  const std::vector<v1::BrickKey> keys = slow_keys(*stub, 4, 1000);
   grpc::ClientContext context;
   auto stream = stub->StreamBricks(&context);
-  std::vector<v1::BrickKey> keys = level_keys(handle.id(), 0, 16);
-  keys.resize(1000);
   ASSERT_TRUE(stream->Write(want(keys)));
   v1::BrickBatch batch;
   ASSERT_TRUE(stream->Read(&batch));  // the stream is live and producing
@@ -499,15 +506,9 @@ TEST(Soltexd, HealthAndGracefulShutdownWithOpenStreams) {
 TEST(Soltexd, AHalfClosedStreamGetsEveryBrickItAskedForOnShutdown) {
   SoltexdProcess server({"--threads", "1", "--shutdown-grace-s", "20"});
   auto stub = connect(server);
-  v1::RegisterTextureRequest registration = marble_request(7, 8);
-  registration.set_mip_mode(v1::MIP_MODE_SUPERSAMPLED);
-  registration.set_supersample(2);
-  const v1::TextureHandle handle = register_texture(*stub, registration);
-
+  const std::vector<v1::BrickKey> keys = slow_keys(*stub, 2, 200);
   grpc::ClientContext context;
   auto stream = stub->StreamBricks(&context);
-  std::vector<v1::BrickKey> keys = level_keys(handle.id(), 0, 16);
-  keys.resize(200);
   ASSERT_TRUE(stream->Write(want(keys)));
   ASSERT_TRUE(stream->WritesDone());
   v1::BrickBatch batch;

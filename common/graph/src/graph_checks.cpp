@@ -7,6 +7,7 @@
 
 #include "soltex/common/quoted_text.h"
 #include "soltex/common/spec_error.h"
+#include "soltex/common/utf8.h"
 #include "soltex/graph/graph_limits.h"
 
 namespace soltex::graph {
@@ -262,37 +263,6 @@ class TypeInference {
   std::vector<ValueType> types_;
 };
 
-// Well-formed UTF-8 (no overlong forms, surrogates or code points past U+10FFFF), as
-// protobuf requires of a string field: a name that is not would fail only when sent.
-bool is_utf8(std::string_view text) {
-  for (std::size_t i = 0; i < text.size();) {
-    const auto lead = static_cast<unsigned char>(text[i]);
-    int length = 0;
-    uint32_t code = 0, lowest = 0;
-    if (lead < 0x80) {
-      ++i;
-      continue;
-    } else if ((lead & 0xE0) == 0xC0) {
-      length = 2, code = lead & 0x1Fu, lowest = 0x80;
-    } else if ((lead & 0xF0) == 0xE0) {
-      length = 3, code = lead & 0x0Fu, lowest = 0x800;
-    } else if ((lead & 0xF8) == 0xF0) {
-      length = 4, code = lead & 0x07u, lowest = 0x10000;
-    } else {
-      return false;
-    }
-    if (i + static_cast<std::size_t>(length) > text.size()) return false;
-    for (int k = 1; k < length; ++k) {
-      const auto next = static_cast<unsigned char>(text[i + static_cast<std::size_t>(k)]);
-      if ((next & 0xC0) != 0x80) return false;
-      code = (code << 6) | (next & 0x3Fu);
-    }
-    if (code < lowest || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return false;
-    i += static_cast<std::size_t>(length);
-  }
-  return true;
-}
-
 }  // namespace
 
 std::string node_field(const Node& node, std::string_view field) {
@@ -345,6 +315,7 @@ NodeIndex check_structure(const TextureGraph& graph) {
   NodeIndex index;
   for (std::size_t i = 0; i < n; ++i) {
     const std::string& name = graph.nodes[i].name;
+    // UTF-8 as protobuf requires of a string field: a name that is not would fail only when sent.
     if (name.empty() || name.size() > static_cast<std::size_t>(GraphLimits::kMaxNameLength) ||
         !is_utf8(name)) {
       throw SpecError(
