@@ -66,6 +66,12 @@ int main(int argc, char** argv) {
     const LoadResult result = run_load(options, progress);
     bar.finish();
     std::cout << format_result(result, options.format) << std::flush;
+    if (result.stream_failures() > 0) {
+      // The server went away or refused the streams: not a run to take figures from.
+      std::fprintf(stderr, "soltex-load: %llu of %d streams ended with an error; see the report\n",
+                   static_cast<unsigned long long>(result.stream_failures()), options.streams);
+      return cli::kExitFailure;
+    }
   } catch (const LoadOptionsError& e) {
     std::fprintf(stderr, "soltex-load: %s\n", e.what());
     return cli::kExitUsage;

@@ -111,6 +111,11 @@ std::string format_text(const LoadResult& r) {
                        r.megabytes_per_second());
   out << printf_string("  Errors:        %llu\n",
                        static_cast<unsigned long long>(r.measured_errors()));
+  if (r.stream_failures() > 0) {
+    // The run was cut short: the figures above cover it only until the streams ended.
+    out << printf_string("  Streams:       %llu of %d ended with an error (codes below)\n",
+                         static_cast<unsigned long long>(r.stream_failures()), o.streams);
+  }
   if (o.verify) {
     // Answers, so in Bricks above, but wrong ones: a reader of the summary must see them.
     out << printf_string("  Corrupt:       %llu bricks failed --verify (their checksum)%s\n",
@@ -270,9 +275,7 @@ std::string format_csv(const LoadResult& r) {
     if (!errors.empty()) errors += ';';
     errors += std::string(status_code_name(code)) + ":" + std::to_string(n);
   }
-  uint64_t stream_failures = 0;
-  for (int code = 1; code < 17; ++code)
-    stream_failures += r.stream_status[static_cast<std::size_t>(code)];
+  const uint64_t stream_failures = r.stream_failures();
   std::string out =
       "target,mix,pattern,brick_size,codec,connections,streams,mode,in_flight,rate,warmup_s,"
       "measured_s,requests,bricks,bricks_per_s,mb_per_s,min_ms,mean_ms,p50_ms,p90_ms,p99_ms,"

@@ -51,4 +51,10 @@ uint64_t LoadResult::measured_errors() const {
   return total;
 }
 
+uint64_t LoadResult::stream_failures() const {
+  uint64_t total = 0;
+  for (std::size_t code = 1; code < stream_status.size(); ++code) total += stream_status[code];
+  return total;
+}
+
 }  // namespace soltex::load

@@ -67,6 +67,7 @@ struct LoadResult {
   double bricks_per_second() const;
   double megabytes_per_second() const;  // 10^6 bytes
   uint64_t measured_errors() const;     // per-brick errors of measured requests
+  uint64_t stream_failures() const;     // streams that ended with a status other than OK
 };
 
 }  // namespace soltex::load

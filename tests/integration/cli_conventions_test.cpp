@@ -456,6 +456,22 @@ TEST_F(LoadCliConventions, TakesItsServerFromTheEnvironmentOrEitherName) {
   }
 }
 
+// A server that goes away mid-run ends the streams UNAVAILABLE: the report is printed, and
+// the exit code says the run was cut short.
+TEST_F(LoadCliConventions, AServerGoneMidRunExits1) {
+  testing::SoltexdProcess soltexd;
+  ToolProcess load(SOLTEX_LOAD_BINARY,
+                   {"--server", soltexd.grpc_address(), "--streams", "2", "--duration-s", "30",
+                    "--no-progress"},
+                   {}, directory_);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  EXPECT_EQ(soltexd.terminate(), 0) << soltexd.log();
+  const ToolRun r = load.finish();
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.out.find("of 2 ended with an error"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("streams ended with an error"), std::string::npos) << r.err;
+}
+
 TEST_F(LoadCliConventions, WithoutAServerItExits2NamingServer) {
   const ToolRun r = run_tool(SOLTEX_LOAD_BINARY, {"--count", "1"});
   EXPECT_EQ(r.exit_code, 2);

@@ -40,14 +40,6 @@ std::string errors_metric(const char* code) {
   return std::string("soltex_errors_total{grpc_code=\"") + code + "\"}";
 }
 
-uint64_t stream_failures(const LoadResult& result) {
-  uint64_t n = 0;
-  for (std::size_t code = 1; code < result.stream_status.size(); ++code) {
-    n += result.stream_status[code];
-  }
-  return n;
-}
-
 std::string temporary_path(const std::string& name) {
   return (std::filesystem::temp_directory_path() /
           (name + "-" + std::to_string(::testing::UnitTest::GetInstance()->random_seed())))
@@ -70,7 +62,7 @@ TEST(SoltexLoad, BricksReceivedEqualBricksServed) {
 
   // The drain ends every stream cleanly, so whatever the server sent was received.
   EXPECT_EQ(result.stream_status[0], 4u);
-  EXPECT_EQ(stream_failures(result), 0u);
+  EXPECT_EQ(result.stream_failures(), 0u);
   EXPECT_EQ(result.unanswered, 0u);
   EXPECT_EQ(result.measured_errors(), 0u);
   EXPECT_EQ(metric(server, "soltex_bricks_served_total") - served_before,
@@ -146,7 +138,7 @@ TEST(SoltexLoad, InvalidKeysAreCountedByStatusCode) {
             static_cast<double>(result.injected_out_of_range));
   EXPECT_EQ(metric(server, errors_metric("NOT_FOUND")),
             static_cast<double>(result.injected_unknown_texture));
-  EXPECT_EQ(stream_failures(result), 0u);
+  EXPECT_EQ(result.stream_failures(), 0u);
 
   const nlohmann::json json = nlohmann::json::parse(format_json(result));
   EXPECT_EQ(json["errors"]["bricks"]["OUT_OF_RANGE"].get<uint64_t>(), result.injected_out_of_range);
@@ -209,7 +201,7 @@ TEST(SoltexLoad, OpenLoopLatencyIncludesQueueingAboveSaturation) {
 
   ASSERT_EQ(unloaded.bricks, 100u);
   ASSERT_EQ(saturated.bricks, 2000u);
-  EXPECT_EQ(stream_failures(saturated), 0u);
+  EXPECT_EQ(saturated.stream_failures(), 0u);
   // The last requests wait for about all the others: the median for about half of them.
   EXPECT_GT(saturated.latency.p50, 10 * unloaded.latency.p50)
       << "unloaded p50 " << unloaded.latency.p50 << " ns, saturated p50 " << saturated.latency.p50
