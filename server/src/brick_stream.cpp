@@ -496,10 +496,14 @@ void BrickStream::pump() {
   if (held && !held_by_run) pump_when_wait_ends();
   if (can_write && !held) write_outbox();
 
-  // Backpressure: read on only while a whole request would still fit, counting every brick
-  // the stream owes: queued, being produced, and made but not yet written (a client that
-  // stops reading must not make the server hold its answers without bound).
-  const bool room = owed() + limits.max_keys_per_request <= limits.max_queued_per_stream;
+  // Backpressure: read on while a whole request would still fit, counting every brick the
+  // stream owes: queued, being produced, and made but not yet written. Past that, read on only
+  // while the client takes what it is sent (no more than a request's worth waits in the
+  // outbox), so that its cancels are applied and wants past the bound are refused, while a
+  // client that stops reading does not make the server hold answers without bound.
+  const bool fits = owed() + limits.max_keys_per_request <= limits.max_queued_per_stream;
+  const bool taken = !unsent_full() && outbox_.size() < limits.max_keys_per_request;
+  const bool room = fits || taken;
   if (!reading_ && !request_unhandled_ && !reads_done_ && !draining_ && !shutting_down_ &&
       !cancelled_ && room) {
     reading_ = true;

@@ -375,6 +375,43 @@ TEST(Soltexd, PastTheDirectShareRequestsAreReadOneAtATimeOnWorkerTurns) {
   EXPECT_EQ(metric_value(m, "soltex_stream_messages_on_turns_total"), 1.0 + kRequests);
 }
 
+// A stream whose queue is full is still read while its client reads: wants past the bound get
+// RESOURCE_EXHAUSTED at once, and a cancel sent after them takes effect at once, not after
+// the queue has drained (here 256 bricks of 20 ms each).
+TEST(Soltexd, AFullQueueRefusesMoreAndCancelsAtOnce) {
+  SoltexdProcess server({"--max-keys-per-request", "64", "--max-queued-per-stream", "256",
+                         "--threads", "1", "--fault-delay-ms", "20"});
+  auto stub = connect(server);
+  const v1::TextureHandle handle = register_texture(*stub, marble_request(8, 16));
+  const std::vector<v1::BrickKey> keys = level_keys(handle.id(), 0, 16);  // 4,096
+  grpc::ClientContext context;
+  auto stream = stub->StreamBricks(&context);
+  constexpr std::size_t kMessages = 8, kPerMessage = 64;
+  v1::BrickRequest cancel;
+  for (std::size_t m = 0; m < kMessages; ++m) {
+    const std::vector<v1::BrickKey> part(
+        keys.begin() + static_cast<std::ptrdiff_t>(m * kPerMessage),
+        keys.begin() + static_cast<std::ptrdiff_t>((m + 1) * kPerMessage));
+    ASSERT_TRUE(stream->Write(want(part)));
+    for (const v1::BrickKey& key : part) *cancel.add_cancel() = key;
+  }
+  ASSERT_TRUE(stream->Write(cancel));
+  stream->WritesDone();
+  std::size_t bricks = 0, refused = 0;
+  v1::BrickBatch batch;
+  while (stream->Read(&batch)) {
+    bricks += static_cast<std::size_t>(batch.bricks_size());
+    for (const auto& e : batch.errors()) {
+      if (e.code() == grpc::StatusCode::RESOURCE_EXHAUSTED) ++refused;
+    }
+  }
+  EXPECT_TRUE(stream->Finish().ok());
+  // 512 asked for, 256 queued at most: nearly all of the other 256 refused (a brick or two
+  // may be made while the wants arrive, which frees a place each).
+  EXPECT_GE(refused, 200u);
+  EXPECT_LE(bricks, 64u) << "the cancel waited behind the full queue";
+}
+
 TEST(Soltexd, BadKeysGetTheirCodeAndTheStreamGoesOn) {
   SoltexdProcess server({"--max-keys-per-request", "64", "--max-queued-per-stream", "64"});
   auto stub = connect(server);
