@@ -47,9 +47,9 @@ CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommandOptions& options) {
   command->add_option("--scene", options.scene, "scene file (JSON); default: the built-in scene")
       ->check(CLI::ExistingFile);
   command->add_option("--width", options.width, "frame width (default 640; 160 with --quick)")
-      ->check(CLI::Range(8, 16384));
+      ->check(cli::IntegerIn(8, 16384));
   command->add_option("--height", options.height, "frame height (default 360; 90 with --quick)")
-      ->check(CLI::Range(8, 16384));
+      ->check(cli::IntegerIn(8, 16384));
   command->add_flag("--quick", options.quick,
                     "a handful of settings on a tiny frame, fewer measuring rounds (a smoke test)");
   command
@@ -70,15 +70,15 @@ CLI::App* add_accuracy_command(CLI::App& app, AccuracyCommandOptions& options) {
           },
           "PATH"));
   command->add_option("--threads", options.threads, "render threads (0: one per core)")
-      ->check(CLI::Range(0, 256));
+      ->check(cli::IntegerIn(0, 256));
   command
       ->add_option("--rounds", options.rounds,
                    "measuring rounds over all settings (default 30; 2 with --quick)")
-      ->check(CLI::Range(1, 1000));
+      ->check(cli::IntegerIn(1, 1000));
   command
       ->add_option("--frames-per-round", options.frames_per_round,
                    "timed frames per setting and round (default 2; 1 with --quick)")
-      ->check(CLI::Range(1, 1000));
+      ->check(cli::IntegerIn(1, 1000));
   command
       ->add_option("--max-converge-s,--max-converge-seconds", options.max_converge_seconds,
                    "give up on a setting whose frame has not converged after this long")

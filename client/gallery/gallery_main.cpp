@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
   // --out-dir as in soltex-bench, since it names a folder; --out is the old name.
   app.add_option("--out-dir,--out", out_dir, "folder for the PNG files")->capture_default_str();
   app.add_option("--size", size, "pixels per side of each half")
-      ->check(CLI::Range(16, 4096))
+      ->check(soltex::cli::IntegerIn(16, 4096))
       ->capture_default_str();
   if (const auto exit_code = cli::parse(app, "soltex-gallery", argc, argv)) return *exit_code;
   cli::start_logging("soltex-gallery", log_level);

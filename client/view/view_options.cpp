@@ -34,7 +34,7 @@ void add_run_options(CLI::App& app, ViewOptions& o) {
   app.add_flag("--reference", o.reference,
                "also render by evaluating the texture per pixel; print PSNR and speed ratio");
   app.add_option("--supersample", o.supersample, "reference sub-pixels per axis")
-      ->check(CLI::Range(1, 8))
+      ->check(cli::IntegerIn(1, 8))
       ->capture_default_str();
   app.add_option("--max-time-s,--max-seconds", o.max_seconds,
                  "give up converging after this many seconds (exit 3; --max-seconds: old name)")
@@ -46,7 +46,7 @@ void add_run_options(CLI::App& app, ViewOptions& o) {
   auto* headless_flag = app.get_option("--headless");
   app.add_option("--frames", o.window_frames,
                  "window: close after this many frames (0: when closed by the user)")
-      ->check(CLI::Range(0, 1000000))
+      ->check(cli::IntegerIn(0, 1000000))
       ->excludes(headless_flag);
   app.add_option("--screenshot", o.screenshot, "window: write the last frame shown to this PNG")
       ->excludes(headless_flag);
@@ -69,7 +69,7 @@ void add_picture_options(CLI::App& app, ViewOptions& o) {
   app.add_option("--antialias", o.antialias,
                  "sub-pixels per axis for silhouettes and clip edges (1: off); costs about "
                  "antialias^2 times the frame")
-      ->check(CLI::Range(1, 4))
+      ->check(cli::IntegerIn(1, 4))
       ->capture_default_str();
   app.add_option("--edge-antialias", o.edge_antialias,
                  "coverage samples per axis at edge pixels only (silhouettes, object and clip "
@@ -80,11 +80,11 @@ void add_picture_options(CLI::App& app, ViewOptions& o) {
       ->check(soltex::cli::NumberIn(-8.0, 8.0));
   app.add_flag("--false-colour", o.false_colour, "show each pixel's level in false colour");
   app.add_option("--threads", o.threads, "render threads (0: one per core)")
-      ->check(CLI::Range(0, 256));
+      ->check(cli::IntegerIn(0, 256));
   app.add_option("--finest-level", o.finest_level,
                  "finest texture level log2 the picture refines to (0: from the scene's size on "
                  "screen and this machine's memory; the link only sets where it starts)")
-      ->check(CLI::Range(0, 14));
+      ->check(cli::IntegerIn(0, 14));
   app.add_option("--brick-size", o.brick_size,
                  "cells per brick side: 16 draws warm frames faster, 8 fetches fewer bytes and "
                  "converges sooner from a cold start (docs/PERFORMANCE.md)")
@@ -92,10 +92,10 @@ void add_picture_options(CLI::App& app, ViewOptions& o) {
       ->capture_default_str();
   app.add_option("--width", o.width,
                  "frame width (0: the scene's; a window scales the scene's to this machine)")
-      ->check(CLI::Range(0, 16384));
+      ->check(cli::IntegerIn(0, 16384));
   app.add_option("--height", o.height,
                  "frame height (0: the scene's; a window scales the scene's to this machine)")
-      ->check(CLI::Range(0, 16384));
+      ->check(cli::IntegerIn(0, 16384));
 }
 
 MipMode mip_mode(const std::string& mip_name) {

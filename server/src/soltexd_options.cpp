@@ -39,40 +39,40 @@ void add_serving_options(CLI::App& app, ServerConfig& config) {
       ->check(host_port(false))
       ->capture_default_str();
   app.add_option("--cache-mb", config.cache_mb, "encoded-brick cache budget in MiB")
-      ->check(CLI::Range(1, 1 << 20))
+      ->check(cli::IntegerIn(1, 1 << 20))
       ->capture_default_str();
   app.add_option("--threads", config.threads, "brick worker threads (0: one per core)")
-      ->check(CLI::Range(0, 1024))
+      ->check(cli::IntegerIn(0, 1024))
       ->capture_default_str();
   app.add_option("--zstd-level", config.zstd_level,
                  "zstd compression level for bricks; negative levels search fewer matches "
                  "(literals are entropy coded at every level)")
-      ->check(CLI::Range(-1000, 19))
+      ->check(cli::IntegerIn(-1000, 19))
       ->capture_default_str();
   app.add_option("--max-textures", config.max_textures,
                  "textures the registry holds before evicting the least recently used unused one")
-      ->check(CLI::Range(1u, 1u << 20))
+      ->check(cli::IntegerIn(1u, 1u << 20))
       ->capture_default_str();
   app.add_option("--max-keys-per-request", config.max_keys_per_request,
                  "brick keys one BrickRequest may want")
-      ->check(CLI::Range(1u, 1u << 20))
+      ->check(cli::IntegerIn(1u, 1u << 20))
       ->capture_default_str();
   app.add_option("--max-queued-per-stream", config.max_queued_per_stream,
                  "bricks queued on one stream before RESOURCE_EXHAUSTED")
-      ->check(CLI::Range(1u, 1u << 24))
+      ->check(cli::IntegerIn(1u, 1u << 24))
       ->capture_default_str();
   app.add_option("--max-message-bytes", config.max_message_bytes,
                  "largest request message accepted")
-      ->check(CLI::Range(1024u, 1u << 30))
+      ->check(cli::IntegerIn(1024u, 1u << 30))
       ->capture_default_str();
   app.add_option("--coalesce-bricks", config.coalesce_bricks,
                  "bricks a message waits for while more of its stream's bricks are being made "
                  "(1: send each as soon as the previous message is written)")
-      ->check(CLI::Range(1u, 32u))
+      ->check(cli::IntegerIn(1u, 32u))
       ->capture_default_str();
   app.add_option("--coalesce-wait-us", config.coalesce_wait_us,
                  "longest a made brick waits for others to share its message, microseconds")
-      ->check(CLI::Range(0u, 1000000u))
+      ->check(cli::IntegerIn(0u, 1000000u))
       ->capture_default_str();
   app.add_option("--direct-request-share", config.direct_request_share,
                  "threads' worth of time gRPC's threads may spend handling stream requests "
@@ -95,12 +95,12 @@ void add_http_options(CLI::App& app, ServerConfig& config) {
       ->check(host_port(true));
   web->add_option("--http-max-connections", config.http_max_connections,
                   "open HTTP connections; one more is answered 503 and closed")
-      ->check(CLI::Range(1u, 1u << 20))
+      ->check(cli::IntegerIn(1u, 1u << 20))
       ->capture_default_str();
   web->add_option("--http-max-connections-per-client", config.http_max_connections_per_client,
                   "of those, open from one address (--trusted-proxies are not bounded); one "
                   "more is answered 503 and closed")
-      ->check(CLI::Range(1u, 1u << 20))
+      ->check(cli::IntegerIn(1u, 1u << 20))
       ->capture_default_str();
   web->add_option("--http-timeout-s", config.http_timeout_seconds,
                   "seconds a request may take to arrive, a response to be written, or a "
@@ -109,7 +109,7 @@ void add_http_options(CLI::App& app, ServerConfig& config) {
       ->capture_default_str();
   web->add_option("--http-threads", config.http_threads,
                   "HTTP I/O threads (bricks are made on the brick workers)")
-      ->check(CLI::Range(1, 64))
+      ->check(cli::IntegerIn(1, 64))
       ->capture_default_str();
 }
 
@@ -123,12 +123,12 @@ void add_shared_cache_options(CLI::App& app, ServerConfig& config) {
   shared
       ->add_option("--memcached-timeout-ms", config.memcached_timeout_ms,
                    "connect and I/O timeout; a slower node counts as a miss")
-      ->check(CLI::Range(1, 10000))
+      ->check(cli::IntegerIn(1, 10000))
       ->capture_default_str();
   shared
       ->add_option("--memcached-ttl-s", config.memcached_ttl_seconds,
                    "expiry of shared bricks in seconds (0: until evicted)")
-      ->check(CLI::Range(0, 30 * 24 * 3600))
+      ->check(cli::IntegerIn(0, 30 * 24 * 3600))
       ->capture_default_str();
 }
 
@@ -138,13 +138,13 @@ void add_limit_options(CLI::Option_group& security, ServerConfig& config) {
       .add_option("--registry-mb", config.registry_mb,
                   "memory bound of the texture registry in MiB; beyond it the least recently "
                   "used textures no open stream uses are evicted")
-      ->check(CLI::Range(1u, 1u << 16))
+      ->check(cli::IntegerIn(1u, 1u << 16))
       ->capture_default_str();
   security
       .add_option("--max-textures-per-client", config.max_textures_per_client,
                   "textures one client may have registered at once; beyond it its own least "
                   "recently used unused one is evicted")
-      ->check(CLI::Range(1u, 1u << 20))
+      ->check(cli::IntegerIn(1u, 1u << 20))
       ->capture_default_str();
   security
       .add_option("--trusted-proxies", config.trusted_proxies,
@@ -180,12 +180,12 @@ void add_security_options(CLI::App& app, ServerConfig& config) {
   security
       ->add_option("--max-streams-per-client", config.max_streams_per_client,
                    "open brick streams one client (token name, else address) may hold")
-      ->check(CLI::Range(1u, 1u << 20))
+      ->check(cli::IntegerIn(1u, 1u << 20))
       ->capture_default_str();
   security
       ->add_option("--max-queued-per-client", config.max_queued_per_client,
                    "bricks one client may have queued over all its streams")
-      ->check(CLI::Range(1u, 1u << 30))
+      ->check(cli::IntegerIn(1u, 1u << 30))
       ->capture_default_str();
   security->add_flag("--trust-forwarded-for", config.trust_forwarded_for)->group("");  // refused
   add_limit_options(*security, config);
@@ -196,11 +196,11 @@ void add_fault_options(CLI::App& app, ServerConfig& config) {
   faults
       ->add_option("--fault-delay-ms", config.faults.delay_ms,
                    "deliver every brick this many milliseconds late")
-      ->check(CLI::Range(0, 60000));
+      ->check(cli::IntegerIn(0, 60000));
   faults
       ->add_option("--fault-corrupt-every", config.faults.corrupt_every,
                    "flip a payload byte in every Nth brick sent (0: never)")
-      ->check(CLI::Range(0u, 1u << 30));
+      ->check(cli::IntegerIn(0u, 1u << 30));
 }
 
 }  // namespace

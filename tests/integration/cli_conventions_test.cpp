@@ -260,10 +260,36 @@ TEST_F(SoltexdCli, TheOldEnvironmentNameStillWorks) {
       << r.err;
 }
 
+// The message names the option, the bound, and where the value came from when it was not
+// the command line.
 TEST_F(SoltexdCli, AValueFromTheEnvironmentIsValidatedLikeTheOption) {
   const ToolRun r = run_tool(SOLTEXD_BINARY, {}, {{"SOLTEX_CACHE_MB", "0"}});
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("--cache-mb"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--cache-mb: Value 0 not in range [1, 1048576] (from the environment "
+                       "variable SOLTEX_CACHE_MB)"),
+            std::string::npos)
+      << r.err;
+  const ToolRun word = run_tool(SOLTEXD_BINARY, {}, {{"SOLTEX_THREADS", "abc"}});
+  EXPECT_EQ(word.exit_code, 2);
+  EXPECT_NE(word.err.find("--threads: Value abc is not a whole number (from the environment "
+                          "variable SOLTEX_THREADS)"),
+            std::string::npos)
+      << word.err;
+}
+
+TEST_F(SoltexdCli, AConfigFileErrorNamesTheFile) {
+  const std::filesystem::path config = directory_ / "soltexd.toml";
+  std::ofstream(config) << "bogus-key = 3\n";
+  const ToolRun unknown = run_tool(SOLTEXD_BINARY, {"--config", config.string()});
+  EXPECT_EQ(unknown.exit_code, 2);
+  EXPECT_NE(unknown.err.find("config file " + config.string() + ": no option is named bogus-key"),
+            std::string::npos)
+      << unknown.err;
+  std::ofstream(config) << "cache-mb = 0\n";
+  const ToolRun bound = run_tool(SOLTEXD_BINARY, {"--config", config.string()});
+  EXPECT_EQ(bound.exit_code, 2);
+  EXPECT_NE(bound.err.find("(from the config file " + config.string() + ")"), std::string::npos)
+      << bound.err;
 }
 
 TEST_F(SoltexdCli, AnAddressOutsideHostPortExits2NamingTheBound) {
@@ -460,10 +486,10 @@ TEST_F(LoadCliConventions, TakesItsServerFromTheEnvironmentOrEitherName) {
 // the exit code says the run was cut short.
 TEST_F(LoadCliConventions, AServerGoneMidRunExits1) {
   testing::SoltexdProcess soltexd;
-  ToolProcess load(SOLTEX_LOAD_BINARY,
-                   {"--server", soltexd.grpc_address(), "--streams", "2", "--duration-s", "30",
-                    "--no-progress"},
-                   {}, directory_);
+  ToolProcess load(
+      SOLTEX_LOAD_BINARY,
+      {"--server", soltexd.grpc_address(), "--streams", "2", "--duration-s", "30", "--no-progress"},
+      {}, directory_);
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   EXPECT_EQ(soltexd.terminate(), 0) << soltexd.log();
   const ToolRun r = load.finish();

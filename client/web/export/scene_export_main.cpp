@@ -141,7 +141,7 @@ int main(int argc, char** argv) {
   app.add_option("--scene", scene_file, "scene file (docs/SCENES.md); default: the built-in scene");
   app.add_option("--finest-level", finest_level,
                  "2^L cells per axis at level 0 for volumes that leave it to the client")
-      ->check(CLI::Range(4, 14))
+      ->check(soltex::cli::IntegerIn(4, 14))
       ->capture_default_str();
   app.add_option("--out", out_file, "output file")->required();
   if (const auto exit_code = cli::parse(app, "soltex-scene-export", argc, argv)) return *exit_code;

@@ -8,6 +8,7 @@
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
+#include <string_view>
 #include <vector>
 
 #ifndef SOLTEX_PROJECT_VERSION
@@ -68,6 +69,61 @@ void adopt_deprecated(const std::string& tool, const DeprecatedEnvironmentName& 
   setenv(names.new_name, old_value, /*overwrite=*/0);  // the new name wins when both are set
 }
 
+// Every option of the tool and of its subcommands and option groups.
+void collect_options(const CLI::App& app, std::vector<const CLI::Option*>& options) {
+  for (const CLI::Option* option : app.get_options()) options.push_back(option);
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    collect_options(*sub, options);
+  }
+}
+
+// Whether a CLI11 message is about `option` ("--name: ...").
+bool message_names(const std::string& message, const CLI::Option& option) {
+  for (const std::string& name : option.get_lnames()) {
+    if (message.rfind("--" + name + ":", 0) == 0) return true;
+  }
+  return false;
+}
+
+bool on_command_line(const CLI::Option& option, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    for (const std::string& name : option.get_lnames()) {
+      const std::string flag = "--" + name;
+      if (arg == flag || arg.rfind(flag + "=", 0) == 0) return true;
+    }
+  }
+  return false;
+}
+
+// CLI11's message with what it leaves out: the config file an unknown key is in, and where a
+// refused value came from when the command line did not give it.
+std::string with_source(const CLI::App& app, const CLI::ParseError& error, int argc, char** argv) {
+  const std::string message = error.what();
+  const CLI::Option* config = app.get_config_ptr();
+  const std::string config_file =
+      config != nullptr && config->count() > 0 ? config->as<std::string>() : std::string();
+  constexpr std::string_view kUnknownKey = "INI was not able to parse ";
+  if (message.rfind(kUnknownKey, 0) == 0) {
+    return "config file " + config_file + ": no option is named " +
+           message.substr(kUnknownKey.size());
+  }
+  std::vector<const CLI::Option*> options;
+  collect_options(app, options);
+  for (const CLI::Option* option : options) {
+    if (!message_names(message, *option) || on_command_line(*option, argc, argv)) continue;
+    const std::string& variable = option->get_envname();
+    const bool from_environment = !variable.empty() && std::getenv(variable.c_str()) != nullptr;
+    if (from_environment && !config_file.empty()) {
+      return message + " (from the config file " + config_file + " or the environment variable " +
+             variable + ")";
+    }
+    if (from_environment) return message + " (from the environment variable " + variable + ")";
+    if (!config_file.empty()) return message + " (from the config file " + config_file + ")";
+  }
+  return message;
+}
+
 }  // namespace
 
 std::optional<int> parse(CLI::App& app, const std::string& tool, int argc, char** argv,
@@ -77,8 +133,13 @@ std::optional<int> parse(CLI::App& app, const std::string& tool, int argc, char*
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    // app.exit prints help or version on stdout and errors on stderr.
-    return app.exit(e) == 0 ? kExitOk : kExitUsage;
+    // Help and version: app.exit prints them on stdout.
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
+      return app.exit(e) == 0 ? kExitOk : kExitUsage;
+    }
+    std::fprintf(stderr, "%s\nRun with --help for more information.\n",
+                 with_source(app, e, argc, argv).c_str());
+    return kExitUsage;
   }
   return std::nullopt;
 }
@@ -96,6 +157,24 @@ void keep_freed_memory() {
   // 32 MiB is glibc's largest mmap threshold; blocks above it are rare and long-lived here.
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
+}
+
+CLI::Validator IntegerIn(long long min, long long max) {
+  const std::string range = "[" + std::to_string(min) + ", " + std::to_string(max) + "]";
+  return CLI::Validator(
+      [min, max, range](std::string& text) -> std::string {
+        long long value = 0;
+        const char* end = text.data() + text.size();
+        const auto [stop, error] = std::from_chars(text.data(), end, value);
+        if (text.empty() || stop != end || error == std::errc::invalid_argument) {
+          return "Value " + text + " is not a whole number";
+        }
+        if (error == std::errc::result_out_of_range || value < min || value > max) {
+          return "Value " + text + " not in range " + range;
+        }
+        return {};
+      },
+      "INTEGER in " + range);
 }
 
 CLI::Validator NumberIn(double min, double max) {

@@ -45,6 +45,10 @@ std::optional<int> parse(CLI::App& app, const std::string& tool, int argc, char*
 // comparison with NaN is false, so CLI::Range lets it through). For floating-point options.
 CLI::Validator NumberIn(double min, double max);
 
+// A whole number in [min, max], for integer options: text that is not one ("abc", "1.5") is
+// refused as not a whole number rather than as out of range, as CLI::Range words it.
+CLI::Validator IntegerIn(long long min, long long max);
+
 // A server to dial: HOST:PORT (a name, an IPv4 address or a bracketed IPv6 one, the port in
 // [1, 65535]) or a gRPC target with a scheme (unix:PATH, dns:///HOST:PORT, ...), which gRPC
 // parses itself. Refused at parse time: gRPC would wrap a port over 65535 round, and dial
