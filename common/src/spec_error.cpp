@@ -21,4 +21,12 @@ std::string spec_number_text(double v) {
   return std::string(buffer, written.ptr);
 }
 
+std::string spec_number_text(float v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  char buffer[32];
+  const auto written = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, written.ptr);
+}
+
 }  // namespace soltex

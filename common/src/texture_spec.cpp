@@ -25,6 +25,14 @@ class FieldChecker {
                       "must be finite and in " + format_range(lo, hi));
     }
   }
+  // A float field (ramp keys), shown as the float it holds.
+  void in_range(const char* field, float v, float lo, float hi) const {
+    if (!std::isfinite(v) || v < lo || v > hi) {
+      throw SpecError(
+          path(field), spec_number_text(v),
+          "must be finite and in [" + spec_number_text(lo) + ", " + spec_number_text(hi) + "]");
+    }
+  }
   void length(const char* field, double v) const {
     in_range(field, v, SpecLimits::kMinLength, SpecLimits::kMaxLength);
   }
@@ -115,18 +123,18 @@ void check_ramp(const ColourRamp& ramp) {
     const RampKey& key = ramp.keys[i];
     const std::string where = "ramp.keys[" + std::to_string(i) + "]";
     const FieldChecker check(where);
-    check.in_range("position", key.position, previous, 1.0);
-    check.in_range("colour.r", key.colour.r, 0.0, 1.0);
-    check.in_range("colour.g", key.colour.g, 0.0, 1.0);
-    check.in_range("colour.b", key.colour.b, 0.0, 1.0);
+    check.in_range("position", key.position, previous, 1.0f);
+    check.in_range("colour.r", key.colour.r, 0.0f, 1.0f);
+    check.in_range("colour.g", key.colour.g, 0.0f, 1.0f);
+    check.in_range("colour.b", key.colour.b, 0.0f, 1.0f);
     previous = key.position;
   }
 }
 
 void check_scalar_range(const char* name, const ScalarRange& range) {
   const FieldChecker check(name);
-  check.in_range("low", range.low, 0.0, 1.0);
-  check.in_range("high", range.high, 0.0, 1.0);
+  check.in_range("low", range.low, 0.0f, 1.0f);
+  check.in_range("high", range.high, 0.0f, 1.0f);
 }
 
 // A graph gives each channel from an output of its own, so each wanted channel needs one.

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/type_ptr.hpp>
+#include <string>
 
+#include "soltex/common/spec_error.h"
 #include "soltex/raster/raster_view.h"
 #include "soltex/scene/scene_loader.h"
 #include "soltex/scene/texture_volume.h"
@@ -12,6 +14,23 @@ namespace soltex {
 
 // Every plane a scene may name is one the rasterizer can test.
 static_assert(SceneLimits::kMaxClipPlanes <= static_cast<int>(RasterView::kMaxClipPlanes));
+
+namespace {
+
+// The object's brick layout. A volume its material asks for that bricks of this size cannot
+// make (a finest level below the brick's) is refused as the scene file names it.
+BrickLayout object_layout(const Scene& scene, uint32_t index, const Volume& volume,
+                          int brick_size) {
+  try {
+    return BrickLayout(volume, brick_size);
+  } catch (const SpecError& e) {
+    if (e.field().rfind("volume", 0) != 0) throw;
+    const std::string field = "objects[" + std::to_string(index) + "].material." + e.field();
+    throw SpecError(scene.name.empty() ? field : scene.name + ": " + field, e.value(), e.bound());
+  }
+}
+
+}  // namespace
 
 PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolution,
                             net::BrickSource& source) {
@@ -36,7 +55,7 @@ PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolut
     const Volume volume = texture_volume(object, resolution.finest_level_log2);
     PreparedObject p{&object, RasterObject{},
                      model,   object.material.texture,
-                     volume,  BrickLayout(volume, resolution.brick_size),
+                     volume,  object_layout(scene, id, volume, resolution.brick_size),
                      0,       object.material.texture.channels.sample_count()};
     p.raster.mesh = {mesh.positions, mesh.normals, mesh.indices};
     p.raster.model = glm::mat4(model);

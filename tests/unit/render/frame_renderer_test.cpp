@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "soltex/common/brick_cache.h"
+#include "soltex/common/spec_error.h"
 #include "soltex/net/local_brick_source.h"
 #include "soltex/render/prepared_scene.h"
 #include "soltex/scene/default_scene.h"
@@ -45,6 +46,25 @@ Drawn draw_default_scene(bool keep_gbuffer) {
   drawn.converged = frame.image;
   drawn.gbuffer_pixels = renderer.last_gbuffer().pixel_count();
   return drawn;
+}
+
+// A material's finest level below the bricks' own size is refused as the scene file names it.
+TEST(PrepareScene, AVolumeTheBricksCannotMakeNamesItsObject) {
+  Scene scene = default_scene();
+  scene.name = "floors.json";
+  scene.objects[2].material.volume.finest_level_log2 = 3;
+  BrickCache cache(16u << 20);
+  net::LocalBrickSource source(cache);
+  try {
+    (void)prepare_scene(scene, TextureResolution{8, 16, {}}, source);
+    FAIL() << "a finest level of 2^3 with bricks of 16 was accepted";
+  } catch (const SpecError& e) {
+    EXPECT_STREQ(e.what(),
+                 "floors.json: objects[2].material.volume.finest_level_log2 = 3: must be at least "
+                 "log2(brick_size) = 4 so that the coarsest level is one whole brick");
+  }
+  // Bricks of 8 can make it.
+  EXPECT_NO_THROW((void)prepare_scene(scene, TextureResolution{8, 8, {}}, source));
 }
 
 TEST(FrameRenderer, TileGBuffersDrawWhatTheFrameGBufferDraws) {

@@ -93,8 +93,11 @@ TEST(Validated, OctaveBounds) {
 
 TEST(Validated, RampKeys) {
   TextureSpec spec = spec_of(NoiseParams{});
-  spec.ramp.keys = {{0.5f, glm::vec3(0.0f)}, {0.25f, glm::vec3(1.0f)}};
+  spec.ramp.keys = {{0.6f, glm::vec3(0.0f)}, {0.2f, glm::vec3(1.0f)}};
   EXPECT_EQ(error_of(spec).field(), "ramp.keys[1].position");
+  // As the floats they are: not 0.20000000298023224 and 0.6000000238418579.
+  EXPECT_STREQ(error_of(spec).what(),
+               "ramp.keys[1].position = 0.2: must be finite and in [0.6, 1]");
   spec.ramp.keys = {{0.0f, glm::vec3(0.0f, 2.0f, 0.0f)}};
   EXPECT_EQ(error_of(spec).field(), "ramp.keys[0].colour.g");
   spec.ramp.keys.assign(17, RampKey{});

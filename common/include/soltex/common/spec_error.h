@@ -25,5 +25,8 @@ class SpecError : public std::invalid_argument {
 // A number as a SpecError's value or bound shows it: shortest round-trip digits, and nan, inf
 // or -inf spelt out, so that the message names exactly the value that was refused.
 std::string spec_number_text(double v);
+// A float field (a ramp key) with the digits that read back as that float: 0.2, not the
+// 0.20000000298023224 of its double.
+std::string spec_number_text(float v);
 
 }  // namespace soltex
