@@ -235,7 +235,8 @@ HttpBrickServer::HttpBrickServer(const std::string& host, uint16_t port, HttpLim
       tls_(tls ? std::make_unique<HttpTls>(*tls) : nullptr),
       peers_(std::make_shared<PeerConnections>(limits.max_connections_per_client,
                                                limits.unbounded_peers)),
-      acceptor_(io_) {
+      acceptor_(io_),
+      retry_(io_.get_executor(), "HTTP") {
   beast::error_code ec;
   const auto address = net::ip::make_address(host, ec);
   if (ec) throw std::runtime_error("HTTP address '" + host + "' is not an IP address");
@@ -262,48 +263,46 @@ HttpBrickServer::~HttpBrickServer() {
 void HttpBrickServer::accept() {
   acceptor_.async_accept(net::make_strand(io_), [this](beast::error_code ec, tcp::socket socket) {
     if (ec == net::error::operation_aborted) return;  // closed: stopping
-    if (!ec) {
-      const bool full = metrics_.http.connections_open.load(std::memory_order_relaxed) >=
-                        static_cast<int64_t>(limits_.max_connections);
-      if (tls_) {
-        // The session keeps the context it was made with: a reload changes later ones only.
-        const std::shared_ptr<net::ssl::context> context = tls_->context();
-        auto session = std::make_shared<HttpSession<TlsStream>>(std::move(socket), limits_,
-                                                                handler_, metrics_, *context);
-        std::optional<PeerConnections::Slot> slot;
-        if (!full) slot = peers_->open(session->peer_host());
-        if (!slot) {
-          session->close_now();
-        } else {
-          session->hold(std::move(*slot));
-          session->start_with(context);
-        }
-      } else {
-        auto session = std::make_shared<HttpSession<beast::tcp_stream>>(std::move(socket), limits_,
-                                                                        handler_, metrics_);
-        std::optional<PeerConnections::Slot> slot;
-        if (!full) slot = peers_->open(session->peer_host());
-        if (full) {
-          session->refuse("this server has " + std::to_string(limits_.max_connections) +
-                          " HTTP connections open (--http-max-connections)");
-        } else if (!slot) {
-          session->refuse("this client (" + session->peer_host() + ") has " +
-                          std::to_string(limits_.max_connections_per_client) +
-                          " HTTP connections open (--http-max-connections-per-client)");
-        } else {
-          session->hold(std::move(*slot));
-          session->start();
-        }
-      }
-    } else {
-      // Out of file descriptors, say: wait a little rather than spin on the error.
-      spdlog::warn("accepting an HTTP connection failed: {}", ec.message());
-      auto timer = std::make_shared<net::steady_timer>(io_, std::chrono::milliseconds(50));
-      timer->async_wait([this, timer](beast::error_code) { accept(); });
-      return;
-    }
+    if (ec) return retry_.failed(ec, [this] { accept(); });
+    retry_.succeeded();
+    serve(std::move(socket));
     accept();
   });
+}
+
+void HttpBrickServer::serve(tcp::socket socket) {
+  const bool full = metrics_.http.connections_open.load(std::memory_order_relaxed) >=
+                    static_cast<int64_t>(limits_.max_connections);
+  if (tls_) {
+    // The session keeps the context it was made with: a reload changes later ones only.
+    const std::shared_ptr<net::ssl::context> context = tls_->context();
+    auto session = std::make_shared<HttpSession<TlsStream>>(std::move(socket), limits_, handler_,
+                                                            metrics_, *context);
+    std::optional<PeerConnections::Slot> slot;
+    if (!full) slot = peers_->open(session->peer_host());
+    if (!slot) {
+      session->close_now();
+    } else {
+      session->hold(std::move(*slot));
+      session->start_with(context);
+    }
+  } else {
+    auto session = std::make_shared<HttpSession<beast::tcp_stream>>(std::move(socket), limits_,
+                                                                    handler_, metrics_);
+    std::optional<PeerConnections::Slot> slot;
+    if (!full) slot = peers_->open(session->peer_host());
+    if (full) {
+      session->refuse("this server has " + std::to_string(limits_.max_connections) +
+                      " HTTP connections open (--http-max-connections)");
+    } else if (!slot) {
+      session->refuse("this client (" + session->peer_host() + ") has " +
+                      std::to_string(limits_.max_connections_per_client) +
+                      " HTTP connections open (--http-max-connections-per-client)");
+    } else {
+      session->hold(std::move(*slot));
+      session->start();
+    }
+  }
 }
 
 void HttpBrickServer::reload_tls() {
@@ -315,6 +314,7 @@ void HttpBrickServer::stop() {
   net::post(acceptor_.get_executor(), [this] {
     beast::error_code ignored;
     acceptor_.close(ignored);
+    retry_.cancel();
   });
   io_.stop();
   for (std::thread& thread : threads_) thread.join();

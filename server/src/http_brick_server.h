@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "accept_retry.h"
 #include "http_request_handler.h"
 #include "http_tls.h"
 #include "peer_connections.h"
@@ -47,6 +48,8 @@ class HttpBrickServer {
 
  private:
   void accept();
+  // A new connection: a session, or refused when the server or its peer has too many.
+  void serve(boost::asio::ip::tcp::socket socket);
 
   const HttpLimits limits_;
   ServerMetrics& metrics_;
@@ -55,6 +58,7 @@ class HttpBrickServer {
   std::shared_ptr<PeerConnections> peers_;
   boost::asio::io_context io_;
   boost::asio::ip::tcp::acceptor acceptor_;
+  AcceptRetry retry_;
   uint16_t port_ = 0;
   std::vector<std::thread> threads_;
 };

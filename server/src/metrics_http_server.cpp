@@ -18,11 +18,16 @@ using tcp = boost::asio::ip::tcp;
 
 class Session : public std::enable_shared_from_this<Session> {
  public:
-  Session(tcp::socket socket, const MetricsHttpServer::Render& render)
-      : socket_(std::move(socket)), render_(render) {}
+  Session(tcp::socket socket, const MetricsHttpServer::Render& render, int& open_connections)
+      : stream_(std::move(socket)), render_(render), open_connections_(open_connections) {
+    ++open_connections_;
+  }
+  ~Session() { --open_connections_; }
 
   void start() {
-    http::async_read(socket_, buffer_, request_,
+    // The stream closes the socket when the deadline passes, ending the session.
+    stream_.expires_after(MetricsHttpServer::kTimeout);
+    http::async_read(stream_, buffer_, request_,
                      [self = shared_from_this()](beast::error_code ec, std::size_t) {
                        if (!ec) self->respond();
                      });
@@ -50,10 +55,11 @@ class Session : public std::enable_shared_from_this<Session> {
     }
     response_.prepare_payload();
     if (head) response_.body().clear();  // the length stays the page's
-    http::async_write(socket_, response_,
+    stream_.expires_after(MetricsHttpServer::kTimeout);
+    http::async_write(stream_, response_,
                       [self = shared_from_this()](beast::error_code, std::size_t) {
                         beast::error_code ignored;
-                        self->socket_.shutdown(tcp::socket::shutdown_both, ignored);
+                        self->stream_.socket().shutdown(tcp::socket::shutdown_both, ignored);
                       });
   }
 
@@ -71,8 +77,9 @@ class Session : public std::enable_shared_from_this<Session> {
     }
   }
 
-  tcp::socket socket_;
+  beast::tcp_stream stream_;
   const MetricsHttpServer::Render& render_;
+  int& open_connections_;
   beast::flat_buffer buffer_;
   http::request<http::string_body> request_;
   http::response<http::string_body> response_;
@@ -81,7 +88,7 @@ class Session : public std::enable_shared_from_this<Session> {
 }  // namespace
 
 MetricsHttpServer::MetricsHttpServer(const std::string& host, uint16_t port, Render render)
-    : render_(std::move(render)), acceptor_(io_) {
+    : render_(std::move(render)), acceptor_(io_), retry_(io_.get_executor(), "metrics") {
   beast::error_code ec;
   const auto address = boost::asio::ip::make_address(host, ec);
   if (ec) throw std::runtime_error("metrics address '" + host + "' is not an IP address");
@@ -105,8 +112,14 @@ MetricsHttpServer::~MetricsHttpServer() {
 
 void MetricsHttpServer::accept() {
   acceptor_.async_accept([this](beast::error_code ec, tcp::socket socket) {
-    if (ec) return;  // closed: stopping
-    std::make_shared<Session>(std::move(socket), render_)->start();
+    if (ec == boost::asio::error::operation_aborted || !acceptor_.is_open()) return;  // stopping
+    if (ec) return retry_.failed(ec, [this] { accept(); });
+    retry_.succeeded();
+    if (open_connections_ >= kMaxConnections) {
+      spdlog::debug("metrics: {} connections open, closing a new one", open_connections_);
+    } else {
+      std::make_shared<Session>(std::move(socket), render_, open_connections_)->start();
+    }
     accept();
   });
 }
@@ -116,6 +129,7 @@ void MetricsHttpServer::stop() {
   boost::asio::post(io_, [this] {
     beast::error_code ignored;
     acceptor_.close(ignored);
+    retry_.cancel();
   });
   io_.stop();
   thread_.join();
