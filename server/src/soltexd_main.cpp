@@ -1,6 +1,7 @@
 // soltexd: evaluates procedural texture bricks on request and streams them over gRPC.
 #include <absl/synchronization/mutex.h>
 #include <spdlog/spdlog.h>
+#include <sys/resource.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -38,6 +39,21 @@ void write_ready_file(const std::string& path, int grpc_port, int metrics_port, 
   }
 }
 
+// Every connection is a file descriptor, and the soft limit (often 1024) would run out long
+// before the hard one that the administrator set (systemd's LimitNOFILE sets both).
+void raise_descriptor_limit() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_NOFILE, &limit) != 0) return;
+  const rlim_t soft = limit.rlim_cur;
+  if (soft < limit.rlim_max) {
+    limit.rlim_cur = limit.rlim_max;
+    // An unlimited hard limit is over what the kernel allows (fs.nr_open): the soft one stays.
+    if (setrlimit(RLIMIT_NOFILE, &limit) != 0) limit.rlim_cur = soft;
+  }
+  spdlog::debug("file descriptor limit {} (was {}, hard limit {})", limit.rlim_cur, soft,
+                limit.rlim_max);
+}
+
 // `address` (HOST:PORT) with the port the daemon bound, which port 0 leaves to the system.
 std::string bound_address(const std::string& address, int port) {
   const std::string host = soltex::server::parse_host_port(address).host;
@@ -72,6 +88,7 @@ int main(int argc, char** argv) {
   // gRPC locks abseil mutexes several times per message; Debian's abseil tracks their lock
   // order for deadlock detection on every acquisition unless told not to.
   absl::SetMutexDeadlockDetectionMode(absl::OnDeadlockCycle::kIgnore);
+  raise_descriptor_limit();
 
   std::unique_ptr<soltex::server::Daemon> daemon;
   try {
