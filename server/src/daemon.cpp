@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "soltex/common/brick_layout.h"
+#include "soltex/common/text_file.h"
 #include "soltex/graph/graph_limits.h"
 
 namespace soltex::server {
@@ -183,6 +184,42 @@ Daemon::Daemon(const ServerConfig& config)
   // Health answers for the service by name as well as for the server ("").
   server_->GetHealthCheckService()->SetServingStatus(v1::BrickService::service_full_name(), true);
   server_->GetHealthCheckService()->SetServingStatus(true);
+  start_watchdog();
+}
+
+void Daemon::start_watchdog() {
+  if (config_.listen_watchdog_seconds <= 0.0) return;
+  ListenerWatchdog::Config watchdog;
+  watchdog.target = self_target(config_.listen, grpc_port_);
+  watchdog.credentials = self_credentials(config_.tls_cert_file, config_.tls_key_file);
+  if (!watchdog.credentials) {
+    spdlog::warn("no credentials to check the gRPC listener with: --listen-watchdog-s is off");
+    return;
+  }
+  if (tls_) {
+    watchdog.tls_server_name =
+        certificate_name(read_text_file(config_.tls_cert_file, "TLS certificate"));
+  }
+  watchdog.interval = std::chrono::milliseconds(
+      std::max<int64_t>(1, static_cast<int64_t>(config_.listen_watchdog_seconds * 1000.0)));
+  watchdog.deadline = std::min(watchdog.interval, std::chrono::milliseconds(5000));
+  spdlog::debug("checking that gRPC accepts connections on {} every {} ms", watchdog.target,
+                watchdog.interval.count());
+  watchdog_ =
+      std::make_unique<ListenerWatchdog>(watchdog, [this](const std::string& why) { fail(why); });
+}
+
+void Daemon::fail(const std::string& why) {
+  spdlog::critical("{}; shutting down to exit 1, for a supervisor to restart soltexd", why);
+  failed_ = true;
+  std::lock_guard lock(failure_mutex_);
+  if (on_failure_) on_failure_();
+}
+
+void Daemon::on_failure(std::function<void()> stop) {
+  std::lock_guard lock(failure_mutex_);
+  on_failure_ = std::move(stop);
+  if (on_failure_ && failed_) on_failure_();
 }
 
 Daemon::~Daemon() {
@@ -245,6 +282,7 @@ void Daemon::finish_calls_within_grace() {
 void Daemon::shut_down() {
   if (shut_down_) return;
   shut_down_ = true;
+  if (watchdog_) watchdog_->stop();
   spdlog::info("shutting down: health NOT_SERVING, open streams get {} s to send what they owe",
                config_.shutdown_grace_seconds);
   server_->GetHealthCheckService()->SetServingStatus(false);

@@ -3,7 +3,9 @@
 #include <grpcpp/grpcpp.h>
 
 #include <atomic>
+#include <functional>
 #include <memory>
+#include <mutex>
 
 #include "brick_producer.h"
 #include "brick_scheduler.h"
@@ -12,6 +14,7 @@
 #include "client_access.h"
 #include "fault_injection.h"
 #include "http_brick_server.h"
+#include "listener_watchdog.h"
 #include "metrics_http_server.h"
 #include "refusal_log.h"
 #include "reloadable_tls.h"
@@ -44,8 +47,17 @@ class Daemon {
   // connections after it use what was read. On an error (logged, counted) the old ones stay.
   void reload();
 
+  // `stop` is called, from another thread, when the daemon can no longer serve and should
+  // shut down and exit non-zero (failed() says so): its gRPC listener accepts no connection.
+  // At once when that has already happened; nullptr: forget it (before `stop` goes stale).
+  void on_failure(std::function<void()> stop);
+  bool failed() const { return failed_.load(); }
+
  private:
   void finish_calls_within_grace();
+  void start_watchdog();
+  void fail(const std::string& why);
+
   ServerConfig config_;
   ServerMetrics metrics_state_;
   ClientAccess access_;
@@ -60,7 +72,11 @@ class Daemon {
   std::unique_ptr<BrickServiceImpl> service_;
   std::unique_ptr<grpc::Server> server_;
   std::unique_ptr<MetricsHttpServer> metrics_;
-  std::unique_ptr<HttpBrickServer> http_;  // null: no --http-listen
+  std::unique_ptr<HttpBrickServer> http_;       // null: no --http-listen
+  std::unique_ptr<ListenerWatchdog> watchdog_;  // null: --listen-watchdog-s 0
+  std::mutex failure_mutex_;
+  std::function<void()> on_failure_;
+  std::atomic<bool> failed_{false};
   int grpc_port_ = 0;
   bool shut_down_ = false;
   std::atomic<uint64_t> reloads_ok_{0};

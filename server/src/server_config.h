@@ -35,6 +35,10 @@ struct ServerConfig {
   // it a request waits for a brick worker's turn, shared fairly between clients.
   double direct_request_share = 1.0;
   double shutdown_grace_seconds = 5.0;
+  // Every this many seconds soltexd calls its own health service over a new connection, and
+  // exits 1 after three calls in a row get no answer: gRPC accepts no connection any more
+  // (ListenerWatchdog). 0: off.
+  double listen_watchdog_seconds = 5.0;
   std::string ready_file;  // written once listening: "grpc=PORT\nmetrics=PORT\n[http=PORT\n]"
 
   // HTTP bricks (docs/PROTOCOL.md, HTTP): off while empty.

@@ -21,7 +21,9 @@ void wait_for_signals(Daemon& daemon) {
         signals.async_wait(on_signal);
       };
   signals.async_wait(on_signal);
+  daemon.on_failure([&io] { io.stop(); });
   io.run();
+  daemon.on_failure(nullptr);
 }
 
 }  // namespace soltex::server

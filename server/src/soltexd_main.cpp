@@ -114,7 +114,8 @@ int main(int argc, char** argv) {
     }
   }
 
-  soltex::server::wait_for_signals(*daemon);  // SIGHUP reloads; SIGINT or SIGTERM returns
+  // SIGHUP reloads; SIGINT, SIGTERM or a failure (--listen-watchdog-s) returns.
+  soltex::server::wait_for_signals(*daemon);
   daemon->shut_down();
-  return 0;
+  return daemon->failed() ? soltex::cli::kExitFailure : soltex::cli::kExitOk;
 }

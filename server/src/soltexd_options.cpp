@@ -84,6 +84,13 @@ void add_serving_options(CLI::App& app, ServerConfig& config) {
                  "seconds open calls get to finish on SIGINT/SIGTERM (--shutdown-grace: old name)")
       ->check(soltex::cli::NumberIn(0.0, 600.0))
       ->capture_default_str();
+  app.add_option("--listen-watchdog-s", config.listen_watchdog_seconds,
+                 "every this many seconds call soltexd's own health service over a new connection; "
+                 "three calls in a row without an answer (gRPC accepts no connection any more, "
+                 "as after running out of file descriptors) exit 1 for a supervisor to restart "
+                 "soltexd (0: off)")
+      ->check(soltex::cli::NumberIn(0.0, 3600.0))
+      ->capture_default_str();
   app.add_option("--ready-file", config.ready_file,
                  "once listening, write 'grpc=PORT', 'metrics=PORT' (and 'http=PORT') lines here");
 }
