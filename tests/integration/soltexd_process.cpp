@@ -1,6 +1,7 @@
 #include "soltexd_process.h"
 
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -32,7 +33,7 @@ std::string make_directory() {
 
 }  // namespace
 
-SoltexdProcess::SoltexdProcess(std::vector<std::string> extra_args, int port)
+SoltexdProcess::SoltexdProcess(std::vector<std::string> extra_args, int port, int max_descriptors)
     : directory_(make_directory()) {
   const std::string ready = directory_ + "/ready";
   const std::string log_path = directory_ + "/log";
@@ -50,7 +51,7 @@ SoltexdProcess::SoltexdProcess(std::vector<std::string> extra_args, int port)
       }) != extra_args.end();
   if (!grace_given) args.insert(args.end(), {"--shutdown-grace-s", "2"});
   args.insert(args.end(), extra_args.begin(), extra_args.end());
-  pid_ = spawn_process(std::move(args), log_path);
+  pid_ = spawn_process(std::move(args), log_path, max_descriptors);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   while (std::chrono::steady_clock::now() < deadline) {
     std::ifstream in(ready);
@@ -80,12 +81,12 @@ SoltexdProcess::~SoltexdProcess() {
 int SoltexdProcess::terminate() {
   if (pid_ <= 0) return -1;
   kill(pid_, SIGTERM);
-  return wait_for_exit();
+  return wait_for_exit(std::chrono::seconds(30));
 }
 
-int SoltexdProcess::wait_for_exit() {
+int SoltexdProcess::wait_for_exit(std::chrono::milliseconds timeout) {
   if (pid_ <= 0) return -1;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
   int status = 0;
   while (std::chrono::steady_clock::now() < deadline) {
     if (waitpid(pid_, &status, WNOHANG) == pid_) {
@@ -112,13 +113,19 @@ std::string SoltexdProcess::log() const {
   return text.str();
 }
 
-pid_t spawn_process(std::vector<std::string> args, const std::string& log_path) {
+pid_t spawn_process(std::vector<std::string> args, const std::string& log_path,
+                    int max_descriptors) {
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error("fork failed");
   if (pid == 0) {
     if (!log_path.empty()) {
       FILE* log = std::freopen(log_path.c_str(), "w", stdout);
       if (log != nullptr) dup2(fileno(stdout), STDERR_FILENO);
+    }
+    if (max_descriptors > 0) {
+      const rlimit limit{static_cast<rlim_t>(max_descriptors),
+                         static_cast<rlim_t>(max_descriptors)};
+      setrlimit(RLIMIT_NOFILE, &limit);
     }
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());

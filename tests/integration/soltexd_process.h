@@ -2,6 +2,7 @@
 
 #include <sys/types.h>
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -13,21 +14,24 @@ class SoltexdProcess {
  public:
   // Starts `binary` with --listen 127.0.0.1:PORT (default 0: a free port chosen by the
   // kernel) --metrics-listen 127.0.0.1:0 plus `extra_args`, and waits (up to 20 s) until it
-  // has written its ready file.
-  explicit SoltexdProcess(std::vector<std::string> extra_args = {}, int port = 0);
+  // has written its ready file. `max_descriptors` > 0: its RLIMIT_NOFILE, soft and hard.
+  explicit SoltexdProcess(std::vector<std::string> extra_args = {}, int port = 0,
+                          int max_descriptors = 0);
   ~SoltexdProcess();
 
   SoltexdProcess(const SoltexdProcess&) = delete;
   SoltexdProcess& operator=(const SoltexdProcess&) = delete;
 
   std::string grpc_address() const { return "127.0.0.1:" + std::to_string(grpc_port_); }
+  int grpc_port() const { return grpc_port_; }
   int metrics_port() const { return metrics_port_; }
   int http_port() const { return http_port_; }  // 0 without --http-listen
 
   // Sends SIGTERM and returns the exit status (or -signal if killed), waiting up to 30 s.
   int terminate();
-  // The exit status of a server already told to stop (send_signal), waiting up to 30 s.
-  int wait_for_exit();
+  // Waits up to `timeout` (a server told to stop: send_signal) for it to exit: its exit status
+  // (or -signal), or -1000 while it still runs.
+  int wait_for_exit(std::chrono::milliseconds timeout = std::chrono::seconds(30));
   // SIGKILL: the server dies mid-stream, as in a crash.
   void kill_now();
   // Sends `signal` (SIGHUP: reload) and returns at once.
@@ -45,8 +49,10 @@ class SoltexdProcess {
 };
 
 // Starts args[0] (a path) with the rest of `args` as a child process, its stdout and stderr
-// going to `log_path` when one is given; returns its pid. Throws when fork() fails.
-pid_t spawn_process(std::vector<std::string> args, const std::string& log_path = "");
+// going to `log_path` when one is given, with at most `max_descriptors` open files when that
+// is > 0; returns its pid. Throws when fork() fails.
+pid_t spawn_process(std::vector<std::string> args, const std::string& log_path = "",
+                    int max_descriptors = 0);
 
 // SIGKILLs the child `pid` and reaps it, then sets `pid` to -1; nothing when pid <= 0.
 void kill_and_reap(pid_t& pid);
