@@ -12,21 +12,27 @@ SpecError::SpecError(std::string field, std::string value, std::string bound)
       value_(std::move(value)),
       bound_(std::move(bound)) {}
 
-std::string spec_number_text(double v) {
+namespace {
+
+// The shortest digits that read back as v in its own type: 1e-06, not %.17g's
+// 9.9999999999999995e-07; 0.2 for the float 0.2, not its double's 0.20000000298023224.
+template <typename Float>
+std::string shortest_text(Float v) {
   if (std::isnan(v)) return "nan";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  // The shortest digits that read back as v: 1e-06, not %.17g's 9.9999999999999995e-07.
   char buffer[32];
   const auto written = std::to_chars(buffer, buffer + sizeof buffer, v);
   return std::string(buffer, written.ptr);
 }
 
+}  // namespace
+
+std::string spec_number_text(double v) {
+  return shortest_text(v);
+}
+
 std::string spec_number_text(float v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char buffer[32];
-  const auto written = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, written.ptr);
+  return shortest_text(v);
 }
 
 }  // namespace soltex

@@ -341,7 +341,7 @@ TEST_F(SoltexdCli, OptionsThatDoNotGoTogetherOrAFileThatDoesNotParseExit2) {
 }
 
 TEST_F(SoltexdCli, AReadyFileThatCannotBeWrittenExits1) {
-  for (const std::filesystem::path path : {directory_ / "no-such-folder" / "ready", directory_}) {
+  for (const std::filesystem::path& path : {directory_ / "no-such-folder" / "ready", directory_}) {
     const ToolRun r = run_tool(SOLTEXD_BINARY, {"--listen", "127.0.0.1:0", "--metrics-listen",
                                                 "127.0.0.1:0", "--ready-file", path.string()});
     EXPECT_EQ(r.exit_code, 1) << path << ": " << r.err;

@@ -224,7 +224,7 @@ TEST(MetricsPage, MethodsThatDoNotExistShareOneSeries) {
 TEST(MetricsPage, AUnaryRequestThatDoesNotParseIsInvalidArgumentNamingItsType) {
   SoltexdProcess server({"--threads", "1"});
   // A varint that never ends, and a field of wire type 5 cut short.
-  for (const std::string bytes : {std::string("\xff\xff\xff\xff\x0f"), std::string("\x0d\x00")}) {
+  for (const std::string& bytes : {std::string("\xff\xff\xff\xff\x0f"), std::string("\x0d\x00")}) {
     for (const std::string type : {"RegisterTextureRequest", "GetServerInfoRequest"}) {
       const std::string method =
           type == "RegisterTextureRequest" ? "RegisterTexture" : "GetServerInfo";
