@@ -19,13 +19,20 @@ namespace {
 
 using soltex::server::ServerConfig;
 
+// What clients dial for gRPC: the port bound, or the socket of a unix: address (which has no
+// port; gRPC reports 1 for it).
+std::string grpc_endpoint(const ServerConfig& config, int port) {
+  return config.listen.rfind("unix:", 0) == 0 ? config.listen : std::to_string(port);
+}
+
 // Throws std::runtime_error naming the file and why it could not be written.
-void write_ready_file(const std::string& path, int grpc_port, int metrics_port, int http_port) {
+void write_ready_file(const std::string& path, const std::string& grpc, int metrics_port,
+                      int http_port) {
   // Written to a temporary name and renamed, so a reader never sees half a file.
   const std::string temporary = path + ".tmp";
   {
     std::ofstream out(temporary);
-    out << "grpc=" << grpc_port << "\nmetrics=" << metrics_port << "\n";
+    out << "grpc=" << grpc << "\nmetrics=" << metrics_port << "\n";
     if (http_port != 0) out << "http=" << http_port << "\n";
     out.close();
     if (!out) throw std::runtime_error("--ready-file: cannot write " + temporary);
@@ -36,6 +43,14 @@ void write_ready_file(const std::string& path, int grpc_port, int metrics_port, 
     std::filesystem::remove(temporary, error);
     throw std::runtime_error("--ready-file: cannot rename " + temporary + " to " + path + ": " +
                              error.message());
+  }
+}
+
+// Only a file: a --ready-file naming a folder by mistake is refused when written, not removed.
+void remove_ready_file(const std::string& path) {
+  std::error_code ignored;
+  if (!path.empty() && std::filesystem::is_regular_file(path, ignored)) {
+    std::filesystem::remove(path, ignored);
   }
 }
 
@@ -90,6 +105,10 @@ int main(int argc, char** argv) {
   absl::SetMutexDeadlockDetectionMode(absl::OnDeadlockCycle::kIgnore);
   raise_descriptor_limit();
 
+  // A ready file says "serving now": one left by an earlier run must not say so for this one
+  // before it listens, nor after a failed start.
+  remove_ready_file(config.ready_file);
+
   std::unique_ptr<soltex::server::Daemon> daemon;
   try {
     daemon = std::make_unique<soltex::server::Daemon>(config);
@@ -97,16 +116,17 @@ int main(int argc, char** argv) {
     spdlog::critical("{}", e.what());
     return soltex::cli::kExitFailure;
   }
-  spdlog::info("soltexd {} listening on {} (gRPC port {}), metrics on http://{}/metrics",
-               SOLTEX_VERSION, config.listen, daemon->grpc_port(),
+  const std::string grpc = grpc_endpoint(config, daemon->grpc_port());
+  spdlog::info("soltexd {} listening on {}, metrics on http://{}/metrics", SOLTEX_VERSION,
+               grpc == config.listen ? grpc : bound_address(config.listen, daemon->grpc_port()),
                bound_address(config.metrics_listen, daemon->metrics_port()));
   if (daemon->http_port() != 0) {
-    spdlog::info("HTTP bricks on {} (port {})", config.http_listen, daemon->http_port());
+    spdlog::info("HTTP bricks on http://{}",
+                 bound_address(config.http_listen, daemon->http_port()));
   }
   if (!config.ready_file.empty()) {
     try {
-      write_ready_file(config.ready_file, daemon->grpc_port(), daemon->metrics_port(),
-                       daemon->http_port());
+      write_ready_file(config.ready_file, grpc, daemon->metrics_port(), daemon->http_port());
     } catch (const std::runtime_error& e) {
       spdlog::critical("{}", e.what());
       daemon->shut_down();
@@ -116,6 +136,7 @@ int main(int argc, char** argv) {
 
   // SIGHUP reloads; SIGINT, SIGTERM or a failure (--listen-watchdog-s) returns.
   soltex::server::wait_for_signals(*daemon);
+  remove_ready_file(config.ready_file);  // not ready any more from the moment shutdown begins
   daemon->shut_down();
   return daemon->failed() ? soltex::cli::kExitFailure : soltex::cli::kExitOk;
 }

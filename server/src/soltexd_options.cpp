@@ -92,7 +92,8 @@ void add_serving_options(CLI::App& app, ServerConfig& config) {
       ->check(soltex::cli::NumberIn(0.0, 3600.0))
       ->capture_default_str();
   app.add_option("--ready-file", config.ready_file,
-                 "once listening, write 'grpc=PORT', 'metrics=PORT' (and 'http=PORT') lines here");
+                 "once listening, write 'grpc=PORT' (or 'grpc=unix:PATH'), 'metrics=PORT' (and "
+                 "'http=PORT') lines here; removed when shutdown begins");
 }
 
 void add_http_options(CLI::App& app, ServerConfig& config) {

@@ -314,9 +314,25 @@ TEST_F(SoltexdCli, TheGrpcAddressMayBeAUnixSocket) {
                       {}, directory_);
   ASSERT_TRUE(wait_for_file(ready)) << "soltexd refused --listen unix:PATH";
   EXPECT_TRUE(std::filesystem::is_socket(socket));
+  EXPECT_EQ(file_text(ready).substr(0, file_text(ready).find('\n')),
+            "grpc=unix:" + socket.string());
   soltexd.signal(SIGTERM);
   const ToolRun r = soltexd.finish();
   EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("listening on unix:" + socket.string() + ","), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(ready)) << "the ready file outlived the server";
+}
+
+// A ready file left by an earlier run does not announce a server that failed to start.
+TEST_F(SoltexdCli, AStaleReadyFileIsRemovedBeforeListening) {
+  const std::filesystem::path ready = directory_ / "ready";
+  std::ofstream(ready) << "grpc=1111\nmetrics=2222\n";
+  testing::SoltexdProcess first;
+  const std::string taken = first.grpc_address();
+  const ToolRun r = run_tool(SOLTEXD_BINARY, {"--listen", taken, "--metrics-listen", "127.0.0.1:0",
+                                              "--ready-file", ready.string()});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(ready)) << file_text(ready);
 }
 
 TEST_F(SoltexdCli, OptionsThatDoNotGoTogetherOrAFileThatDoesNotParseExit2) {
