@@ -202,7 +202,10 @@ void Daemon::start_watchdog() {
   }
   watchdog.interval = std::chrono::milliseconds(
       std::max<int64_t>(1, static_cast<int64_t>(config_.listen_watchdog_seconds * 1000.0)));
-  watchdog.deadline = std::min(watchdog.interval, std::chrono::milliseconds(5000));
+  // A dead listener never answers, so a long wait costs only detection time; a short one would
+  // count a busy server's slow answer as a miss.
+  watchdog.deadline = std::clamp(watchdog.interval, std::chrono::milliseconds(2000),
+                                 std::chrono::milliseconds(5000));
   spdlog::debug("checking that gRPC accepts connections on {} every {} ms", watchdog.target,
                 watchdog.interval.count());
   watchdog_ =

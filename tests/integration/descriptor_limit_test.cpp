@@ -132,8 +132,8 @@ TEST(DescriptorLimit, AGrpcListenerOutOfDescriptorsKeepsAnsweringOrExitsOne) {
     // gRPC has taken what it can when it says so; soltexd's watchdog must not act before.
     (void)log_shows(server, "Too many open files", 5s);
   }
-  // Either gRPC accepts again, or the watchdog ends soltexd within about three periods (a
-  // probe waits at most one period for its answer). The bound only keeps a hang from lasting.
+  // Either gRPC accepts again, or the watchdog ends soltexd after three probes unanswered (each
+  // waits 2 s for its answer). The bound only keeps a hang from lasting.
   const auto deadline = std::chrono::steady_clock::now() + 60s;
   while (std::chrono::steady_clock::now() < deadline) {
     const int exit_status = server.wait_for_exit(500ms);
