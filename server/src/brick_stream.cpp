@@ -84,7 +84,9 @@ void BrickStream::count_queued(int64_t delta) {
 BrickStream::ServerReactor* BrickStream::start() {
   std::lock_guard lock(mutex_);
   reactor_ = new Reactor(shared_from_this());
-  spdlog::info("stream {} opened by {}", id_, peer_);
+  // One info line per stream, when it closes with its totals; many short streams would
+  // otherwise double the log.
+  spdlog::debug("stream {} opened by {}", id_, peer_);
   pump();
   return reactor_;
 }
@@ -529,10 +531,11 @@ void BrickStream::pump() {
   if (finish) {
     finished_ = true;
     coalesce_timer_.cancel();  // nothing more to send: let go of the stream now, not at the wait
-    spdlog::info("stream {} closed ({}): {} bricks in {} messages, {} bytes, {} errors in {:.1f} s",
-                 id_, status.ok() ? "OK" : status.error_message(), bricks_sent_, batches_sent_,
-                 bytes_sent_, errors_sent_,
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - opened_).count());
+    spdlog::info(
+        "stream {} from {} closed ({}): {} bricks in {} messages, {} bytes, {} errors in {:.1f} s",
+        id_, peer_, status.ok() ? "OK" : status.error_message(), bricks_sent_, batches_sent_,
+        bytes_sent_, errors_sent_,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - opened_).count());
     reactor_->Finish(status);
   }
 }

@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include "daemon.h"
+#include "grpc_log_bridge.h"
 #include "signal_wait.h"
 #include "soltex/cli/tool_cli.h"
 #include "soltexd_options.h"
@@ -99,6 +100,7 @@ int main(int argc, char** argv) {
     return soltex::cli::kExitUsage;
   }
   soltex::cli::start_logging("soltexd", config.log_level, soltex::cli::LogStyle::timestamped);
+  soltex::server::route_grpc_logs_to_spdlog();
   soltex::cli::keep_freed_memory();
   // gRPC locks abseil mutexes several times per message; Debian's abseil tracks their lock
   // order for deadlock detection on every acquisition unless told not to.
