@@ -244,6 +244,24 @@ HttpLoadResult run_http_load(const LoadOptions& options) {
   return result;
 }
 
+namespace {
+
+// A header and one row, as the gRPC mode's CSV, for a spreadsheet of runs.
+std::string format_http_csv(const HttpLoadResult& r) {
+  uint64_t not_ok = 0;  // answers other than 200
+  for (const auto& [status, n] : r.statuses) not_ok += status == 200 ? 0 : n;
+  std::ostringstream out;
+  out << "mode,texture_id,connections,measured_s,requests,bricks,bricks_per_s,bytes,p50_ms,"
+         "p90_ms,p99_ms,max_ms,not_ok_responses,checksum_failures,connection_errors\n";
+  out << "http," << r.texture_id << "," << r.connections << "," << r.seconds << "," << r.requests
+      << "," << r.bricks << "," << r.bricks_per_second << "," << r.bytes << "," << r.p50_us / 1e3
+      << "," << r.p90_us / 1e3 << "," << r.p99_us / 1e3 << "," << r.max_us / 1e3 << "," << not_ok
+      << "," << r.checksum_failures << "," << r.connection_errors << "\n";
+  return out.str();
+}
+
+}  // namespace
+
 std::string format_http_result(const HttpLoadResult& r, OutputFormat format) {
   if (format == OutputFormat::json) {
     nlohmann::json out;
@@ -265,6 +283,7 @@ std::string format_http_result(const HttpLoadResult& r, OutputFormat format) {
     out["connection_errors"] = r.connection_errors;
     return out.dump(2) + "\n";
   }
+  if (format == OutputFormat::csv) return format_http_csv(r);
   std::ostringstream out;
   out << "http load: " << r.connections << " keep-alive connections, " << r.seconds
       << " s measured, texture " << r.texture_id << "\n";

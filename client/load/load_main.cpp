@@ -46,6 +46,16 @@ int main(int argc, char** argv) {
                  options.in_flight, options.hot_set, options.hot_set);
   }
   if (options.http) {
+    // gRPC's knobs: an HTTP run has no streams, and one request at a time per connection.
+    for (const char* name : {"--streams", "--in-flight"}) {
+      if (app.get_option(name)->count() > 0) {
+        std::fprintf(stderr,
+                     "soltex-load: %s does not apply to --http, which sends one request at a time "
+                     "on each of --connections\n",
+                     name);
+        return cli::kExitUsage;
+      }
+    }
     try {
       std::cout << format_http_result(run_http_load(options), options.format) << std::flush;
     } catch (const LoadOptionsError& e) {

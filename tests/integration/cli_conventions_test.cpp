@@ -514,6 +514,16 @@ TEST_F(LoadCliConventions, AServerGoneMidRunExits1) {
   EXPECT_NE(r.err.find("streams ended with an error"), std::string::npos) << r.err;
 }
 
+TEST_F(LoadCliConventions, GrpcOnlyOptionsWithHttpExit2) {
+  for (const char* option : {"--streams", "--in-flight"}) {
+    const ToolRun r =
+        run_tool(SOLTEX_LOAD_BINARY, {"--http", "--server", "127.0.0.1:1", option, "4"});
+    EXPECT_EQ(r.exit_code, 2) << option << ": " << r.err;
+    EXPECT_NE(r.err.find(std::string(option) + " does not apply to --http"), std::string::npos)
+        << r.err;
+  }
+}
+
 TEST_F(LoadCliConventions, WithoutAServerItExits2NamingServer) {
   const ToolRun r = run_tool(SOLTEX_LOAD_BINARY, {"--count", "1"});
   EXPECT_EQ(r.exit_code, 2);

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "http_load.h"
 #include "load_generator.h"
 #include "load_options.h"
 #include "load_report.h"
@@ -316,6 +317,24 @@ TEST(SoltexLoad, CsvIsAHeaderAndOneRow) {
   EXPECT_FALSE(std::getline(lines, extra));
   EXPECT_EQ(std::count(header.begin(), header.end(), ','), std::count(row.begin(), row.end(), ','));
   EXPECT_NE(row.find(",5.000,"), std::string::npos) << row;  // 10 bricks in 2 s
+}
+
+TEST(SoltexLoad, HttpCsvIsAHeaderAndOneRowToo) {
+  HttpLoadResult result;
+  result.connections = 4;
+  result.bricks = 10;
+  result.statuses = {{200, 10}, {404, 2}};
+  result.p50_us = 1500.0;
+  const std::string csv = format_http_result(result, OutputFormat::csv);
+  std::istringstream lines(csv);
+  std::string header, row, extra;
+  ASSERT_TRUE(std::getline(lines, header));
+  ASSERT_TRUE(std::getline(lines, row));
+  EXPECT_FALSE(std::getline(lines, extra));
+  EXPECT_EQ(std::count(header.begin(), header.end(), ','), std::count(row.begin(), row.end(), ','));
+  EXPECT_EQ(row.substr(0, 5), "http,") << row;
+  EXPECT_NE(row.find(",1.5,"), std::string::npos) << row;   // p50 in ms
+  EXPECT_NE(row.find(",2,0,0"), std::string::npos) << row;  // two answers other than 200
 }
 
 }  // namespace
