@@ -173,8 +173,10 @@ void add_load_options(CLI::App& app, LoadOptions& o) {
                "--connections keep-alive connections, one request at a time each");
   app.add_option("--connections", o.connections,
                  "gRPC channels (separate TCP connections); with --http, HTTP connections")
+      ->check(soltex::cli::IntegerIn(1, LoadBounds::kMaxConnections))
       ->capture_default_str();
   app.add_option("--streams", o.streams, "StreamBricks streams, spread over the connections")
+      ->check(soltex::cli::IntegerIn(1, LoadBounds::kMaxStreams))
       ->capture_default_str();
 
   app.add_option("--duration-s,--duration", o.duration_seconds,
@@ -190,6 +192,7 @@ void add_load_options(CLI::App& app, LoadOptions& o) {
 
   app.add_option("--in-flight", o.in_flight,
                  "closed loop: bricks outstanding per stream (ignored with --rate)")
+      ->check(soltex::cli::IntegerIn(1, LoadBounds::kMaxInFlight))
       ->capture_default_str();
   app.add_option("--rate", o.rate,
                  "open loop: bricks per second over all streams, sent at fixed intervals; latency "
@@ -199,7 +202,9 @@ void add_load_options(CLI::App& app, LoadOptions& o) {
              "hot: a small repeated key set (cache hits); uniform: random bricks of every "
              "level (mostly cold); replay: a recorded request log",
              mix_name(o.mix));
-  app.add_option("--hot-set", o.hot_set, "distinct keys of the hot mix")->capture_default_str();
+  app.add_option("--hot-set", o.hot_set, "distinct keys of the hot mix")
+      ->check(soltex::cli::IntegerIn(1, LoadBounds::kMaxHotSet))
+      ->capture_default_str();
   app.add_option(
       "--replay-file", o.replay_file,
       "request log for --mix replay: a '# soltex-request-log 1' header, then one line per "
@@ -215,6 +220,7 @@ void add_load_options(CLI::App& app, LoadOptions& o) {
   add_choice(app, "--pattern", o.pattern, patterns, "texture registered for the run",
              pattern_kind_name(o.pattern));
   app.add_option("--finest-level", o.finest_level, "L: 2^L cells per axis at level 0")
+      ->check(soltex::cli::IntegerIn(4, 14))
       ->capture_default_str();
   app.add_option("--brick-size", o.brick_size, "B: 8 or 16 cells per brick edge")
       ->capture_default_str();

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "soltex/common/quoted_text.h"
 #include "soltex/common/texture_id.h"
 #include "soltex/spec_proto/brick_proto.h"
 #include "texture_registration.h"
@@ -132,9 +133,12 @@ void BrickStream::handle_request() {
       if (parsed.ok()) {
         added = accept_request();
       } else {
-        add_request_error(grpc::StatusCode::INVALID_ARGUMENT,
-                          "request message is not a soltex.v1.BrickRequest (" +
-                              parsed.error_message() + "); nothing in it was queued");
+        const std::string why = parsed.error_message().empty()
+                                    ? std::string()
+                                    : " (" + quoted_text(parsed.error_message()) + ")";
+        add_request_error(
+            grpc::StatusCode::INVALID_ARGUMENT,
+            "request message is not a soltex.v1.BrickRequest" + why + "; nothing in it was queued");
       }
     }
     unhandled_request_.Clear();

@@ -7,12 +7,14 @@
 #include "soltex/common/quoted_text.h"
 #include "soltex/common/spec_error.h"
 #include "soltex/common/texture_id.h"
+#include "soltex/common/texture_spec.h"
 #include "soltex/scene/scene_error.h"
 #include "soltex/scene/strict_json.h"
 #include "soltex/scene/texture_spec_json.h"
 #include "soltex/spec_proto/brick_proto.h"
 #include "soltex/spec_proto/spec_from_proto.h"
 #include "texture_registration.h"
+#include "texture_registry.h"
 
 namespace soltex::server {
 namespace {
@@ -35,10 +37,12 @@ double number(const json& value, const std::string& field) {
 
 // Unsigned integers are passed on as the client wrote them (up to 2^32 - 1) so that the
 // registration's own checks quote the value sent.
-uint32_t unsigned_integer(const json& value, const std::string& field) {
+// A whole number for a uint32 field; `allowed` is what the field takes, which the message
+// names (the value itself is checked against it where the request is registered).
+uint32_t unsigned_integer(const json& value, const std::string& field, const std::string& allowed) {
   if (!value.is_number_integer() || value.get<int64_t>() < 0 ||
       value.get<int64_t>() > int64_t{0xFFFFFFFF}) {
-    fail(field, "must be an integer in [0, 4294967295]");
+    fail(field, "must be " + allowed);
   }
   return static_cast<uint32_t>(value.get<int64_t>());
 }
@@ -64,7 +68,9 @@ v1::Volume volume_from(const json& value) {
     } else if (key == "max") {
       *volume.mutable_max() = vec3(field, "volume.max");
     } else if (key == "finest_level_log2") {
-      volume.set_finest_level_log2(unsigned_integer(field, "volume.finest_level_log2"));
+      volume.set_finest_level_log2(unsigned_integer(
+          field, "volume.finest_level_log2",
+          "an integer in [3, " + std::to_string(SpecLimits::kMaxFinestLevelLog2) + "]"));
     } else {
       fail("volume." + escaped_text(key), "unknown key (known: min, max, finest_level_log2)");
     }
@@ -124,11 +130,13 @@ v1::RegisterTextureRequest registration_from_json(std::string_view text) {
     } else if (key == "volume") {
       *request.mutable_volume() = volume_from(value);
     } else if (key == "brick_size") {
-      request.set_brick_size(unsigned_integer(value, "brick_size"));
+      request.set_brick_size(unsigned_integer(value, "brick_size", "8 or 16"));
     } else if (key == "mip_mode") {
       request.set_mip_mode(mip_mode_from(value));
     } else if (key == "supersample") {
-      request.set_supersample(unsigned_integer(value, "supersample"));
+      request.set_supersample(unsigned_integer(
+          value, "supersample",
+          "an integer in [0, " + std::to_string(kMaxSupersample) + "] (0: the default, 2)"));
     } else {
       fail(escaped_text(key),
            "unknown key (known: texture, volume, brick_size, mip_mode, supersample)");

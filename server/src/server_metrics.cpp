@@ -151,9 +151,11 @@ void write_process(Exposition& e) {
 }
 
 void write_brick_latency(Exposition& e, const LatencyHistogram& histogram) {
-  // Fixed boundaries in seconds, filled from the log-linear histogram.
-  static constexpr double kBounds[] = {50e-6, 100e-6, 250e-6, 500e-6, 1e-3,   2.5e-3, 5e-3, 10e-3,
-                                       25e-3, 50e-3,  100e-3, 250e-3, 500e-3, 1.0,    2.5};
+  // Fixed boundaries in seconds, filled from the log-linear histogram; up to 30 s, since a
+  // brick queued behind a busy server's others waits seconds (docs/OPERATIONS.md).
+  static constexpr double kBounds[] = {50e-6, 100e-6, 250e-6, 500e-6, 1e-3, 2.5e-3,
+                                       5e-3,  10e-3,  25e-3,  50e-3,  0.1,  0.25,
+                                       0.5,   1.0,    2.5,    5.0,    10.0, 30.0};
   const LatencyHistogramSnapshot snapshot = histogram.snapshot();
   std::array<uint64_t, std::size(kBounds)> cumulative{};
   for (std::size_t i = 0; i < cumulative.size(); ++i) {

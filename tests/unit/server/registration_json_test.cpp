@@ -63,7 +63,9 @@ TEST(RegistrationJson, RefusalsNameTheField) {
       {R"({"texture": {"marble": {}}, "volume": {"min": [0, 0]}})", "volume.min: must be an array"},
       {R"({"texture": {"marble": {}}, "volume": {"max": [1, "a", 1]}})", "volume.max[1]"},
       {R"({"texture": {"marble": {}}, "volume": {"size": 1}})", "volume.size: unknown key"},
-      {R"({"texture": {"marble": {}}, "brick_size": -8})", "brick_size: must be an integer"},
+      {R"({"texture": {"marble": {}}, "brick_size": -8})", "brick_size: must be 8 or 16"},
+      {R"({"texture": {"marble": {}}, "volume": {"finest_level_log2": 2.5}})",
+       "volume.finest_level_log2: must be an integer in [3, 14]"},
       {R"({"texture": {"marble": {}}, "mip_mode": "box"})", "mip_mode: must be"},
       {R"({"texture": {"marble": {"turbulence": {"octave_max": 99}}}})", "texture.marble"},
   };
