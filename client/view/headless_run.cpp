@@ -72,7 +72,7 @@ void print_traffic(const PreparedScene& prepared, const net::SourceStats& fetche
     dense_bytes += side * side * side * o.channels;
   }
   std::printf(
-      "traffic:    %.2f MB fetched = %.2f %% of the dense cubes (%.1f MB of 8-bit samples)\n",
+      "traffic:    %.2f MB fetched = %.3g %% of the dense cubes (%.1f MB of 8-bit samples)\n",
       fetched.bytes / 1e6, 100.0 * static_cast<double>(fetched.bytes) / dense_bytes,
       dense_bytes / 1e6);
   std::printf("cache:      %llu bricks, %.1f MB resident, hit rate %.2f %%\n",
