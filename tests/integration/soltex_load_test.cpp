@@ -304,18 +304,24 @@ TEST(SoltexLoad, OptionsAreBoundedAndNamed) {
   EXPECT_NE(message(o).find("--rate"), std::string::npos);
 }
 
+// The row of a CSV report that must be a header and one row with as many fields.
+std::string csv_row(const std::string& csv) {
+  std::istringstream lines(csv);
+  std::string header, row, extra;
+  EXPECT_TRUE(std::getline(lines, header));
+  EXPECT_TRUE(std::getline(lines, row));
+  EXPECT_FALSE(std::getline(lines, extra)) << csv;
+  EXPECT_EQ(std::count(header.begin(), header.end(), ','), std::count(row.begin(), row.end(), ','))
+      << csv;
+  return row;
+}
+
 TEST(SoltexLoad, CsvIsAHeaderAndOneRow) {
   LoadResult result;
   result.options.target = "127.0.0.1:1";
   result.bricks = 10;
   result.measured_seconds = 2.0;
-  const std::string csv = format_csv(result);
-  std::istringstream lines(csv);
-  std::string header, row, extra;
-  ASSERT_TRUE(std::getline(lines, header));
-  ASSERT_TRUE(std::getline(lines, row));
-  EXPECT_FALSE(std::getline(lines, extra));
-  EXPECT_EQ(std::count(header.begin(), header.end(), ','), std::count(row.begin(), row.end(), ','));
+  const std::string row = csv_row(format_csv(result));
   EXPECT_NE(row.find(",5.000,"), std::string::npos) << row;  // 10 bricks in 2 s
 }
 
@@ -325,13 +331,7 @@ TEST(SoltexLoad, HttpCsvIsAHeaderAndOneRowToo) {
   result.bricks = 10;
   result.statuses = {{200, 10}, {404, 2}};
   result.p50_us = 1500.0;
-  const std::string csv = format_http_result(result, OutputFormat::csv);
-  std::istringstream lines(csv);
-  std::string header, row, extra;
-  ASSERT_TRUE(std::getline(lines, header));
-  ASSERT_TRUE(std::getline(lines, row));
-  EXPECT_FALSE(std::getline(lines, extra));
-  EXPECT_EQ(std::count(header.begin(), header.end(), ','), std::count(row.begin(), row.end(), ','));
+  const std::string row = csv_row(format_http_result(result, OutputFormat::csv));
   EXPECT_EQ(row.substr(0, 5), "http,") << row;
   EXPECT_NE(row.find(",1.5,"), std::string::npos) << row;   // p50 in ms
   EXPECT_NE(row.find(",2,0,0"), std::string::npos) << row;  // two answers other than 200
