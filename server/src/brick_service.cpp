@@ -116,6 +116,9 @@ BrickStream::ServerReactor* BrickServiceImpl::StreamBricks(grpc::CallbackServerC
     // Forget streams that have ended, so the map stays the size of the open ones.
     std::erase_if(streams_, [](const auto& entry) { return entry.second.expired(); });
     streams_.emplace(id, stream);
+    // Opened as shutdown began (gRPC may still hand over a call it had accepted): drained
+    // like the others, so it ends once it owes nothing rather than at the grace's end.
+    if (draining_) stream->drain();
   }
   return stream->start();
 }
@@ -130,6 +133,10 @@ std::vector<std::shared_ptr<BrickStream>> BrickServiceImpl::open_streams() {
 }
 
 void BrickServiceImpl::drain_streams() {
+  {
+    std::lock_guard lock(streams_mutex_);
+    draining_ = true;
+  }
   for (const auto& stream : open_streams()) stream->drain();
 }
 

@@ -51,6 +51,7 @@ class BrickServiceImpl final : public BrickServiceBase {
   std::atomic<uint64_t> next_stream_id_{1};
   std::mutex streams_mutex_;
   std::unordered_map<uint64_t, std::weak_ptr<BrickStream>> streams_;
+  bool draining_ = false;  // drain_streams() was called; under streams_mutex_
 };
 
 }  // namespace soltex::server

@@ -202,7 +202,7 @@ std::size_t BrickStream::accept_request() {
   }
   std::size_t added = 0;
   const auto now = std::chrono::steady_clock::now();
-  answered_from_cache_.clear();
+  seen_in_request_.clear();
   TexturePtr texture;  // consecutive keys usually name the same texture
   for (const v1::BrickWant& want : request_.want()) {
     const v1::BrickKey& k = want.key();
@@ -229,6 +229,11 @@ std::size_t BrickStream::accept_request() {
                     std::to_string(level));
       continue;
     }
+    // A key wanted again in the same message is the same brick: sent once, whether it is
+    // queued, taken by a worker meanwhile, or answered from the cache, and never refused for
+    // the room its first copy took.
+    const BrickKey key{k.texture_id(), level, {k.x(), k.y(), k.z()}};
+    if (!seen_in_request_.insert(key).second) continue;
     if (lease_->usage().queued.load(std::memory_order_relaxed) >=
         static_cast<int64_t>(limits.max_queued_per_client)) {
       add_error(k, grpc::StatusCode::RESOURCE_EXHAUSTED,
@@ -244,12 +249,7 @@ std::size_t BrickStream::accept_request() {
                     " bricks, max_queued_per_stream)");
       continue;
     }
-    const BrickKey key{k.texture_id(), level, {k.x(), k.y(), k.z()}};
-    if (answered_from_cache_.contains(key)) continue;
-    if (answer_from_cache(key, now)) {
-      answered_from_cache_.insert(key);
-      continue;
-    }
+    if (answer_from_cache(key, now)) continue;
     WorkItem item;
     item.key = key;
     item.priority = want.priority();

@@ -176,9 +176,9 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   bool draining_ = false;       // drain(): no more reads
   bool shutting_down_ = false;  // shut_down(): no more bricks
   bool cancelled_ = false;
-  // Keys of the request being accepted that the brick cache answered: a key wanted twice in one
-  // message is sent once, as queued keys are merged. Kept to reuse its buckets.
-  std::unordered_set<BrickKey, BrickKeyHash> answered_from_cache_;
+  // Keys of the request being accepted: a key wanted twice in one message is sent once. Kept
+  // to reuse its buckets.
+  std::unordered_set<BrickKey, BrickKeyHash> seen_in_request_;
 
   // Every texture the stream registered or asked for, kept from eviction until it ends.
   std::unordered_map<uint64_t, TexturePin> pins_;

@@ -200,8 +200,9 @@ void Daemon::start_watchdog() {
     watchdog.tls_server_name =
         certificate_name(read_text_file(config_.tls_cert_file, "TLS certificate"));
   }
+  // At most ten new connections a second, however small the period asked for.
   watchdog.interval = std::chrono::milliseconds(
-      std::max<int64_t>(1, static_cast<int64_t>(config_.listen_watchdog_seconds * 1000.0)));
+      std::max<int64_t>(100, static_cast<int64_t>(config_.listen_watchdog_seconds * 1000.0)));
   // A dead listener never answers, so a long wait costs only detection time; a short one would
   // count a busy server's slow answer as a miss.
   watchdog.deadline = std::clamp(watchdog.interval, std::chrono::milliseconds(2000),
@@ -266,20 +267,27 @@ void Daemon::finish_calls_within_grace() {
   std::mutex mutex;
   std::condition_variable calls_done;
   bool done = false;
-  std::thread cutter([&] {
-    std::unique_lock lock(mutex);
-    if (!calls_done.wait_until(lock, cut, [&] { return done; })) {
-      spdlog::info("shutting down: the grace is nearly over; open streams end UNAVAILABLE");
-      service_->shut_down_streams();
-    }
-  });
+  std::thread cutter;
+  try {
+    cutter = std::thread([&] {
+      std::unique_lock lock(mutex);
+      if (!calls_done.wait_until(lock, cut, [&] { return done; })) {
+        spdlog::info("shutting down: the grace is nearly over; open streams end UNAVAILABLE");
+        service_->shut_down_streams();
+      }
+    });
+  } catch (const std::system_error& e) {
+    // No thread to spare (the process may be out of resources): end the streams now.
+    spdlog::warn("shutting down: {}; open streams end UNAVAILABLE now", e.what());
+    service_->shut_down_streams();
+  }
   server_->Shutdown(now + grace);  // no new calls; returns once the open ones have ended
   {
     std::lock_guard lock(mutex);
     done = true;
   }
   calls_done.notify_all();
-  cutter.join();
+  if (cutter.joinable()) cutter.join();
 }
 
 void Daemon::shut_down() {

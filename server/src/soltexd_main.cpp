@@ -1,10 +1,14 @@
 // soltexd: evaluates procedural texture bricks on request and streams them over gRPC.
 #include <absl/synchronization/mutex.h>
+#include <signal.h>
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -35,6 +39,7 @@ void write_ready_file(const std::string& path, const std::string& grpc, int metr
     std::ofstream out(temporary);
     out << "grpc=" << grpc << "\nmetrics=" << metrics_port << "\n";
     if (http_port != 0) out << "http=" << http_port << "\n";
+    out << "pid=" << getpid() << "\n";  // whose file this is: see remove_ready_file()
     out.close();
     if (!out) throw std::runtime_error("--ready-file: cannot write " + temporary);
   }
@@ -47,12 +52,27 @@ void write_ready_file(const std::string& path, const std::string& grpc, int metr
   }
 }
 
-// Only a file: a --ready-file naming a folder by mistake is refused when written, not removed.
+// The process a ready file names (its pid= line), or 0.
+pid_t ready_file_owner(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("pid=", 0) == 0) return static_cast<pid_t>(std::atol(line.c_str() + 4));
+  }
+  return 0;
+}
+
+// Removes a ready file that announces no live soltexd: one of this process, or left by one
+// that is gone (a crash) or that wrote no pid. A live one's is that one's (a second instance
+// given the same file by mistake must not take it away). Only a file: a --ready-file naming a
+// folder is refused when written, not removed.
 void remove_ready_file(const std::string& path) {
   std::error_code ignored;
-  if (!path.empty() && std::filesystem::is_regular_file(path, ignored)) {
-    std::filesystem::remove(path, ignored);
-  }
+  if (path.empty() || !std::filesystem::is_regular_file(path, ignored)) return;
+  const pid_t owner = ready_file_owner(path);
+  const bool owner_lives =
+      owner > 0 && owner != getpid() && (kill(owner, 0) == 0 || errno == EPERM);
+  if (!owner_lives) std::filesystem::remove(path, ignored);
 }
 
 // Every connection is a file descriptor, and the soft limit (often 1024) would run out long
@@ -107,8 +127,8 @@ int main(int argc, char** argv) {
   absl::SetMutexDeadlockDetectionMode(absl::OnDeadlockCycle::kIgnore);
   raise_descriptor_limit();
 
-  // A ready file says "serving now": one left by an earlier run must not say so for this one
-  // before it listens, nor after a failed start.
+  // A ready file says "serving now": one left by an earlier run that is gone must not say so
+  // for this one before it listens, nor after a failed start.
   remove_ready_file(config.ready_file);
 
   std::unique_ptr<soltex::server::Daemon> daemon;

@@ -88,7 +88,7 @@ void add_serving_options(CLI::App& app, ServerConfig& config) {
                  "every this many seconds call soltexd's own health service over a new connection; "
                  "three calls in a row without an answer (gRPC accepts no connection any more, "
                  "as after running out of file descriptors) exit 1 for a supervisor to restart "
-                 "soltexd (0: off)")
+                 "soltexd (0: off; at least 0.1)")
       ->check(soltex::cli::NumberIn(0.0, 3600.0))
       ->capture_default_str();
   app.add_option("--ready-file", config.ready_file,

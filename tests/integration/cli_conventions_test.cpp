@@ -323,7 +323,8 @@ TEST_F(SoltexdCli, TheGrpcAddressMayBeAUnixSocket) {
   EXPECT_FALSE(std::filesystem::exists(ready)) << "the ready file outlived the server";
 }
 
-// A ready file left by an earlier run does not announce a server that failed to start.
+// A ready file left by an earlier run that is gone does not announce a server that failed to
+// start.
 TEST_F(SoltexdCli, AStaleReadyFileIsRemovedBeforeListening) {
   const std::filesystem::path ready = directory_ / "ready";
   std::ofstream(ready) << "grpc=1111\nmetrics=2222\n";
@@ -333,6 +334,13 @@ TEST_F(SoltexdCli, AStaleReadyFileIsRemovedBeforeListening) {
                                               "--ready-file", ready.string()});
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_FALSE(std::filesystem::exists(ready)) << file_text(ready);
+  // One that names a live process (here this test) is that process's, and stays.
+  const std::string live = "grpc=1111\nmetrics=2222\npid=" + std::to_string(getpid()) + "\n";
+  std::ofstream(ready) << live;
+  const ToolRun again = run_tool(SOLTEXD_BINARY, {"--listen", taken, "--metrics-listen",
+                                                  "127.0.0.1:0", "--ready-file", ready.string()});
+  EXPECT_EQ(again.exit_code, 1) << again.err;
+  EXPECT_EQ(file_text(ready), live);
 }
 
 TEST_F(SoltexdCli, OptionsThatDoNotGoTogetherOrAFileThatDoesNotParseExit2) {

@@ -113,7 +113,9 @@ std::string with_source(const CLI::App& app, const CLI::ParseError& error, int a
   for (const CLI::Option* option : options) {
     if (!message_names(message, *option) || on_command_line(*option, argc, argv)) continue;
     const std::string& variable = option->get_envname();
-    const bool from_environment = !variable.empty() && std::getenv(variable.c_str()) != nullptr;
+    // CLI11 leaves an empty variable unread.
+    const char* set = variable.empty() ? nullptr : std::getenv(variable.c_str());
+    const bool from_environment = set != nullptr && *set != '\0';
     if (from_environment && !config_file.empty()) {
       return message + " (from the config file " + config_file + " or the environment variable " +
              variable + ")";
