@@ -214,44 +214,11 @@ std::size_t BrickStream::accept_request() {
                     "in the request's textures; an unused texture may have been evicted)");
       continue;
     }
-    const BrickLayout& layout = texture->layout;
-    if (k.level() > static_cast<uint32_t>(layout.coarsest_level())) {
-      add_error(k, grpc::StatusCode::OUT_OF_RANGE,
-                describe(k) + ": level " + std::to_string(k.level()) + " is outside [0, " +
-                    std::to_string(layout.coarsest_level()) + "]");
-      continue;
-    }
-    const int level = static_cast<int>(k.level());
-    if (!layout.contains(level, {k.x(), k.y(), k.z()})) {
-      add_error(k, grpc::StatusCode::OUT_OF_RANGE,
-                describe(k) + ": brick coordinates must be in [0, " +
-                    std::to_string(layout.bricks_per_axis(level) - 1) + "] at level " +
-                    std::to_string(level));
-      continue;
-    }
-    // A key wanted again in the same message is the same brick: sent once, whether it is
-    // queued, taken by a worker meanwhile, or answered from the cache, and never refused for
-    // the room its first copy took.
-    const BrickKey key{k.texture_id(), level, {k.x(), k.y(), k.z()}};
-    if (!seen_in_request_.insert(key).second) continue;
-    if (lease_->usage().queued.load(std::memory_order_relaxed) >=
-        static_cast<int64_t>(limits.max_queued_per_client)) {
-      add_error(k, grpc::StatusCode::RESOURCE_EXHAUSTED,
-                describe(k) + ": client " + lease_->usage().client + " has " +
-                    std::to_string(limits.max_queued_per_client) +
-                    " bricks queued over its streams (max_queued_per_client)");
-      continue;
-    }
-    if (owed() >= limits.max_queued_per_stream) {
-      add_error(k, grpc::StatusCode::RESOURCE_EXHAUSTED,
-                describe(k) + ": stream queue is full (" +
-                    std::to_string(limits.max_queued_per_stream) +
-                    " bricks, max_queued_per_stream)");
-      continue;
-    }
-    if (answer_from_cache(key, now)) continue;
+    const std::optional<BrickKey> key = admitted_key(k, texture->layout);
+    if (!key) continue;
+    if (answer_from_cache(*key, now)) continue;
     WorkItem item;
-    item.key = key;
+    item.key = *key;
     item.priority = want.priority();
     item.codec = codec_;
     item.texture = texture;
@@ -263,6 +230,45 @@ std::size_t BrickStream::accept_request() {
     }
   }
   return added;
+}
+
+std::optional<BrickKey> BrickStream::admitted_key(const v1::BrickKey& k,
+                                                  const BrickLayout& layout) {
+  const StreamLimits& limits = context_.limits;
+  if (k.level() > static_cast<uint32_t>(layout.coarsest_level())) {
+    add_error(k, grpc::StatusCode::OUT_OF_RANGE,
+              describe(k) + ": level " + std::to_string(k.level()) + " is outside [0, " +
+                  std::to_string(layout.coarsest_level()) + "]");
+    return std::nullopt;
+  }
+  const int level = static_cast<int>(k.level());
+  if (!layout.contains(level, {k.x(), k.y(), k.z()})) {
+    add_error(k, grpc::StatusCode::OUT_OF_RANGE,
+              describe(k) + ": brick coordinates must be in [0, " +
+                  std::to_string(layout.bricks_per_axis(level) - 1) + "] at level " +
+                  std::to_string(level));
+    return std::nullopt;
+  }
+  // A key wanted again in the same message is the same brick: sent once, whether it is
+  // queued, taken by a worker meanwhile, or answered from the cache, and never refused for
+  // the room its first copy took.
+  const BrickKey key{k.texture_id(), level, {k.x(), k.y(), k.z()}};
+  if (!seen_in_request_.insert(key).second) return std::nullopt;
+  if (lease_->usage().queued.load(std::memory_order_relaxed) >=
+      static_cast<int64_t>(limits.max_queued_per_client)) {
+    add_error(k, grpc::StatusCode::RESOURCE_EXHAUSTED,
+              describe(k) + ": client " + lease_->usage().client + " has " +
+                  std::to_string(limits.max_queued_per_client) +
+                  " bricks queued over its streams (max_queued_per_client)");
+    return std::nullopt;
+  }
+  if (owed() >= limits.max_queued_per_stream) {
+    add_error(k, grpc::StatusCode::RESOURCE_EXHAUSTED,
+              describe(k) + ": stream queue is full (" +
+                  std::to_string(limits.max_queued_per_stream) + " bricks, max_queued_per_stream)");
+    return std::nullopt;
+  }
+  return key;
 }
 
 bool BrickStream::answer_from_cache(const BrickKey& key,

@@ -132,6 +132,8 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
 
   // All below: mutex_ held.
   std::size_t accept_request();  // returns how many keys were queued
+  // The key to queue or answer, or none: refused (an error added) or already in this request.
+  std::optional<BrickKey> admitted_key(const v1::BrickKey& k, const BrickLayout& layout);
   void register_textures();
   TexturePtr use_texture(uint64_t id);  // pinned for the stream's life; null: not registered
   void count_queued(int64_t delta);     // this stream's queue grew or shrank by delta
