@@ -202,7 +202,8 @@ std::size_t BrickStream::accept_request() {
   }
   std::size_t added = 0;
   const auto now = std::chrono::steady_clock::now();
-  seen_in_request_.clear();
+  seen_keys_.clear();
+  seen_set_.clear();
   TexturePtr texture;  // consecutive keys usually name the same texture
   for (const v1::BrickWant& want : request_.want()) {
     const v1::BrickKey& k = want.key();
@@ -232,6 +233,21 @@ std::size_t BrickStream::accept_request() {
   return added;
 }
 
+bool BrickStream::first_in_request(const BrickKey& key) {
+  // Most messages carry a few keys: a scan of those seen costs less than hashing into a set,
+  // whose nodes are allocated per key. Past kScannedKeys the set takes over.
+  constexpr std::size_t kScannedKeys = 32;
+  if (seen_set_.empty()) {
+    if (std::find(seen_keys_.begin(), seen_keys_.end(), key) != seen_keys_.end()) return false;
+    if (seen_keys_.size() < kScannedKeys) {
+      seen_keys_.push_back(key);
+      return true;
+    }
+    seen_set_.insert(seen_keys_.begin(), seen_keys_.end());
+  }
+  return seen_set_.insert(key).second;
+}
+
 std::optional<BrickKey> BrickStream::admitted_key(const v1::BrickKey& k,
                                                   const BrickLayout& layout) {
   const StreamLimits& limits = context_.limits;
@@ -253,7 +269,7 @@ std::optional<BrickKey> BrickStream::admitted_key(const v1::BrickKey& k,
   // queued, taken by a worker meanwhile, or answered from the cache, and never refused for
   // the room its first copy took.
   const BrickKey key{k.texture_id(), level, {k.x(), k.y(), k.z()}};
-  if (!seen_in_request_.insert(key).second) return std::nullopt;
+  if (!first_in_request(key)) return std::nullopt;
   if (lease_->usage().queued.load(std::memory_order_relaxed) >=
       static_cast<int64_t>(limits.max_queued_per_client)) {
     add_error(k, grpc::StatusCode::RESOURCE_EXHAUSTED,

@@ -13,6 +13,7 @@
 #include <string>
 #include <unordered_map>
 #include <unordered_set>
+#include <vector>
 
 #include "brick_producer.h"
 #include "brick_scheduler.h"
@@ -134,6 +135,7 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   std::size_t accept_request();  // returns how many keys were queued
   // The key to queue or answer, or none: refused (an error added) or already in this request.
   std::optional<BrickKey> admitted_key(const v1::BrickKey& k, const BrickLayout& layout);
+  bool first_in_request(const BrickKey& key);  // false: the request named it before
   void register_textures();
   TexturePtr use_texture(uint64_t id);  // pinned for the stream's life; null: not registered
   void count_queued(int64_t delta);     // this stream's queue grew or shrank by delta
@@ -178,9 +180,10 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   bool draining_ = false;       // drain(): no more reads
   bool shutting_down_ = false;  // shut_down(): no more bricks
   bool cancelled_ = false;
-  // Keys of the request being accepted: a key wanted twice in one message is sent once. Kept
-  // to reuse its buckets.
-  std::unordered_set<BrickKey, BrickKeyHash> seen_in_request_;
+  // Keys of the request being accepted (a key wanted twice in one message is sent once): the
+  // first few in a vector, all of them in the set past that. Both kept to reuse their memory.
+  std::vector<BrickKey> seen_keys_;
+  std::unordered_set<BrickKey, BrickKeyHash> seen_set_;
 
   // Every texture the stream registered or asked for, kept from eviction until it ends.
   std::unordered_map<uint64_t, TexturePin> pins_;

@@ -107,6 +107,17 @@ TEST(Soltexd, AKeyWantedTwiceInOneMessageIsSentOnce) {
     EXPECT_EQ(result.bricks.size(), 1u) << when;
     EXPECT_TRUE(result.errors.empty()) << when;
   }
+  // Forty keys, each twice: past the few a message is scanned for, a set remembers them.
+  std::vector<v1::BrickKey> twice = level_keys(handle.id(), 0, 4);
+  twice.resize(40);
+  twice.insert(twice.end(), twice.begin(), twice.end());
+  for (const char* when : {"made", "cached"}) {
+    const StreamResult result = stream_once(*stub, want(twice, v1::CODEC_RAW));
+    std::set<std::string> distinct;
+    for (const v1::Brick& brick : result.bricks) distinct.insert(brick.key().SerializeAsString());
+    EXPECT_EQ(result.bricks.size(), 40u) << when;
+    EXPECT_EQ(distinct.size(), 40u) << when;
+  }
 }
 
 TEST(Soltexd, CoarseLevelsAreServedFirst) {
