@@ -47,8 +47,9 @@ int main(int argc, char** argv) {
   }
   if (options.http) {
     // gRPC's knobs: an HTTP run has no streams, and one request at a time per connection.
+    // Refused when typed; a SOLTEX_STREAMS kept in the environment for gRPC runs is left be.
     for (const char* name : {"--streams", "--in-flight"}) {
-      if (app.get_option(name)->count() > 0) {
+      if (cli::on_command_line(*app.get_option(name), argc, argv)) {
         std::fprintf(stderr,
                      "soltex-load: %s does not apply to --http, which sends one request at a time "
                      "on each of --connections\n",

@@ -85,17 +85,6 @@ bool message_names(const std::string& message, const CLI::Option& option) {
   return false;
 }
 
-bool on_command_line(const CLI::Option& option, int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string_view arg = argv[i];
-    for (const std::string& name : option.get_lnames()) {
-      const std::string flag = "--" + name;
-      if (arg == flag || arg.rfind(flag + "=", 0) == 0) return true;
-    }
-  }
-  return false;
-}
-
 // CLI11's message with what it leaves out: the config file an unknown key is in, and where a
 // refused value came from when the command line did not give it.
 std::string with_source(const CLI::App& app, const CLI::ParseError& error, int argc, char** argv) {
@@ -127,6 +116,17 @@ std::string with_source(const CLI::App& app, const CLI::ParseError& error, int a
 }
 
 }  // namespace
+
+bool on_command_line(const CLI::Option& option, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    for (const std::string& name : option.get_lnames()) {
+      const std::string flag = "--" + name;
+      if (arg == flag || arg.rfind(flag + "=", 0) == 0) return true;
+    }
+  }
+  return false;
+}
 
 std::optional<int> parse(CLI::App& app, const std::string& tool, int argc, char** argv,
                          std::initializer_list<DeprecatedEnvironmentName> deprecated) {

@@ -45,6 +45,10 @@ std::optional<int> parse(CLI::App& app, const std::string& tool, int argc, char*
 // comparison with NaN is false, so CLI::Range lets it through). For floating-point options.
 CLI::Validator NumberIn(double min, double max);
 
+// Whether argv gives `option` by one of its long names ("--name" or "--name=value"), as opposed
+// to the environment or a config file.
+bool on_command_line(const CLI::Option& option, int argc, char** argv);
+
 // A whole number in [min, max], for integer options: text that is not one ("abc", "1.5") is
 // refused as not a whole number rather than as out of range, as CLI::Range words it.
 CLI::Validator IntegerIn(long long min, long long max);
