@@ -98,8 +98,7 @@ std::string self_target(const std::string& listen, int bound_port) {
   std::string host = parse_host_port(listen).host;
   if (host.empty() || host == "0.0.0.0") host = "127.0.0.1";
   if (host == "::") host = "::1";
-  if (host.find(':') != std::string::npos) host = "[" + host + "]";
-  return host + ":" + std::to_string(bound_port);
+  return host_port_text(host, bound_port);
 }
 
 std::shared_ptr<grpc::ChannelCredentials> self_credentials(const std::string& cert_file,

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <stdexcept>
+#include <string>
 
 namespace soltex::server {
 
@@ -22,6 +23,11 @@ HostPort parse_host_port(const std::string& text) {
     throw std::invalid_argument("address '" + text + "': port must be in [0, 65535]");
   }
   return {host, static_cast<uint16_t>(port)};
+}
+
+std::string host_port_text(const std::string& host, int port) {
+  return (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" +
+         std::to_string(port);
 }
 
 bool is_unix_socket_address(const std::string& address) {

@@ -74,6 +74,8 @@ struct HostPort {
   uint16_t port;
 };
 HostPort parse_host_port(const std::string& text);
+// HOST:PORT again, an IPv6 host in brackets.
+std::string host_port_text(const std::string& host, int port);
 
 // Whether `address` names a unix-domain socket as gRPC writes one (unix:PATH,
 // unix-abstract:NAME): soltexd's gRPC listener accepts these besides HOST:PORT.

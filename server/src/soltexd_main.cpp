@@ -27,7 +27,8 @@ using soltex::server::ServerConfig;
 // What clients dial for gRPC: the port bound, or the socket of a unix: address (which has no
 // port; gRPC reports 1 for it).
 std::string grpc_endpoint(const ServerConfig& config, int port) {
-  return config.listen.rfind("unix:", 0) == 0 ? config.listen : std::to_string(port);
+  return soltex::server::is_unix_socket_address(config.listen) ? config.listen
+                                                               : std::to_string(port);
 }
 
 // Throws std::runtime_error naming the file and why it could not be written.
@@ -92,9 +93,7 @@ void raise_descriptor_limit() {
 
 // `address` (HOST:PORT) with the port the daemon bound, which port 0 leaves to the system.
 std::string bound_address(const std::string& address, int port) {
-  const std::string host = soltex::server::parse_host_port(address).host;
-  return (host.find(':') != std::string::npos ? "[" + host + "]" : host) + ":" +
-         std::to_string(port);
+  return soltex::server::host_port_text(soltex::server::parse_host_port(address).host, port);
 }
 
 }  // namespace

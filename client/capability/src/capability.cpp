@@ -293,11 +293,17 @@ double nearest_distance(const SceneObject& object, const Camera& camera) {
 }
 
 // The finest level at which one texel of the object's texture is no larger than a pixel where
-// the object comes nearest the camera (the near plane, if the camera is inside its bounds),
-// or 0 when the object's material fixes its own level or it has no mesh.
-int object_screen_level(const SceneObject& object, const Camera& camera, int frame_height) {
+// the object comes nearest the camera, `distance` away (at least the near plane, if the camera
+// is inside its bounds); level 0 when the object's material fixes its own level or it has no
+// mesh.
+struct ObjectNeed {
+  int level = 0;
+  double distance = 0.0;
+};
+
+ObjectNeed object_screen_level(const SceneObject& object, const Camera& camera, int frame_height) {
   if (!object.mesh || object.mesh->bounds.empty() || object.material.volume.finest_level_log2) {
-    return 0;
+    return {};
   }
   const Volume volume = texture_volume(object, 8);
   const double side = std::max(
@@ -310,8 +316,8 @@ int object_screen_level(const SceneObject& object, const Camera& camera, int fra
   const double pixel = 2.0 * distance * std::tan(glm::radians(camera.fov_y_degrees) * 0.5) /
                        static_cast<double>(frame_height);
   const double texels = side * world_per_unit / pixel;
-  if (!(texels > 1.0)) return 0;
-  return static_cast<int>(std::ceil(std::log2(std::min(texels, 0x1p30))));
+  if (!(texels > 1.0)) return {0, distance};
+  return {static_cast<int>(std::ceil(std::log2(std::min(texels, 0x1p30)))), distance};
 }
 
 // Bricks a frame reads with the finest level at L (16^3-cell bricks): the visible half of each
@@ -334,11 +340,13 @@ void choose_finest_level(const Scene& scene, const ChoiceLimits& limits,
                          const FrameBricks& frame_bricks, Choice& choice, std::ostringstream& why) {
   int screen_level = 4;
   const SceneObject* nearest = nullptr;
+  double nearest_at = 0.0;
   for (const SceneObject& object : scene.objects) {
-    const int object_level = object_screen_level(object, scene.camera, choice.height);
-    if (object_level > screen_level) {
-      screen_level = object_level;
+    const ObjectNeed need = object_screen_level(object, scene.camera, choice.height);
+    if (need.level > screen_level) {
+      screen_level = need.level;
       nearest = &object;
+      nearest_at = need.distance;
     }
   }
   const double decoded_brick_bytes = 17.0 * 17.0 * 17.0 * 3.0 + 64.0;
@@ -354,9 +362,7 @@ void choose_finest_level(const Scene& scene, const ChoiceLimits& limits,
   } else {
     why << "a texel per pixel at 2^" << screen_level << " where "
         << (nearest->name.empty() ? std::string("an object") : "\"" + nearest->name + "\"")
-        << " comes nearest, "
-        << static_cast<float>(std::max(nearest_distance(*nearest, scene.camera), scene.camera.near))
-        << " from the camera";
+        << " comes nearest, " << static_cast<float>(nearest_at) << " from the camera";
   }
   if (wanted < screen_level) why << "; at most 2^" << wanted;
   if (level < wanted) why << "; the cache holds 2^" << level;
