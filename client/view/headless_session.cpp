@@ -42,23 +42,26 @@ class EarlyRequests {
   net::BrickSource* source_;
 };
 
-// One frame, counted and timed into `result`; in false-colour levels when it is drawn only
-// for its misses.
+// One frame, counted and timed into `result`; nothing but its misses when it is drawn only
+// for them.
 Frame draw(FrameRenderer& renderer, const PreparedScene& scene, const Camera& camera, int width,
            int height, bool for_misses, HeadlessResult& result, StartupTimeline* timeline) {
   mark_on(timeline, fmt::format("frame {} starts{}", result.frames + 1,
-                                for_misses ? " (for its misses, false colour)" : ""));
+                                for_misses ? " (for its misses only)" : ""));
   const auto start = std::chrono::steady_clock::now();
-  if (for_misses) renderer.set_false_colour_levels(true);
+  if (for_misses) renderer.set_misses_only(true);
   Frame frame = renderer.render(scene, camera, width, height);
-  if (for_misses) renderer.set_false_colour_levels(false);
+  if (for_misses) renderer.set_misses_only(false);
   result.drawing_ms +=
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   ++result.frames;
   result.last_frame_ms = frame.stats.raster_ms + frame.stats.shade_ms;
   result.last_stats = frame.stats;
-  mark_on(timeline, fmt::format("frame {} ends: {} misses, {} pixels from a coarser level",
-                                result.frames, frame.misses.size(), frame.stats.fallback_pixels));
+  mark_on(timeline,
+          fmt::format("frame {} ends: {} misses, {} pixels from a coarser level (raster {:.2f} ms, "
+                      "shading {:.2f} ms)",
+                      result.frames, frame.misses.size(), frame.stats.fallback_pixels,
+                      frame.stats.raster_ms, frame.stats.shade_ms));
   return frame;
 }
 
@@ -114,8 +117,9 @@ HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, con
   LevelCap* cap = start_cap(levels, options, result);
   uint64_t received = source.stats().received;
   int stalled = 0;  // frames in a row that missed bricks while nothing was on its way
-  // A frame drawn in false colour only to find its misses (about 3/4 of a shaded frame's CPU
-  // when nothing is resident yet); a run that draws false colour anyway needs no such frame.
+  // A frame drawn only to find its misses (RenderOptions::misses_only: rasterized, each pixel's
+  // bricks looked up, nothing shaded); a run that draws false colour anyway needs no such
+  // frame.
   bool for_misses = options.first_frame_for_misses && !renderer.options().false_colour_levels;
   for (;;) {
     const uint64_t received_before_frame = source.stats().received;

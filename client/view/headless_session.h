@@ -21,9 +21,9 @@ struct HeadlessOptions {
   // (level_cap.h). 0, or no cache: draw at the prepared levels from the start.
   int start_level_log2 = 0;
   const BrickCache* cache = nullptr;
-  // Draw the first frame for its misses alone, in false-colour levels: it asks for the same
-  // bricks as a shaded frame (the same levels and lookups) without lighting and without
-  // evaluating any texture per pixel. Its picture is never the output: should it miss
+  // Draw the first frame for its misses alone (RenderOptions::misses_only): it asks for the
+  // same bricks as a shaded frame (the same levels and lookups) without reading a sample,
+  // lighting or evaluating any texture per pixel. Its picture is never the output: should it miss
   // nothing, the next frame, drawn at once, is shaded.
   bool first_frame_for_misses = true;
   // Ask for each raster tile's misses as soon as the tile is shaded (BrickSource::

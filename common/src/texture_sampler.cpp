@@ -262,8 +262,9 @@ BrickKey TextureSampler::brick_key(const glm::dvec3& p, int level) const {
   return BrickKey{texture_, level, locate(p, level).brick};
 }
 
-int TextureSampler::sample_level(const glm::dvec3& p, int level, bool nearest, float* out,
-                                 bool& missing, MissedBricks* missed) {
+template <typename Read>
+int TextureSampler::walk_levels(const glm::dvec3& p, int level, bool& missing, MissedBricks* missed,
+                                Read&& read) {
   if (accessor_.insertions() == 0) {
     // Nothing was ever inserted (a client's first frame): every level misses, so skip the
     // walk, which would locate the point at each level only to find that out, and report what
@@ -274,17 +275,12 @@ int TextureSampler::sample_level(const glm::dvec3& p, int level, bool nearest, f
       missed->add(BrickKey{texture_, level, locate(p, level).brick});
       missed->add(BrickKey{texture_, coarsest_level_, glm::ivec3(0)});
     }
-    std::fill(out, out + CachedBrick::kMaxChannels, 0.0f);
     return -1;
   }
   for (int l = level; l <= coarsest_level_; ++l) {
     const Location location = locate(p, l);
     if (const Current* brick = resident(l, location.brick)) {
-      if (nearest) {
-        brick->data->nearest(location.cell, location.frac, out);
-      } else {
-        brick->data->trilinear(location.cell, location.frac, out);
-      }
+      read(*brick, location);
       return l;
     }
     if (l == level) {
@@ -294,15 +290,27 @@ int TextureSampler::sample_level(const glm::dvec3& p, int level, bool nearest, f
   }
   // Not even the coarsest level: ask for it too, it is the fallback of everything.
   if (missed != nullptr) missed->add(BrickKey{texture_, coarsest_level_, glm::ivec3(0)});
-  std::fill(out, out + CachedBrick::kMaxChannels, 0.0f);
   return -1;
+}
+
+int TextureSampler::sample_level(const glm::dvec3& p, int level, bool nearest, float* out,
+                                 bool& missing, MissedBricks* missed) {
+  const int found =
+      walk_levels(p, level, missing, missed, [&](const Current& brick, const Location& at) {
+        if (nearest) {
+          brick.data->nearest(at.cell, at.frac, out);
+        } else {
+          brick.data->trilinear(at.cell, at.frac, out);
+        }
+      });
+  if (found < 0) std::fill(out, out + CachedBrick::kMaxChannels, 0.0f);
+  return found;
 }
 
 void TextureSampler::sample_general(const glm::dvec3& p, double lod, SampleFilter filter,
                                     MissedBricks* missed, SampleResult& result) {
   if (missed != nullptr) missed->count = 0;
-  if (!(lod >= 0.0)) lod = std::isnan(lod) ? coarsest_lod_ : 0.0;
-  lod = std::min(lod, coarsest_lod_);
+  lod = clamped_lod(lod);
   result = SampleResult{};
   bool missing = false;
   if (filter != SampleFilter::quadrilinear) {
@@ -325,6 +333,27 @@ void TextureSampler::sample_general(const glm::dvec3& p, double lod, SampleFilte
     }
   }
   result.complete = !missing;
+}
+
+SampleResult TextureSampler::find_misses(const glm::dvec3& p, double lod, SampleFilter filter,
+                                         MissedBricks* missed) {
+  if (missed != nullptr) missed->count = 0;
+  lod = clamped_lod(lod);
+  SampleResult result{};
+  bool missing = false;
+  const auto no_read = [](const Current&, const Location&) {};
+  if (filter != SampleFilter::quadrilinear) {
+    result.level = walk_levels(p, static_cast<int>(lod + 0.5), missing, missed, no_read);
+  } else {
+    // As sample_general(): the coarser level only where its weight is above zero.
+    const int fine = static_cast<int>(lod);
+    result.level = walk_levels(p, fine, missing, missed, no_read);
+    if (static_cast<float>(lod - fine) > 0.0f && fine < coarsest_level_) {
+      walk_levels(p, fine + 1, missing, missed, no_read);
+    }
+  }
+  result.complete = !missing;
+  return result;
 }
 
 }  // namespace soltex

@@ -12,7 +12,10 @@
 //                      target 4); the one argument is the thread count
 //   BM_ReferenceFrame  FrameRenderer::render_reference: the texture evaluated per pixel
 //   BM_ColdFrame       FrameRenderer::render with nothing resident (a client's first frame):
-//                      every pixel misses, and the frame lists every brick it wants
+//                      every pixel misses, and the frame lists every brick it wants; third
+//                      argument 0 shaded, 1 in false colour with each tile's misses reported
+//                      as it is done (soltex-view's headless start before misses-only
+//                      frames), 2 misses only (RenderOptions::misses_only), as it draws now
 // First argument: the thread count (the caller's thread included). Second: 0 for the scene as
 // it is, 1 for the bunny alone (the floor removed): the wood floor's two-colour rings keep the
 // whole frame at about 26 dB against the reference, the marble alone is above 40 dB, so the
@@ -240,14 +243,28 @@ void BM_ReferenceFrame(benchmark::State& state) {
   }
 }
 
+// How BM_ColdFrame draws: shaded, or only for the bricks it misses (soltex-view's headless
+// start) in false colour as before, or finding misses alone.
+enum class ColdFrameWay { shaded = 0, false_colour = 1, misses_only = 2 };
+
 void BM_ColdFrame(benchmark::State& state) {
   WarmScene& w = warm_scene(state);
+  const auto way = static_cast<ColdFrameWay>(state.range(2));
   std::size_t misses = 0;
+  std::size_t reported = 0;
   for (auto _ : state) {
     state.PauseTiming();
     auto empty = std::make_unique<soltex::BrickCache>(512u << 20);
     auto renderer = std::make_unique<soltex::FrameRenderer>(
         *empty, soltex::RenderOptions{.threads = static_cast<int>(state.range(0))});
+    if (way != ColdFrameWay::shaded) {
+      // As soltex-view's headless start draws its first frame: each tile's misses handed on
+      // as the tile is done.
+      renderer->set_on_tile_misses(
+          [&reported](std::vector<soltex::net::BrickWant> wants) { reported += wants.size(); });
+      renderer->set_false_colour_levels(way == ColdFrameWay::false_colour);
+      renderer->set_misses_only(way == ColdFrameWay::misses_only);
+    }
     state.ResumeTiming();
     soltex::Frame frame = renderer->render(w.prepared, w.scene.camera, kWidth, kHeight);
     misses = frame.misses.size();
@@ -258,6 +275,8 @@ void BM_ColdFrame(benchmark::State& state) {
     state.ResumeTiming();
   }
   state.counters["bricks_wanted"] = static_cast<double>(misses);
+  state.counters["reported_per_frame"] =
+      static_cast<double>(reported) / static_cast<double>(state.iterations());
 }
 
 // The tile shader's tiles: pixels on a side.
@@ -492,10 +511,12 @@ BENCHMARK(BM_SpherePair)->Args({1})->Args({2})->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_Raster)->Args({1, 0})->Args({2, 0})->Args({2, 1})->Args({1, 5})->Args({1, 6})->Apply(
     wall_and_process_cpu_ms);
 BENCHMARK(BM_ColdFrame)
-    ->Args({2, 0})
-    ->Args({2, 1})
-    ->Args({2, 3})
-    ->Args({2, 4})
+    ->Args({2, 0, 0})
+    ->Args({2, 1, 0})
+    ->Args({2, 3, 0})
+    ->Args({2, 3, 1})
+    ->Args({2, 3, 2})
+    ->Args({2, 4, 0})
     ->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_ReferenceFrame)
     ->Args({2, 0})

@@ -169,7 +169,7 @@ render::FrameShading FrameRenderer::frame_shading(const PreparedScene& scene,
     object.level0_spacing = o.layout.filter_width(0);
     object.cached_inset = render::has_planar_edges(o.texture) ? render::kCachedInset : 0.0;
     object.rgb_fast_path = shading.by_table() && !options.false_colour_levels &&
-                           !object.material.unlit && o.channels == 3;
+                           !options.misses_only && !object.material.unlit && o.channels == 3;
     shading.objects.push_back(object);
   }
   return shading;

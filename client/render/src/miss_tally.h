@@ -13,16 +13,16 @@ namespace soltex::render {
 // misses at every pixel.
 class MissTally {
  public:
-  void add(const BrickKey& key) {
+  void add(const BrickKey& key, uint32_t pixels = 1) {
     for (Slot& slot : recent_) {
       if (slot.pixels > 0 && slot.key == key) {
-        ++slot.pixels;
+        slot.pixels += pixels;
         return;
       }
     }
     Slot& victim = recent_[next_++ % recent_.size()];
     if (victim.pixels > 0) counts_[victim.key] += victim.pixels;
-    victim = {key, 1};
+    victim = {key, pixels};
   }
   // Visits every key with its pixel count, and empties the tally.
   template <typename Visit>

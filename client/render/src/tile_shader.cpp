@@ -143,7 +143,10 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
       for (std::size_t j = i + 1; end < x1 && g.covered(j) && g.object_id[j] == id; ++j) ++end;
       covered += static_cast<std::size_t>(end - x);
       const ObjectShading& object = frame_.objects[id];
-      if (object.evaluator == nullptr && object.rgb_fast_path && object.cached_inset == 0.0) {
+      const bool misses_run =
+          object.evaluator == nullptr && frame_.options.misses_only && frame_.by_table();
+      if (misses_run ||
+          (object.evaluator == nullptr && object.rgb_fast_path && object.cached_inset == 0.0)) {
         // shade_cached()'s fast path without its calls: the level from the table (the fast
         // path has one), the point where the surface was drawn.
         if (levels_object != &object) {
@@ -153,8 +156,12 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
                                     row_levels.data());
           levels_object = &object;
         }
-        add_cached_run(g, x, end, y, i, &row_levels[static_cast<std::size_t>(x - x0)], object,
-                       *samplers_[id], image);
+        const int32_t* levels = &row_levels[static_cast<std::size_t>(x - x0)];
+        if (misses_run) {
+          find_run_misses(g, i, static_cast<std::size_t>(end - x), levels, object, *samplers_[id]);
+        } else {
+          add_cached_run(g, x, end, y, i, levels, object, *samplers_[id], image);
+        }
         x = end;
         continue;
       }
@@ -204,6 +211,7 @@ void TileShader::shade_pixels(const GBuffer& g, int origin_x, int origin_y,
 void TileShader::shade_evaluated(const GBuffer& g, Pixel pixel, const ObjectShading& object,
                                  Image& image) {
   ++counts_.evaluated;
+  if (frame_.options.misses_only) return;  // evaluated textures miss no brick
   if (frame_.options.false_colour_levels) {
     image.set(pixel.x, pixel.y, kEvaluatedColour.r, kEvaluatedColour.g, kEvaluatedColour.b);
     return;
@@ -259,16 +267,55 @@ void TileShader::shade_cached(const GBuffer& g, Pixel pixel, const ObjectShading
     add_cached(pixel, p, static_cast<int>(lod), object, sampler, image);
     return;
   }
+  if (options.misses_only) {
+    count_lookup(sampler.find_misses(p, lod, options.filter, &missed_));
+    return;
+  }
   const SampleResult result = sampler.sample(p, lod, options.filter, &missed_);
-  for (const BrickKey& key : missed_.view()) misses_.add(key);
-  if (!result.complete) ++counts_.fallback;
-  if (result.level < 0) ++counts_.empty;
+  count_lookup(result);
   if (options.false_colour_levels) {
     const glm::vec3 colour = level_colour(result.level);
     image.set(pixel.x, pixel.y, colour.r, colour.g, colour.b);
     return;
   }
   shade_values(pixel, object.material, result.values.data(), image);
+}
+
+void TileShader::count_lookup(const SampleResult& result, uint32_t pixels) {
+  if (pixels == 0) return;
+  for (const BrickKey& key : missed_.view()) misses_.add(key, pixels);
+  if (!result.complete) counts_.fallback += pixels;
+  if (result.level < 0) counts_.empty += pixels;
+}
+
+void TileShader::find_run_misses(const GBuffer& g, std::size_t first, std::size_t count,
+                                 const int32_t* levels, const ObjectShading& object,
+                                 TextureSampler& sampler) {
+  const SampleFilter filter = frame_.options.filter;
+  SampleResult result{};
+  int level = -1;
+  glm::ivec3 brick{0};
+  uint32_t pixels = 0;  // the pixels that miss what the last lookup missed
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::size_t i = first + k;
+    const int l = levels[k];
+    glm::dvec3 p = g.texture_position[i];
+    if (object.cached_inset > 0.0) {
+      p = axis_face_inset(p, object.surface.normal(g.normal[i]),
+                          object.cached_inset * std::ldexp(object.level0_spacing, l));
+    }
+    const glm::ivec3 b = sampler.brick_of(p, l);
+    if (l == level && b == brick) {
+      ++pixels;
+      continue;
+    }
+    count_lookup(result, pixels);
+    result = sampler.find_misses(p, static_cast<double>(l), filter, &missed_);
+    level = l;
+    brick = b;
+    pixels = 1;
+  }
+  count_lookup(result, pixels);
 }
 
 void TileShader::look_up(int level, Image& image) {

@@ -136,6 +136,14 @@ class TileShader {
   void evaluate(Image& image);
   void shade_cached(const GBuffer& g, Pixel pixel, const ObjectShading& object,
                     TextureSampler& sampler, Image& image);
+  // Tallies the bricks the lookup that gave `result` missed (in missed_) and its counts, for
+  // `pixels` pixels that miss the same.
+  void count_lookup(const SampleResult& result, uint32_t pixels = 1);
+  // A misses-only frame's run of `count` pixels of `object` from G-buffer index `first`, each
+  // pixel's level in `levels`: what each would miss, looked up once for each stretch of
+  // pixels in one brick (they miss the same bricks).
+  void find_run_misses(const GBuffer& g, std::size_t first, std::size_t count,
+                       const int32_t* levels, const ObjectShading& object, TextureSampler& sampler);
   void shade_values(Pixel pixel, const MaterialInputs& m, const float* values, Image& image);
   void flush(Image& image);
 

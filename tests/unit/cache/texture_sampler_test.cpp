@@ -291,6 +291,72 @@ TEST(TextureSampler, ANeverFilledCacheAnswersAsTheWalkDoes) {
   EXPECT_EQ(never_filled.stats().misses, filled_elsewhere.stats().misses);
 }
 
+// find_misses() answers as sample() does, level, completeness and missed keys, without reading
+// a sample: with nothing resident, with a scattered part of the bricks and with all of them;
+// for points inside and far outside, NaN and infinite coordinates and levels. Points in one
+// brick at their level miss the same bricks (the shader looks a run up once per brick).
+TEST(TextureSampler, FindMissesAnswersAsSampleDoes) {
+  const RealTexture texture(spec_of(MarbleParams{}), test_volume(6), 8);
+  const int coarsest = texture.layout.coarsest_level();
+  BrickCache empty(kBigBudget);
+  BrickCache partial(kBigBudget);
+  BrickCache full(kBigBudget);
+  texture.insert_all_levels(full);
+  // Every third brick of each level but the coarsest: walks stop at several depths.
+  for (int level = 0; level < coarsest; ++level) {
+    const int per_axis = 1 << (coarsest - level);
+    int n = 0;
+    for (int z = 0; z < per_axis; ++z) {
+      for (int y = 0; y < per_axis; ++y) {
+        for (int x = 0; x < per_axis; ++x) {
+          if (n++ % 3 == 0) ASSERT_TRUE(texture.insert(partial, level, {x, y, z}));
+        }
+      }
+    }
+  }
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double inf = std::numeric_limits<double>::infinity();
+  const double odd[] = {nan, inf, -inf, -1e300, 1e300, -0.0};
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> coordinate(-1.0, 2.5);
+  std::uniform_real_distribution<double> lod(-0.5, coarsest + 0.5);
+  for (BrickCache* cache : {&empty, &partial, &full}) {
+    TextureSampler sampling(*cache, texture.id, texture.layout, texture.channels);
+    TextureSampler finding(*cache, texture.id, texture.layout, texture.channels);
+    for (int n = 0; n < 4000; ++n) {
+      glm::dvec3 p(coordinate(rng), coordinate(rng), coordinate(rng));
+      double l = lod(rng);
+      if (n % 50 == 0) p[n % 3] = odd[(n / 50) % std::size(odd)];
+      if (n % 70 == 0) l = odd[(n / 70) % std::size(odd)];
+      const auto filter = static_cast<SampleFilter>(n % 3);
+      MissedBricks sampled, found;
+      const SampleResult a = sampling.sample(p, l, filter, &sampled);
+      const SampleResult b = finding.find_misses(p, l, filter, &found);
+      ASSERT_EQ(a.level, b.level) << n;
+      ASSERT_EQ(a.complete, b.complete) << n;
+      ASSERT_EQ(sampled.count, found.count) << n;
+      for (int k = 0; k < sampled.count; ++k) {
+        ASSERT_EQ(sampled.keys[static_cast<std::size_t>(k)],
+                  found.keys[static_cast<std::size_t>(k)])
+            << n;
+      }
+      if (filter == SampleFilter::quadrilinear || !(l >= 0.0)) continue;
+      // A second point in the same brick at the level: the same answer.
+      const int level = static_cast<int>(std::min<double>(l, coarsest) + 0.5);
+      const glm::dvec3 q = p + glm::dvec3(1e-3, -1e-3, 2e-3);
+      if (finding.brick_of(q, level) != finding.brick_of(p, level)) continue;
+      MissedBricks again;
+      const SampleResult c = finding.find_misses(q, l, filter, &again);
+      ASSERT_EQ(c.level, b.level) << n;
+      ASSERT_EQ(again.count, found.count) << n;
+      for (int k = 0; k < found.count; ++k) {
+        ASSERT_EQ(again.keys[static_cast<std::size_t>(k)], found.keys[static_cast<std::size_t>(k)])
+            << n;
+      }
+    }
+  }
+}
+
 // The shading pass's two-step path (locate and prefetch, read later) gives what sample() gives,
 // bit for bit, for nearest and trilinear; a brick not resident is left to sample_after_miss().
 TEST(TextureSampler, LocateThenReadEqualsSample) {

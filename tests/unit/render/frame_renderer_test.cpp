@@ -1,12 +1,14 @@
 // FrameRenderer draws the same frame whether it keeps the whole G-buffer (tests, tools) or
 // shades each tile from a tile-sized one, and nearly the same from a fine mesh's simplified
-// level as from the mesh itself.
+// level as from the mesh itself; a frame drawn for its misses alone finds what a shaded one
+// misses.
 #include "soltex/render/frame_renderer.h"
 
 #include <gtest/gtest.h>
 
 #include <chrono>
 #include <mutex>
+#include <string>
 #include <unordered_map>
 
 #include "soltex/common/brick_cache.h"
@@ -147,6 +149,65 @@ TEST(FrameRenderer, TileMissesAddUpToTheFramesMisses) {
   }
   EXPECT_EQ(reported.size(), plain.misses.size());
   EXPECT_TRUE(told.image == plain.image);
+}
+
+// A frame drawn for its misses alone (RenderOptions::misses_only) asks for what the shaded
+// frame asks for, key for key and pixel for pixel, and counts the same pixels, with nothing
+// resident, with part of the bricks resident and converged; for every filter, with edge
+// anti-aliasing and without, with planar edges looked up in bricks (their inward step) and
+// evaluated.
+TEST(FrameRenderer, AMissesOnlyFrameMissesWhatTheShadedFrameMisses) {
+  const Scene scene = default_scene();
+  struct Setting {
+    SampleFilter filter;
+    TextureAccess access;
+    int edge_antialias;
+  };
+  const Setting settings[] = {{SampleFilter::trilinear, TextureAccess::automatic, 0},
+                              {SampleFilter::nearest, TextureAccess::cached, 0},
+                              {SampleFilter::quadrilinear, TextureAccess::cached, 0},
+                              {SampleFilter::trilinear, TextureAccess::cached, 3}};
+  for (const Setting& setting : settings) {
+    SCOPED_TRACE(std::string(sample_filter_name(setting.filter)) + ", " +
+                 texture_access_name(setting.access) + ", edge anti-aliasing " +
+                 std::to_string(setting.edge_antialias));
+    BrickCache cache(256u << 20);
+    net::LocalBrickSource source(cache);
+    const PreparedScene prepared = prepare_scene(scene, TextureResolution{7, 16, {}}, source);
+    FrameRenderer renderer(cache, RenderOptions{.access = setting.access,
+                                                .filter = setting.filter,
+                                                .threads = 2,
+                                                .edge_antialias = setting.edge_antialias});
+    bool partly_resident = false;  // a round drew some pixels from a coarser resident level
+    for (int round = 0; round < 8; ++round) {
+      SCOPED_TRACE("round " + std::to_string(round));
+      const Frame shaded = renderer.render(prepared, scene.camera, 320, 180);
+      renderer.set_misses_only(true);
+      const Frame found = renderer.render(prepared, scene.camera, 320, 180);
+      renderer.set_misses_only(false);
+      ASSERT_EQ(found.misses.size(), shaded.misses.size());
+      for (std::size_t i = 0; i < found.misses.size(); ++i) {
+        EXPECT_EQ(found.misses[i].key, shaded.misses[i].key);
+        EXPECT_EQ(found.misses[i].screen_pixels, shaded.misses[i].screen_pixels);
+      }
+      EXPECT_EQ(found.stats.covered_pixels, shaded.stats.covered_pixels);
+      EXPECT_EQ(found.stats.fallback_pixels, shaded.stats.fallback_pixels);
+      EXPECT_EQ(found.stats.empty_pixels, shaded.stats.empty_pixels);
+      EXPECT_EQ(found.stats.evaluated_pixels, shaded.stats.evaluated_pixels);
+      EXPECT_EQ(found.stats.shaded_pixels, 0u) << "nothing lit";
+      partly_resident |= shaded.stats.fallback_pixels > shaded.stats.empty_pixels;
+      if (shaded.complete()) break;
+      // Every other brick: the next round draws from coarser levels where the rest is missing.
+      std::vector<net::BrickWant> half;
+      for (std::size_t i = 0; i < shaded.misses.size(); i += 2) half.push_back(shaded.misses[i]);
+      if (round >= 3) half = shaded.misses;
+      source.want(std::move(half));
+      source.wait_idle(std::chrono::seconds(5));
+      EXPECT_TRUE(source.idle());
+    }
+    EXPECT_TRUE(partly_resident);
+    EXPECT_TRUE(renderer.render(prepared, scene.camera, 320, 180).complete()) << "converged";
+  }
 }
 
 TEST(FrameRenderer, SimplifiedLevelsDrawNearlyTheSamePicture) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <span>
@@ -227,8 +228,16 @@ class TextureSampler {
     return sample(p, level_of_detail(footprint), filter, missed);
   }
 
+  // What sample(p, lod, filter, missed) would report, without reading a sample: the bricks it
+  // misses into `missed`, and its result's level and completeness (the values stay zero). For
+  // a frame drawn only to find what it has to fetch.
+  SampleResult find_misses(const glm::dvec3& p, double lod, SampleFilter filter,
+                           MissedBricks* missed);
   // The key of the brick a trilinear lookup of p at `level` reads.
   BrickKey brick_key(const glm::dvec3& p, int level) const;
+  // Its brick, inline, for a level in [0, coarsest]. Points in one brick at a level are in one
+  // brick at every coarser level too (the cells halve exactly), so they miss the same bricks.
+  glm::ivec3 brick_of(const glm::dvec3& p, int level) const { return locate(p, level).brick; }
 
   // Adds this sampler's lookup counts to the cache's statistics now.
   void flush_statistics() { accessor_.flush_statistics(); }
@@ -353,6 +362,15 @@ class TextureSampler {
   // Samples the finest resident level at or above `level`; returns it, or -1.
   int sample_level(const glm::dvec3& p, int level, bool nearest, float* out, bool& missing,
                    MissedBricks* missed);
+  // The finest resident level at or above `level`, or -1, with `read(brick, location)` called
+  // for it; sets `missing` and lists in `missed` what sample_level() reports.
+  template <typename Read>
+  int walk_levels(const glm::dvec3& p, int level, bool& missing, MissedBricks* missed, Read&& read);
+  // `lod` as sample_general() reads it: NaN the coarsest level, below 0 level 0.
+  double clamped_lod(double lod) const {
+    if (!(lod >= 0.0)) lod = std::isnan(lod) ? coarsest_lod_ : 0.0;
+    return std::min(lod, coarsest_lod_);
+  }
 
   BrickLayout layout_;
   uint64_t texture_;

@@ -44,7 +44,11 @@ struct RenderOptions {
   SampleFilter filter = SampleFilter::trilinear;
   double level_bias = 0.0;           // added to every pixel's level of detail (negative: finer)
   bool false_colour_levels = false;  // show the level each pixel drew from instead of shading
-  int threads = 0;                   // 0: one per core
+  // Find the bricks the frame misses and draw nothing else (the image keeps its background):
+  // a client's first frame, drawn only to learn what to fetch. Frame::misses and the pixel
+  // counts are those the shaded frame would give.
+  bool misses_only = false;
+  int threads = 0;  // 0: one per core
   // Sub-pixels per axis (1..4) whose colours each pixel averages: silhouettes, clip edges and
   // textures anti-aliased by supersampling, each sub-pixel textured at its own level, at about
   // antialias^2 times the frame's raster and shading work.
@@ -109,6 +113,7 @@ class FrameRenderer {
   const GBuffer& last_gbuffer() const { return gbuffer_; }
   void set_level_bias(double bias) { options_.level_bias = bias; }
   void set_false_colour_levels(bool on) { options_.false_colour_levels = on; }
+  void set_misses_only(bool on) { options_.misses_only = on; }
   // Called while a frame is drawn, on the render thread that shaded a raster tile, with the
   // keys that tile missed and its thread had not missed before in this frame (each with the
   // pixels that wanted it so far): a client can ask for them before the frame ends. The
