@@ -235,8 +235,11 @@ HttpBrickServer::HttpBrickServer(const std::string& host, uint16_t port, HttpLim
       tls_(tls ? std::make_unique<HttpTls>(*tls) : nullptr),
       peers_(std::make_shared<PeerConnections>(limits.max_connections_per_client,
                                                limits.unbounded_peers)),
-      acceptor_(io_),
-      retry_(io_.get_executor(), "HTTP") {
+      // One strand for the acceptor, its retry timer and stop()'s close: the accept handlers
+      // run on any of the server's threads, and none of the three may be touched by two
+      // threads at once.
+      acceptor_(net::make_strand(io_)),
+      retry_(acceptor_.get_executor(), "HTTP") {
   beast::error_code ec;
   const auto address = net::ip::make_address(host, ec);
   if (ec) throw std::runtime_error("HTTP address '" + host + "' is not an IP address");
