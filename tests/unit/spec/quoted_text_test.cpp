@@ -40,6 +40,31 @@ TEST(QuotedText, NulAndControlCharactersAreEscaped) {
   EXPECT_EQ(quoted_text("say \"hi\" \\o/"), "\"say \\\"hi\\\" \\\\o/\"");
 }
 
+// Valid UTF-8 that would change how the line reads: C1 controls, line separators and the
+// bidirectional controls are shown as \u escapes; other characters beside them stay as sent.
+TEST(QuotedText, InvisibleAndReorderingCharactersAreEscaped) {
+  EXPECT_EQ(quoted_text("a\xc2\x85"
+                        "b\xc2\x9b"),
+            "\"a\\u0085b\\u009b\"");  // NEL, CSI
+  EXPECT_EQ(quoted_text("x\xe2\x80\xae"
+                        "evil"),
+            "\"x\\u202eevil\"");  // right-to-left override
+  EXPECT_EQ(quoted_text("\xe2\x81\xa6\xe2\x81\xa9"), "\"\\u2066\\u2069\"");  // isolates
+  EXPECT_EQ(quoted_text("\xe2\x80\xa8\xe2\x80\x8f\xd8\x9c"), "\"\\u2028\\u200f\\u061c\"");
+  // Their neighbours are ordinary text: U+00A0, U+2030 (per mille), U+2065 (unassigned).
+  EXPECT_EQ(quoted_text("\xc2\xa0\xe2\x80\xb0\xe2\x81\xa5"),
+            "\"\xc2\xa0\xe2\x80\xb0\xe2\x81\xa5\"");
+  // The cut counts the bytes sent, not the escape's.
+  const std::string overrides = [] {
+    std::string s;
+    for (int i = 0; i < 30; ++i) s += "\xe2\x80\xae";
+    return s;
+  }();
+  std::string shown;
+  for (int i = 0; i < 21; ++i) shown += "\\u202e";
+  EXPECT_EQ(escaped_text(overrides), shown + "\xe2\x80\xa6 (90 bytes)");
+}
+
 TEST(QuotedText, BytesThatAreNotUtf8AreEscaped) {
   EXPECT_EQ(quoted_text("\xff\xfe"), "\"\\xff\\xfe\"");
   EXPECT_EQ(quoted_text("a\xc0\xaf"), "\"a\\xc0\\xaf\"");               // overlong '/'

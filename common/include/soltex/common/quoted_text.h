@@ -12,8 +12,9 @@ namespace soltex {
 inline constexpr std::size_t kQuotedTextBytes = 64;
 
 // A client-supplied string as an error message shows it, in double quotes. Control characters,
-// quotes, backslashes and bytes that are not UTF-8 are escaped (\n, \", \\, \x00), so that what
-// was sent is visible and cannot end or forge the message; past kQuotedTextBytes it is cut,
+// quotes, backslashes and bytes that are not UTF-8 are escaped (\n, \", \\, \x00), and so are
+// the C1 controls, line separators and bidirectional controls (\u202e), so that what was sent
+// is visible and cannot end, reorder or forge the message; past kQuotedTextBytes it is cut,
 // with its whole length after: "abc…" (10000 bytes).
 std::string quoted_text(std::string_view text);
 
