@@ -6,74 +6,28 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
-#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <stdexcept>
-#include <system_error>
 
 #include "daemon.h"
 #include "grpc_log_bridge.h"
+#include "ready_file.h"
 #include "signal_wait.h"
 #include "soltex/cli/tool_cli.h"
 #include "soltexd_options.h"
 
 namespace {
 
+using soltex::server::remove_ready_file;
 using soltex::server::ServerConfig;
+using soltex::server::write_ready_file;
 
 // What clients dial for gRPC: the port bound, or the socket of a unix: address (which has no
 // port; gRPC reports 1 for it).
 std::string grpc_endpoint(const ServerConfig& config, int port) {
   return soltex::server::is_unix_socket_address(config.listen) ? config.listen
                                                                : std::to_string(port);
-}
-
-// Throws std::runtime_error naming the file and why it could not be written.
-void write_ready_file(const std::string& path, const std::string& grpc, int metrics_port,
-                      int http_port) {
-  // Written to a temporary name and renamed, so a reader never sees half a file.
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary);
-    out << "grpc=" << grpc << "\nmetrics=" << metrics_port << "\n";
-    if (http_port != 0) out << "http=" << http_port << "\n";
-    out << "pid=" << getpid() << "\n";  // whose file this is: see remove_ready_file()
-    out.close();
-    if (!out) throw std::runtime_error("--ready-file: cannot write " + temporary);
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::filesystem::remove(temporary, error);
-    throw std::runtime_error("--ready-file: cannot rename " + temporary + " to " + path + ": " +
-                             error.message());
-  }
-}
-
-// The process a ready file names (its pid= line), or 0.
-pid_t ready_file_owner(const std::string& path) {
-  std::ifstream in(path);
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("pid=", 0) == 0) return static_cast<pid_t>(std::atol(line.c_str() + 4));
-  }
-  return 0;
-}
-
-// Removes a ready file that announces no live soltexd: one of this process, or left by one
-// that is gone (a crash) or that wrote no pid. A live one's is that one's (a second instance
-// given the same file by mistake must not take it away). Only a file: a --ready-file naming a
-// folder is refused when written, not removed.
-void remove_ready_file(const std::string& path) {
-  std::error_code ignored;
-  if (path.empty() || !std::filesystem::is_regular_file(path, ignored)) return;
-  const pid_t owner = ready_file_owner(path);
-  const bool owner_lives =
-      owner > 0 && owner != getpid() && (kill(owner, 0) == 0 || errno == EPERM);
-  if (!owner_lives) std::filesystem::remove(path, ignored);
 }
 
 // Every connection is a file descriptor, and the soft limit (often 1024) would run out long

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <utility>
@@ -323,6 +324,19 @@ TEST_F(SoltexdCli, TheGrpcAddressMayBeAUnixSocket) {
   EXPECT_FALSE(std::filesystem::exists(ready)) << "the ready file outlived the server";
 }
 
+// Field 22 of /proc/self/stat, read here as the kernel documents it (proc(5)), not through
+// soltexd's own reader.
+std::string process_start_ticks_of_this_test() {
+  std::ifstream in("/proc/self/stat");
+  std::string stat;
+  std::getline(in, stat);
+  std::istringstream fields(stat.substr(stat.rfind(')') + 2));
+  std::string field;
+  for (int i = 3; i <= 22 && (fields >> field); ++i) {
+  }
+  return field;
+}
+
 // A ready file left by an earlier run that is gone does not announce a server that failed to
 // start.
 TEST_F(SoltexdCli, AStaleReadyFileIsRemovedBeforeListening) {
@@ -341,6 +355,24 @@ TEST_F(SoltexdCli, AStaleReadyFileIsRemovedBeforeListening) {
                                                   "127.0.0.1:0", "--ready-file", ready.string()});
   EXPECT_EQ(again.exit_code, 1) << again.err;
   EXPECT_EQ(file_text(ready), live);
+  // With the start time soltexd writes too: a live pid started at another time is another
+  // process that took the pid of one gone, and its file goes; the same start time stays.
+  const std::string started = process_start_ticks_of_this_test();
+  ASSERT_FALSE(started.empty());
+  const std::string reused = live + "pid_start=1" + started + "\n";
+  std::ofstream(ready) << reused;
+  EXPECT_EQ(run_tool(SOLTEXD_BINARY, {"--listen", taken, "--metrics-listen", "127.0.0.1:0",
+                                      "--ready-file", ready.string()})
+                .exit_code,
+            1);
+  EXPECT_FALSE(std::filesystem::exists(ready)) << file_text(ready);
+  const std::string same = live + "pid_start=" + started + "\n";
+  std::ofstream(ready) << same;
+  EXPECT_EQ(run_tool(SOLTEXD_BINARY, {"--listen", taken, "--metrics-listen", "127.0.0.1:0",
+                                      "--ready-file", ready.string()})
+                .exit_code,
+            1);
+  EXPECT_EQ(file_text(ready), same);
 }
 
 TEST_F(SoltexdCli, OptionsThatDoNotGoTogetherOrAFileThatDoesNotParseExit2) {
