@@ -51,9 +51,10 @@ void print_outcome(const ViewOptions& options, const Scene& scene, const ViewSet
   const FrameStats& last = result.last_stats;
   std::printf(
       "last frame: %.2f ms (raster %.2f, shade %.2f), %zu pixels covered, %zu from a "
-      "coarser level, %zu with no texture yet\n",
+      "coarser level, %zu with no texture yet, %zu looked up in %zu anisotropic taps\n",
       result.last_frame_ms, last.raster_ms, last.shade_ms, last.covered_pixels,
-      last.fallback_pixels - std::min(last.empty_pixels, last.fallback_pixels), last.empty_pixels);
+      last.fallback_pixels - std::min(last.empty_pixels, last.fallback_pixels), last.empty_pixels,
+      last.tapped_pixels, last.taps);
 }
 
 void print_traffic(const PreparedScene& prepared, const net::SourceStats& fetched,

@@ -76,6 +76,11 @@ void add_picture_options(CLI::App& app, ViewOptions& o) {
                  "edges, depth breaks), each surface there shaded once (0: off; 2 to 8)")
       ->check(CLI::IsMember({0, 2, 3, 4, 5, 6, 7, 8}))
       ->capture_default_str();
+  app.add_option("--anisotropy", o.anisotropy,
+                 "cached lookups along a footprint's long side at grazing angles: at most this "
+                 "many, each at the level of its share (1: one lookup at the long side's level)")
+      ->check(cli::IntegerIn(1, 16))
+      ->capture_default_str();
   app.add_option("--level-bias", o.level_bias, "added to every pixel's level (negative: finer)")
       ->check(soltex::cli::NumberIn(-8.0, 8.0));
   app.add_flag("--false-colour", o.false_colour, "show each pixel's level in false colour");
@@ -127,6 +132,7 @@ RenderOptions ViewOptions::render_options() const {
                                                : TextureAccess::automatic;
   options.antialias = antialias;
   options.edge_antialias = edge_antialias;
+  options.anisotropy = anisotropy;
   options.level_bias = level_bias;
   options.false_colour_levels = false_colour;
   options.threads = threads;

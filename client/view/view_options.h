@@ -29,6 +29,7 @@ struct ViewOptions {
   std::string codec_name = "auto";
   int antialias = 1;
   int edge_antialias = 0;
+  int anisotropy = RenderOptions{}.anisotropy;
   double level_bias = 0.0;
   bool false_colour = false;
   double max_seconds = 30.0;

@@ -3,6 +3,8 @@
 // LocalBrickSource, before timing), finest level 2^8 where a material does not set its own
 // (the bunny's marble sets 2^9).
 //   BM_WarmFrame       FrameRenderer::render: raster + brick lookup + shade
+//   BM_WarmFrameIsotropic  the same with one lookup per pixel (RenderOptions::anisotropy 1)
+//                      instead of taps along grazing footprints, its bricks converged for it
 //   BM_Raster          the rasterizer alone on the same view and meshes (mesh_for_view()), into
 //                      tile-sized G-buffers as FrameRenderer draws (its raster part, without
 //                      shading); /1/5 and /1/6 the spheres on one thread
@@ -101,14 +103,14 @@ soltex::Scene sphere_scene(int variant) {
 
 // One converged scene per thread count, kept for the whole run.
 struct WarmScene {
-  WarmScene(int threads, int variant)
+  WarmScene(int threads, int variant, int anisotropy)
       : scene(load(variant)),
         cache(std::make_unique<soltex::BrickCache>(512u << 20)),
         source(std::make_unique<soltex::net::LocalBrickSource>(*cache)),
         prepared(soltex::prepare_scene(
             scene, soltex::TextureResolution{8, variant == 4 ? 8 : 16, {}}, *source)),
         renderer(std::make_unique<soltex::FrameRenderer>(
-            *cache, soltex::RenderOptions{.threads = threads})) {
+            *cache, soltex::RenderOptions{.threads = threads, .anisotropy = anisotropy})) {
     converge(*renderer, prepared, scene.camera, kWidth, kHeight, *source, "frame_bench");
     const soltex::Image warm = renderer->render(prepared, scene.camera, kWidth, kHeight).image;
     psnr = soltex::psnr(warm, renderer->render_reference(prepared, scene.camera, kWidth, kHeight));
@@ -135,23 +137,26 @@ struct WarmScene {
   double psnr = 0.0;
 };
 
-WarmScene& warm_scene(int threads, int variant) {
+// `isotropic`: one lookup per pixel (RenderOptions::anisotropy 1) instead of the default taps.
+WarmScene& warm_scene(int threads, int variant, bool isotropic = false) {
   constexpr int kThreadCounts = 3, kVariants = 8;  // threads 0..2, variants 0..7
-  static std::unique_ptr<WarmScene> scenes[kThreadCounts][kVariants];
+  static std::unique_ptr<WarmScene> scenes[kThreadCounts][kVariants][2];
   if (threads < 0 || threads >= kThreadCounts || variant < 0 || variant >= kVariants) {
     throw std::out_of_range("frame_bench: no scene slot for these arguments");
   }
-  auto& s = scenes[threads][variant];
-  if (!s) s = std::make_unique<WarmScene>(threads, variant);
+  auto& s = scenes[threads][variant][isotropic ? 1 : 0];
+  if (!s) {
+    s = std::make_unique<WarmScene>(threads, variant,
+                                    isotropic ? 1 : soltex::RenderOptions{}.anisotropy);
+  }
   return *s;
 }
 
-WarmScene& warm_scene(const benchmark::State& state) {
-  return warm_scene(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
+WarmScene& warm_scene(const benchmark::State& state, bool isotropic = false) {
+  return warm_scene(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)), isotropic);
 }
 
-void BM_WarmFrame(benchmark::State& state) {
-  WarmScene& w = warm_scene(state);
+void warm_frame(benchmark::State& state, WarmScene& w) {
   double raster_ms = 0.0, shade_ms = 0.0;
   std::size_t covered = 0, triangles = 0;
   for (auto _ : state) {
@@ -169,6 +174,14 @@ void BM_WarmFrame(benchmark::State& state) {
   state.counters["covered"] = static_cast<double>(covered);
   state.counters["triangles"] = static_cast<double>(triangles);
   state.counters["psnr_db"] = w.psnr;
+}
+
+void BM_WarmFrame(benchmark::State& state) {
+  warm_frame(state, warm_scene(state));
+}
+
+void BM_WarmFrameIsotropic(benchmark::State& state) {
+  warm_frame(state, warm_scene(state, true));
 }
 
 // Target 4 as one figure: the fine and the coarse sphere's warm frames rendered in turn, in
@@ -506,6 +519,7 @@ BENCHMARK(BM_WarmFrame)
     ->Args({2, 6})
     ->Args({2, 7})
     ->Apply(wall_and_process_cpu_ms);
+BENCHMARK(BM_WarmFrameIsotropic)->Args({2, 0})->Args({2, 3})->Apply(wall_and_process_cpu_ms);
 // Each iteration is a pair of frames: its time is theirs together.
 BENCHMARK(BM_SpherePair)->Args({1})->Args({2})->Apply(wall_and_process_cpu_ms);
 BENCHMARK(BM_Raster)->Args({1, 0})->Args({2, 0})->Args({2, 1})->Args({1, 5})->Args({1, 6})->Apply(

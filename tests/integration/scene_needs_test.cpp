@@ -20,6 +20,8 @@
 #include "soltex/common/evaluation_counters.h"
 #include "soltex/common/texture_evaluator.h"
 #include "soltex/net/brick_fetcher.h"
+#include "soltex/render/anisotropic_taps.h"
+#include "soltex/render/frame_renderer.h"
 #include "soltex/scene/default_scene.h"
 #include "soltex/spec_proto/spec_from_proto.h"
 #include "soltex/v1/brick_service.grpc.pb.h"
@@ -51,10 +53,11 @@ Scene with_channels(Scene scene, const ChannelSet& channels) {
   return scene;
 }
 
-// The bricks the visible surface touches: at every covered pixel, the brick that holds its
-// texture position at the level its footprint asks for (trilinear: the nearest level).
 // The bricks the visible surface reads, of the objects whose textures come from bricks (the
-// default access evaluates the analytic ones per pixel: they read none).
+// default access evaluates the analytic ones per pixel: they read none): at every covered
+// pixel, the bricks that hold its taps (its texture position, or the default anisotropy's taps
+// along a grazing footprint) at the level of their share of the footprint (trilinear: the
+// nearest level).
 KeySet surface_bricks(const PreparedScene& scene, const GBuffer& g, BrickCache& cache) {
   std::vector<std::unique_ptr<TextureSampler>> samplers;
   for (const PreparedObject& o : scene.objects) {
@@ -67,9 +70,16 @@ KeySet surface_bricks(const PreparedScene& scene, const GBuffer& g, BrickCache& 
       continue;
     }
     TextureSampler& sampler = *samplers[g.object_id[i]];
-    const double lod = std::min(sampler.level_of_detail(g.footprint[i]),
+    const int n =
+        render::tap_count(g.footprint[i], g.footprint_minor[i], RenderOptions{}.anisotropy);
+    const double lod = std::min(sampler.level_of_detail(g.footprint[i] / static_cast<float>(n)),
                                 static_cast<double>(sampler.layout().coarsest_level()));
-    keys.insert(sampler.brick_key(g.texture_position[i], static_cast<int>(lod + 0.5)));
+    for (int k = 0; k < n; ++k) {
+      const glm::dvec3 p =
+          n == 1 ? g.texture_position[i]
+                 : render::tap_position(g.texture_position[i], g.footprint_axis[i], k, n);
+      keys.insert(sampler.brick_key(p, static_cast<int>(lod + 0.5)));
+    }
   }
   return keys;
 }

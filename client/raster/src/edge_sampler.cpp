@@ -56,7 +56,8 @@ void write_triangle_surface(const ScreenTriangle& t, uint32_t object_id, int64_t
   const glm::vec3 ddy = (dy - c * dq_dy) * inv_q;
   const float along_x = (ddx.x * ddx.x + ddx.y * ddx.y) + ddx.z * ddx.z;
   const float along_y = (ddy.x * ddy.x + ddy.y * ddy.y) + ddy.z * ddy.z;
-  const float size = std::sqrt(std::max(along_x, along_y));
+  const bool y_longer = along_x < along_y;
+  const float size = std::sqrt(y_longer ? along_y : along_x);
   const bool keep = has_q && finite(c.x) && finite(c.y) && finite(c.z);
   constexpr float kInfinity = std::numeric_limits<float>::infinity();
   const float kept_size = keep ? size : kInfinity;
@@ -72,7 +73,11 @@ void write_triangle_surface(const ScreenTriangle& t, uint32_t object_id, int64_t
   g.object_id[i] = object_id;
   g.texture_position[i] = t.texture_origin + glm::dvec3(keep ? c : glm::vec3(0.0f));
   g.normal[i] = normal;
-  g.footprint[i] = std::isnan(kept_size) ? kInfinity : kept_size;
+  const float footprint = std::isnan(kept_size) ? kInfinity : kept_size;
+  g.footprint[i] = footprint;
+  const bool directed = footprint < kInfinity;
+  g.footprint_axis[i] = directed ? (y_longer ? ddy : ddx) : glm::vec3(0.0f);
+  g.footprint_minor[i] = directed ? std::sqrt(y_longer ? along_x : along_y) : footprint;
 }
 
 }  // namespace
@@ -336,6 +341,8 @@ void EdgeSampler::resolve(const TileFrame& frame, EdgeSurfaces& out) const {
           layer.texture_position[i] = cap.texture_position;
           layer.normal[i] = cap.normal;
           layer.footprint[i] = cap.footprint;
+          layer.footprint_axis[i] = glm::vec3(0.0f);
+          layer.footprint_minor[i] = cap.footprint;
           continue;
         }
       }

@@ -12,6 +12,8 @@ void GBuffer::resize(int new_width, int new_height, bool count_coverage) {
   texture_position.resize(pixels);
   normal.resize(pixels);
   footprint.resize(pixels);
+  footprint_axis.resize(pixels);
+  footprint_minor.resize(pixels);
   coverage_count.resize(count_coverage ? pixels : 0);
 }
 

@@ -274,6 +274,7 @@ struct SurfaceChunk {
 
   alignas(64) std::array<Lanes<float>, 3> edge;  // in
   alignas(64) Lanes<float> offset_x, offset_y, offset_z, footprint, normal_x, normal_y, normal_z;
+  alignas(64) Lanes<float> axis_x, axis_y, axis_z, minor;
 };
 
 // `t`: the terms of each lane's triangle, t.area(l), t.q(k, l) and so on (RunTerms,
@@ -281,6 +282,14 @@ struct SurfaceChunk {
 // SurfaceLanes).
 template <typename Terms, typename Lanes>
 void interpolate(const Terms& t, Lanes& s, std::size_t count) {
+  // Lane l reads its own inputs and writes its own outputs (distinct arrays): no iteration
+  // depends on another. Said to the compiler, which would otherwise version the loop on a
+  // run-time check per pair of arrays, and with this many outputs gives up vectorizing it.
+#if defined(__clang__)
+#pragma clang loop vectorize(assume_safety)
+#elif defined(__GNUC__)
+#pragma GCC ivdep
+#endif
   for (std::size_t l = 0; l < count; ++l) {
     const float inv_area = 1.0f / t.area(l);
     const float step = static_cast<float>(kSubpixelScale) * inv_area;
@@ -321,7 +330,10 @@ void interpolate(const Terms& t, Lanes& s, std::size_t count) {
     const float ddy_z = (dy_z - cz * dq_dy) * inv_q;
     const float along_x = (ddx_x * ddx_x + ddx_y * ddx_y) + ddx_z * ddx_z;
     const float along_y = (ddy_x * ddy_x + ddy_y * ddy_y) + ddy_z * ddy_z;
-    const float size = std::sqrt(along_x < along_y ? along_y : along_x);  // std::max
+    const bool y_longer = along_x < along_y;
+    const float longer = y_longer ? along_y : along_x;  // std::max
+    const float shorter = y_longer ? along_x : along_y;
+    const float size = std::sqrt(longer);
     // Non-finite offsets only come from absurd inputs: stay at a vertex, never NaN.
     const bool keep = has_q & finite_lane(cx) & finite_lane(cy) & finite_lane(cz);
     constexpr float kInfinity = std::numeric_limits<float>::infinity();
@@ -329,7 +341,18 @@ void interpolate(const Terms& t, Lanes& s, std::size_t count) {
     s.offset_y[l] = keep ? cy : 0.0f;
     s.offset_z[l] = keep ? cz : 0.0f;
     const float kept_size = keep ? size : kInfinity;
-    s.footprint[l] = kept_size != kept_size ? kInfinity : kept_size;  // NaN -> +inf
+    const float footprint = kept_size != kept_size ? kInfinity : kept_size;  // NaN -> +inf
+    s.footprint[l] = footprint;
+    // The long side's vector where the footprint is finite; else no direction (one tap).
+    const bool directed = footprint < kInfinity;
+    const float long_x = y_longer ? ddy_x : ddx_x;
+    const float long_y = y_longer ? ddy_y : ddx_y;
+    const float long_z = y_longer ? ddy_z : ddx_z;
+    const float minor = std::sqrt(shorter);
+    s.axis_x[l] = directed ? long_x : 0.0f;
+    s.axis_y[l] = directed ? long_y : 0.0f;
+    s.axis_z[l] = directed ? long_z : 0.0f;
+    s.minor[l] = directed ? minor : footprint;
     // The unit normal: sum b q N normalised, or the first vertex's normal where that has no
     // length, or +z.
     const float length = std::sqrt((mx * mx + my * my) + mz * mz);
@@ -406,6 +429,11 @@ void resolve_long_run(const SurfaceRun& run, SurfaceChunk& chunk, const GBufferP
   std::fill_n(target.flags + i, n, run_flags);
   std::fill_n(target.object_id + i, n, run_object_id);
   std::copy_n(chunk.footprint.data(), n, target.footprint + i);
+  std::copy_n(chunk.minor.data(), n, target.footprint_minor + i);
+  glm::vec3* __restrict axis = target.footprint_axis + i;
+  for (std::size_t l = 0; l < n; ++l) {
+    axis[l] = glm::vec3(chunk.axis_x[l], chunk.axis_y[l], chunk.axis_z[l]);
+  }
   glm::vec3* __restrict normal = target.normal + i;
   for (std::size_t l = 0; l < n; ++l) {
     normal[l] = glm::vec3(chunk.normal_x[l], chunk.normal_y[l], chunk.normal_z[l]);

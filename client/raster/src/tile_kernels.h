@@ -104,7 +104,9 @@ struct GBufferPlanes {
         object_id(g.object_id.data()),
         texture_position(g.texture_position.data()),
         normal(g.normal.data()),
-        footprint(g.footprint.data()) {}
+        footprint(g.footprint.data()),
+        footprint_axis(g.footprint_axis.data()),
+        footprint_minor(g.footprint_minor.data()) {}
 
   float* depth;
   uint8_t* flags;
@@ -112,6 +114,8 @@ struct GBufferPlanes {
   glm::dvec3* texture_position;
   glm::vec3* normal;
   float* footprint;
+  glm::vec3* footprint_axis;
+  float* footprint_minor;
 };
 
 // One triangle's data for interpolating its attributes, in float (see
@@ -167,8 +171,10 @@ struct SurfaceLanes {
   alignas(64) std::array<Lanes<float>, 3> edge, edge_dy, edge_dx;
   alignas(64) Lanes<float> area;
   alignas(64) std::array<Lanes<float>, 3> q, ox, oy, oz, nx, ny, nz;
-  // Out: the texture offset from the triangle's origin, the footprint, the unit normal.
+  // Out: the texture offset from the triangle's origin, the footprint (and its long side's
+  // vector, its short side's length), the unit normal.
   alignas(64) Lanes<float> offset_x, offset_y, offset_z, footprint, normal_x, normal_y, normal_z;
+  alignas(64) Lanes<float> axis_x, axis_y, axis_z, minor;
 
   // Lane l's inputs: pixel (x, y) of triangle t. The definition that gather_surface_lanes()
   // computes for many lanes at once.

@@ -26,6 +26,8 @@ void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) 
   std::fill_n(target.texture_position + i, count, glm::dvec3(0.0));
   std::fill_n(target.normal + i, count, glm::vec3(0.0f));
   std::fill_n(target.footprint + i, count, 0.0f);
+  std::fill_n(target.footprint_axis + i, count, glm::vec3(0.0f));
+  std::fill_n(target.footprint_minor + i, count, 0.0f);
 }
 
 // GBuffer::flags of a pixel that sees the triangle's surface.
@@ -90,6 +92,8 @@ struct SurfaceBatch {
     glm::dvec3* __restrict position = target.texture_position;
     glm::vec3* __restrict normal = target.normal;
     float* __restrict footprint = target.footprint;
+    glm::vec3* __restrict axis = target.footprint_axis;
+    float* __restrict minor = target.footprint_minor;
     uint64_t back = 0;
     for (std::size_t l = 0; l < n; ++l) {
       const ScreenTriangle& t = *triangle[l];
@@ -102,6 +106,8 @@ struct SurfaceBatch {
                     glm::dvec3(glm::vec3(lanes.offset_x[l], lanes.offset_y[l], lanes.offset_z[l]));
       normal[i] = glm::vec3(lanes.normal_x[l], lanes.normal_y[l], lanes.normal_z[l]);
       footprint[i] = lanes.footprint[l];
+      axis[i] = glm::vec3(lanes.axis_x[l], lanes.axis_y[l], lanes.axis_z[l]);
+      minor[i] = lanes.minor[l];
     }
     back_faces += back;
   }
@@ -247,6 +253,8 @@ class TileResolve {
           glm::dvec3(cap.texture_x[k], cap.texture_y[k], cap.texture_z[k]);
       target_.normal[at] = glm::vec3(cap.normal_x[k], cap.normal_y[k], cap.normal_z[k]);
       target_.footprint[at] = cap.footprint[k];
+      target_.footprint_axis[at] = glm::vec3(0.0f);  // a cap's footprint has no direction
+      target_.footprint_minor[at] = cap.footprint[k];
     }
     return end;
   }

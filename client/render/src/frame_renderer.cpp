@@ -280,6 +280,8 @@ void FrameRenderer::gather(std::vector<std::unique_ptr<render::TileShader>>& sha
     frame.stats.empty_pixels += counts.empty;
     frame.stats.shaded_pixels += counts.shaded;
     frame.stats.evaluated_pixels += counts.evaluated;
+    frame.stats.tapped_pixels += counts.tapped;
+    frame.stats.taps += counts.taps;
   }
   frame.misses.reserve(misses.size());
   for (const auto& [key, pixels] : misses) frame.misses.push_back({key, pixels});

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "soltex/common/check.h"
+#include "soltex/render/anisotropic_taps.h"
 #include "soltex/render/shading.h"
 
 namespace soltex::render {
@@ -82,8 +83,18 @@ void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y,
   CachedPixels::Group* group = nullptr;
   int level = -1;
   std::size_t count = 0;
+  const bool taps = frame_.options.anisotropy > 1;
   for (int x = x_begin; x < x_end; ++x) {
     const std::size_t i = first + static_cast<std::size_t>(x - x_begin);
+    if (taps) {
+      if (const int n = tap_count_at(g, i); n > 1) {
+        if (group != nullptr) group->count = count;
+        group = nullptr;
+        level = -1;
+        add_taps(g, i, first_slot + static_cast<uint32_t>(x - x_begin), n, object, image);
+        continue;
+      }
+    }
     const int l = levels[x - x_begin];
     if (l != level) {
       if (group != nullptr) group->count = count;
@@ -102,6 +113,76 @@ void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y,
     }
   }
   if (group != nullptr) group->count = count;
+}
+
+int TileShader::tap_count_at(const GBuffer& g, std::size_t i) const {
+  return tap_count(g.footprint[i], g.footprint_minor[i], frame_.options.anisotropy);
+}
+
+double TileShader::lod_of(const ObjectShading& object, const TextureSampler& sampler,
+                          float footprint) const {
+  return frame_.by_table() ? static_cast<double>(object.level_table.level(footprint))
+                           : sampler.level_of_detail(footprint) + frame_.options.level_bias;
+}
+
+void TileShader::add_taps(const GBuffer& g, std::size_t i, uint32_t slot, int n,
+                          const ObjectShading& object, Image& image) {
+  SOLTEX_DCHECK(by_tile_ && slot < LitTile::kPixels && n > 1);
+  const int level = object.level_table.level(g.footprint[i] / static_cast<float>(n));
+  taps_.sum[slot] = glm::vec3(0.0f);
+  taps_.weight[slot] = 1.0f / static_cast<float>(n);
+  taps_.incomplete[slot] = 0;
+  taps_.found[slot] = 0;
+  taps_.slots.push_back(slot);
+  ++counts_.tapped;
+  counts_.taps += static_cast<std::size_t>(n);
+  const auto l = static_cast<std::size_t>(level);
+  CachedPixels::Group& group = cached_.groups[l];
+  const glm::dvec3& p = g.texture_position[i];
+  const glm::vec3& axis = g.footprint_axis[i];
+  for (int k = 0; k < n; ++k) {
+    std::size_t count = group.count;
+    const bool full = group.push(count, slot | kTapSlot, tap_position(p, axis, k, n));
+    group.count = count;
+    cached_.pending |= 1u << l;
+    if (full) look_up(level, image);
+  }
+}
+
+TileShader::TapsResult TileShader::look_up_taps(const glm::vec3& axis, const glm::dvec3& p, int n,
+                                                double lod, TextureSampler& sampler) {
+  const RenderOptions& options = frame_.options;
+  TapsResult taps;
+  taps.average.fill(0.0f);
+  ++counts_.tapped;
+  counts_.taps += static_cast<std::size_t>(n);
+  for (int k = 0; k < n; ++k) {
+    const glm::dvec3 q = tap_position(p, axis, k, n);
+    const SampleResult r = options.misses_only
+                               ? sampler.find_misses(q, lod, options.filter, &missed_)
+                               : sampler.sample(q, lod, options.filter, &missed_);
+    for (const BrickKey& key : missed_.view()) misses_.add(key);
+    taps.incomplete |= !r.complete;
+    taps.found |= r.level >= 0;
+    taps.coarsest = std::max(taps.coarsest, r.level);
+    for (std::size_t c = 0; c < taps.average.size(); ++c) taps.average[c] += r.values[c];
+  }
+  // As finish_taps() averages the fast path's taps: the sum, then times one tap's weight.
+  const float weight = 1.0f / static_cast<float>(n);
+  for (float& value : taps.average) value *= weight;
+  return taps;
+}
+
+void TileShader::finish_taps() {
+  for (const uint32_t slot : taps_.slots) {
+    const glm::vec3 average = taps_.sum[slot] * taps_.weight[slot];
+    const float rgb[3] = {average.r, average.g, average.b};
+    tile_.add_albedo(slot, rgb);
+    counts_.fallback += taps_.incomplete[slot];
+    counts_.empty += taps_.found[slot] == 0 ? 1 : 0;
+    ++counts_.shaded;
+  }
+  taps_.slots.clear();
 }
 
 void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
@@ -177,6 +258,7 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
   }
   counts_.covered += covered;
   if (cached_.pending != 0) look_up_all(image);
+  if (!taps_.slots.empty()) finish_taps();
   if (evaluated_.count > 0) evaluate(image);
   SOLTEX_DCHECK(lit_.batch.count == 0);
   tile_.light(frame_.unprojection, frame_.lights, g, lit_.batch, image);
@@ -253,15 +335,28 @@ void TileShader::evaluate(Image& image) {
 void TileShader::shade_cached(const GBuffer& g, Pixel pixel, const ObjectShading& object,
                               TextureSampler& sampler, Image& image) {
   const RenderOptions& options = frame_.options;
-  const float footprint = g.footprint[pixel.index];
-  const double lod = frame_.by_table() ? static_cast<double>(object.level_table.level(footprint))
-                                       : sampler.level_of_detail(footprint) + options.level_bias;
+  const int n = options.anisotropy > 1 ? tap_count_at(g, pixel.index) : 1;
+  // Each tap covers its share of the long side (x / 1 is x: one tap is the footprint's level).
+  const double lod = lod_of(object, sampler, g.footprint[pixel.index] / static_cast<float>(n));
   glm::dvec3 p = g.texture_position[pixel.index];
   if (object.cached_inset > 0.0) {
     // The coarser of the levels a lookup may read sets the step (quadrilinear reads two).
     const double spacing = std::ldexp(object.level0_spacing, static_cast<int>(std::ceil(lod)));
     p = axis_face_inset(p, object.surface.normal(g.normal[pixel.index]),
                         object.cached_inset * spacing);
+  }
+  if (n > 1) {
+    const TapsResult taps = look_up_taps(g.footprint_axis[pixel.index], p, n, lod, sampler);
+    counts_.fallback += taps.incomplete ? 1 : 0;
+    counts_.empty += taps.found ? 0 : 1;
+    if (options.misses_only) return;
+    if (options.false_colour_levels) {
+      const glm::vec3 colour = level_colour(taps.coarsest);
+      image.set(pixel.x, pixel.y, colour.r, colour.g, colour.b);
+      return;
+    }
+    shade_values(pixel, object.material, taps.average.data(), image);
+    return;
   }
   if (object.rgb_fast_path) {
     add_cached(pixel, p, static_cast<int>(lod), object, sampler, image);
@@ -296,8 +391,26 @@ void TileShader::find_run_misses(const GBuffer& g, std::size_t first, std::size_
   int level = -1;
   glm::ivec3 brick{0};
   uint32_t pixels = 0;  // the pixels that miss what the last lookup missed
+  const bool anisotropic = frame_.options.anisotropy > 1;
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t i = first + k;
+    if (const int n = anisotropic ? tap_count_at(g, i) : 1; n > 1) {
+      // Taps spread over several bricks: each looked up on its own, the pixel counted once.
+      count_lookup(result, pixels);
+      pixels = 0;
+      level = -1;
+      const int tap_level = object.level_table.level(g.footprint[i] / static_cast<float>(n));
+      glm::dvec3 p = g.texture_position[i];
+      if (object.cached_inset > 0.0) {
+        p = axis_face_inset(p, object.surface.normal(g.normal[i]),
+                            object.cached_inset * std::ldexp(object.level0_spacing, tap_level));
+      }
+      const TapsResult taps =
+          look_up_taps(g.footprint_axis[i], p, n, static_cast<double>(tap_level), sampler);
+      counts_.fallback += taps.incomplete ? 1 : 0;
+      counts_.empty += taps.found ? 0 : 1;
+      continue;
+    }
     const int l = levels[k];
     glm::dvec3 p = g.texture_position[i];
     if (object.cached_inset > 0.0) {
@@ -336,19 +449,31 @@ void TileShader::look_up(int level, Image& image) {
   SOLTEX_DCHECK(!m.unlit && m.colour_only());  // three channels: the colour alone
   int lit = lit_.batch.count;
   const bool by_tile = by_tile_;
+  std::size_t tap_points = 0;  // counted as pixels by finish_taps()
   for (std::size_t i = 0; i < n; ++i) {
     const SampleResult* result = &cached_.results[i];
+    const uint32_t slot = group.slots[i];
     SampleResult again;
     if (!result->complete) {
       // A miss (rare once warm): the single lookup again, for the bricks it names.
       again = sampler.sample_after_miss(group.points[i], level, filter, &missed_);
       for (const BrickKey& key : missed_.view()) misses_.add(key);
-      if (!again.complete) ++counts_.fallback;
-      if (again.level < 0) ++counts_.empty;
+      if ((slot & kTapSlot) == 0) {
+        if (!again.complete) ++counts_.fallback;
+        if (again.level < 0) ++counts_.empty;
+      }
       result = &again;
     }
-    const uint32_t slot = group.slots[i];
     if (by_tile) {
+      if ((slot & kTapSlot) != 0) {
+        const uint32_t s = slot & ~kTapSlot;
+        const float* v = result->values.data();
+        taps_.sum[s] += glm::vec3(v[0], v[1], v[2]);
+        taps_.incomplete[s] |= result->complete ? 0 : 1;
+        taps_.found[s] |= result->level >= 0 ? 1 : 0;
+        ++tap_points;
+        continue;
+      }
       // The rest of the pixel's inputs came with it (add_shared()).
       tile_.add_albedo(slot, result->values.data());
       continue;
@@ -363,7 +488,7 @@ void TileShader::look_up(int level, Image& image) {
     }
   }
   lit_.batch.count = lit;
-  counts_.shaded += n;
+  counts_.shaded += n - tap_points;
 }
 
 void TileShader::look_up_all(Image& image) {

@@ -50,6 +50,7 @@ struct FrameShading {
 
 struct TileCounts {
   std::size_t covered = 0, fallback = 0, empty = 0, shaded = 0, evaluated = 0;
+  std::size_t tapped = 0, taps = 0;  // cached pixels that took several taps, and their taps
   std::chrono::steady_clock::duration shading{0};
 };
 
@@ -131,11 +132,31 @@ class TileShader {
   void add_cached_run(const GBuffer& g, int x_begin, int x_end, int y, std::size_t first,
                       const int32_t* levels, const ObjectShading& object, TextureSampler& sampler,
                       Image& image);
+  // A pixel of shade()'s fast path whose footprint asks for n > 1 taps: each tap goes to the
+  // group of their level with the pixel's slot marked kTapSlot, look_up() adds its value into
+  // taps_, and finish_taps() writes each such pixel's average once every lookup is done.
+  void add_taps(const GBuffer& g, std::size_t i, uint32_t slot, int n, const ObjectShading& object,
+                Image& image);
+  void finish_taps();
   void look_up(int level, Image& image);
   void look_up_all(Image& image);
   void evaluate(Image& image);
   void shade_cached(const GBuffer& g, Pixel pixel, const ObjectShading& object,
                     TextureSampler& sampler, Image& image);
+  // The n > 1 taps of a pixel at `p` whose footprint's long side is `axis`, each looked up on
+  // its own at `lod` (in a misses-only frame, its misses found): their average, whether any
+  // missed a brick and whether any found one, the coarsest level drawn. Their misses are
+  // tallied.
+  struct TapsResult {
+    std::array<float, CachedBrick::kMaxChannels> average;
+    bool incomplete = false, found = false;
+    int coarsest = -1;
+  };
+  TapsResult look_up_taps(const glm::vec3& axis, const glm::dvec3& p, int n, double lod,
+                          TextureSampler& sampler);
+  int tap_count_at(const GBuffer& g, std::size_t i) const;
+  // The level of detail of a lookup whose footprint is `footprint`, as the frame takes it.
+  double lod_of(const ObjectShading& object, const TextureSampler& sampler, float footprint) const;
   // Tallies the bricks the lookup that gave `result` missed (in missed_) and its counts, for
   // `pixels` pixels that miss the same.
   void count_lookup(const SampleResult& result, uint32_t pixels = 1);
@@ -169,6 +190,16 @@ class TileShader {
   LitPixels lit_;              // about 40 KB, uninitialised but for the count
   EvaluatedPixels evaluated_;  // about 10 KB, likewise
   CachedPixels cached_;        // about 40 KB, likewise
+  // The fast path's pixels that take several taps, by slot: the sum of their taps' values, the
+  // weight of one tap, and whether any tap missed or found something.
+  static constexpr uint32_t kTapSlot = 1u << 31;
+  struct TappedPixels {
+    std::array<glm::vec3, LitTile::kPixels> sum;
+    std::array<float, LitTile::kPixels> weight;
+    std::array<uint8_t, LitTile::kPixels> incomplete, found;
+    std::vector<uint32_t> slots;  // those taken in this tile, in order
+  };
+  TappedPixels taps_;  // about 22 KB, uninitialised but for the slots taken
 };
 
 }  // namespace soltex::render

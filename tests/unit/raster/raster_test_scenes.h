@@ -127,6 +127,8 @@ inline bool finite(const glm::vec3& v) {
 inline bool all_values_sane(const GBuffer& g) {
   for (std::size_t i = 0; i < g.pixel_count(); ++i) {
     if (std::isnan(g.footprint[i]) || g.footprint[i] < 0.0f) return false;
+    if (std::isnan(g.footprint_minor[i]) || g.footprint_minor[i] < 0.0f) return false;
+    if (!finite(g.footprint_axis[i])) return false;
     if (!g.covered(i)) continue;
     if (!(g.depth[i] >= 0.0f && g.depth[i] <= 1.0f)) return false;
     if (!finite(g.texture_position[i]) || !finite(g.normal[i])) return false;
@@ -144,6 +146,8 @@ inline void expect_same_buffer(const GBuffer& a, const GBuffer& b) {
   EXPECT_EQ(a.texture_position, b.texture_position);
   EXPECT_EQ(a.normal, b.normal);
   EXPECT_EQ(a.footprint, b.footprint);
+  EXPECT_EQ(a.footprint_axis, b.footprint_axis);
+  EXPECT_EQ(a.footprint_minor, b.footprint_minor);
 }
 
 }  // namespace soltex::raster_test

@@ -317,6 +317,32 @@ TEST(RasterizerFootprint, GrowsAtGrazingAnglesAndStaysFinite) {
   EXPECT_GT(centre_footprint(rasterizer, 85.0, g), 10.0f * centre_footprint(rasterizer, 0.0, g));
 }
 
+// The footprint's shape: its long side is the longer derivative vector (as long as the
+// footprint, across the tilt axis x: along the screen's y), its short side about the facing
+// pixel's size whatever the tilt, so the ratio grows as about 1 / cos (within a tenth: the
+// pixel's centre is half a pixel off the axis, which perspective weighs more at 85 degrees).
+TEST(RasterizerFootprint, ItsLongSideLiesAlongTheTiltAndItsShortSideStays) {
+  Rasterizer rasterizer({.threads = 1});
+  GBuffer g;
+  const double pixel = 2.0 * 4.0 * std::tan(glm::radians(30.0)) / kHeight;
+  const std::size_t centre = static_cast<std::size_t>(kHeight / 2) * kWidth + kWidth / 2;
+  for (const double degrees : {0.0, 45.0, 75.0, 85.0}) {
+    const float footprint = centre_footprint(rasterizer, degrees, g);
+    const glm::vec3 axis = g.footprint_axis[centre];
+    const float minor = g.footprint_minor[centre];
+    EXPECT_FLOAT_EQ(glm::length(axis), footprint) << degrees;
+    EXPECT_LE(minor, footprint) << degrees;
+    EXPECT_NEAR(minor, pixel, 0.1 * pixel) << degrees;
+    if (degrees > 0.0) {
+      // The plane is tilted about x: the long side has no x part.
+      EXPECT_LT(std::abs(axis.x), 1e-2f * footprint) << degrees;
+      EXPECT_NEAR(footprint / minor, 1.0 / std::cos(glm::radians(degrees)),
+                  0.1 / std::cos(glm::radians(degrees)))
+          << degrees;
+    }
+  }
+}
+
 TEST(RasterizerFootprint, ShrinksTowardsZeroAsTheSurfaceTouchesTheCamera) {
   Rasterizer rasterizer({.threads = 1});
   GBuffer g;
@@ -597,7 +623,9 @@ TEST(RasterizerThreads, TileBuffersHoldWhatTheFrameBufferHolds) {
                   std::memcmp(&frame.depth[f], &tile.depth[t], sizeof(float)) == 0 &&
                   (!frame.covered(f) ||
                    (frame.texture_position[f] == tile.texture_position[t] &&
-                    frame.normal[f] == tile.normal[t] && frame.footprint[f] == tile.footprint[t]));
+                    frame.normal[f] == tile.normal[t] && frame.footprint[f] == tile.footprint[t] &&
+                    frame.footprint_axis[f] == tile.footprint_axis[t] &&
+                    frame.footprint_minor[f] == tile.footprint_minor[t]));
               wrong += same ? 0 : 1;
             }
           }

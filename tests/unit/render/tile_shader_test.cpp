@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <string>
 #include <vector>
 
 #include "soltex/common/brick_cache.h"
@@ -26,8 +27,9 @@ Scene checker_box() {
 }
 
 // Every pixel sees the box's +x face (x = 0.5, on a checker edge) at texture point
-// (0.5, y, z), with a footprint of 0.01; the last column sees nothing.
-GBuffer face_on_an_edge() {
+// (0.5, y, z), with a footprint of 0.01 (`stretch` times as long along y, seen at a slant); the
+// last column sees nothing.
+GBuffer face_on_an_edge(float stretch = 1.0f) {
   GBuffer g;
   g.resize(kSide, kSide, false);
   for (int y = 0; y < kSide; ++y) {
@@ -40,7 +42,9 @@ GBuffer face_on_an_edge() {
       g.texture_position[i] =
           covered ? glm::dvec3(0.5, 0.03 * y - 0.2, 0.03 * x - 0.2) : glm::dvec3(0.0);
       g.normal[i] = covered ? glm::vec3(1, 0, 0) : glm::vec3(0.0f);
-      g.footprint[i] = covered ? 0.01f : 0.0f;
+      g.footprint[i] = covered ? 0.01f * stretch : 0.0f;
+      g.footprint_axis[i] = covered ? glm::vec3(0.0f, 0.01f * stretch, 0.0f) : glm::vec3(0.0f);
+      g.footprint_minor[i] = covered ? 0.01f : 0.0f;
     }
   }
   return g;
@@ -138,9 +142,14 @@ TEST(TileShader, CachedPixelsReportTheBricksTheyMissed) {
 // are resident: in a tile each pixel gets what it shares with its object (specular,
 // shininess, opacity) when it is added and its albedo when it is looked up. Without the inset
 // the tile takes the pixels run by run, with it one by one.
-TEST(TileShader, FastPathTileEqualsThePixelListBitForBit) {
+// Also with a slanted footprint, whose pixels take 4 taps each (anisotropic lookups): the fast
+// path sums them in its tile, the pixel list looks them up one by one.
+class FastPath : public ::testing::TestWithParam<float> {};
+
+TEST_P(FastPath, TileEqualsThePixelListBitForBit) {
+  const float stretch = GetParam();
   Fixture f(lit_marble_box());
-  const GBuffer g = face_on_an_edge();
+  const GBuffer g = face_on_an_edge(stretch);
   std::vector<glm::ivec2> covered;
   for (int y = 0; y < kSide; ++y) {
     for (int x = 0; x + 1 < kSide; ++x) covered.emplace_back(x, y);
@@ -165,6 +174,7 @@ TEST(TileShader, FastPathTileEqualsThePixelListBitForBit) {
     by_tile.shade(g, 0, 0, 0, 0, kSide, kSide, tile);
     ASSERT_EQ(by_tile.counts().fallback, 0u) << "inset " << inset;
     ASSERT_EQ(by_tile.counts().shaded, covered.size());
+    ASSERT_EQ(by_tile.counts().tapped, stretch > 1.0f ? covered.size() : 0u);
     TileShader by_list(frame, f.samplers);
     Image list(kSide, kSide);
     by_list.shade_pixels(g, 0, 0, covered, list);
@@ -176,6 +186,10 @@ TEST(TileShader, FastPathTileEqualsThePixelListBitForBit) {
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(TileShader, FastPath, ::testing::Values(1.0f, 4.0f), [](const auto& info) {
+  return info.param > 1.0f ? std::string("FourTaps") : std::string("OneTap");
+});
 
 }  // namespace
 }  // namespace soltex::render

@@ -76,6 +76,12 @@ struct GBuffer {
   // pixel step. >= 0; +inf at grazing angles where the derivative is unbounded; never NaN.
   // Zero where not covered.
   GBufferPlane<float> footprint;
+  // The footprint's long side as a vector: the longer of dP/dx and dP/dy (its length is the
+  // footprint), and the shorter one's length. Anisotropic lookups space their taps along the
+  // first and take their level from the two. Zero and the footprint where the footprint has
+  // no direction (caps, uncovered pixels, non-finite derivatives): one tap.
+  GBufferPlane<glm::vec3> footprint_axis;
+  GBufferPlane<float> footprint_minor;
   // Debug (RasterOptions::count_coverage): how many triangle fragments passed the fill rule
   // at each pixel, before depth and clip tests. Empty unless asked for.
   GBufferPlane<uint32_t> coverage_count;

@@ -49,6 +49,11 @@ struct RenderOptions {
   // counts are those the shaded frame would give.
   bool misses_only = false;
   int threads = 0;  // 0: one per core
+  // Anisotropic lookups: at most this many taps along a footprint's long side, each at the
+  // level its share of the side asks for (soltex/render/anisotropic_taps.h); 1: one lookup at
+  // the level of the long side (isotropic). Cached textures only: a texture evaluated per
+  // pixel is box-filtered over the long side.
+  int anisotropy = 8;
   // Sub-pixels per axis (1..4) whose colours each pixel averages: silhouettes, clip edges and
   // textures anti-aliased by supersampling, each sub-pixel textured at its own level, at about
   // antialias^2 times the frame's raster and shading work.
@@ -76,6 +81,10 @@ struct FrameStats {
   std::size_t shaded_pixels = 0;     // lit (not unlit materials)
   std::size_t evaluated_pixels = 0;  // textures evaluated per pixel, not looked up
   std::size_t edge_pixels = 0;       // blended from coverage samples (edge_antialias)
+  // Cached pixels whose footprint took several taps (RenderOptions::anisotropy), and those
+  // taps in all.
+  std::size_t tapped_pixels = 0;
+  std::size_t taps = 0;
   // Objects whose texture this frame evaluated per pixel (and fetched no bricks for), and
   // objects whose texture it looked up in the brick cache (RenderOptions::access).
   std::size_t evaluated_objects = 0;

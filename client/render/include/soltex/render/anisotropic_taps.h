@@ -1,0 +1,35 @@
+#pragma once
+
+#include <glm/vec3.hpp>
+
+namespace soltex::render {
+
+// Anisotropic lookups. A pixel seen at a grazing angle covers a long, thin patch of texture: one
+// lookup over a box as wide as the long side blurs it across the short side too (a floor's
+// stripes fade to grey towards the horizon, where the supersampled reference keeps them). It
+// takes n lookups instead ("taps"), each at the level of the long side divided by n, spaced
+// along the long side and averaged, the scheme GPUs use for anisotropic filtering
+// (EXT_texture_filter_anisotropic): n is the ratio of the long side to the short one, rounded,
+// at most `most`.
+
+// The taps a pixel takes: 1 below a ratio of 2, where the footprint has no direction (a NaN
+// ratio: a cap, an unbounded footprint) and when `most` is 1. Below 2 one lookup blurs across
+// by less than a level (trilinear's rounding to the nearest level already accepts up to a
+// factor 1.41), and taps would cost bricks a level finer over a whole moderately slanted
+// floor: the default scene's turbulence floor, at ratios 1.5 to 2, fetched 3,499 bricks from
+// 2 on, 4,626 from 1.5 and 1,551 with none, for 39.53, 39.78 and 39.37 dB
+// (docs/PERFORMANCE.md, "Frame targets", paragraph 25).
+inline int tap_count(float footprint, float minor, int most) {
+  const float ratio = footprint / minor;
+  if (!(ratio >= 2.0f)) return 1;
+  const float largest = static_cast<float>(most);
+  return ratio >= largest ? most : static_cast<int>(ratio + 0.5f);
+}
+
+// Tap k of n: spread evenly over the long side `axis` (a vector as long as it), centred on p.
+inline glm::dvec3 tap_position(const glm::dvec3& p, const glm::vec3& axis, int k, int n) {
+  const double t = (static_cast<double>(k) + 0.5) / static_cast<double>(n) - 0.5;
+  return p + glm::dvec3(axis) * t;
+}
+
+}  // namespace soltex::render

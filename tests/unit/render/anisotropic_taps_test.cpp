@@ -1,0 +1,60 @@
+#include "soltex/render/anisotropic_taps.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <limits>
+
+namespace soltex::render {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+// The long side over the short one, rounded, from a ratio of 2 up to the most allowed.
+TEST(TapCount, IsTheRatioRoundedFromTwoUpToTheMost) {
+  EXPECT_EQ(tap_count(1.0f, 1.0f, 8), 1);
+  EXPECT_EQ(tap_count(1.99f, 1.0f, 8), 1);
+  EXPECT_EQ(tap_count(2.0f, 1.0f, 8), 2);
+  EXPECT_EQ(tap_count(2.49f, 1.0f, 8), 2);
+  EXPECT_EQ(tap_count(2.5f, 1.0f, 8), 3);
+  EXPECT_EQ(tap_count(0.035f, 0.01f, 8), 4);  // 3.5 rounds up
+  EXPECT_EQ(tap_count(7.6f, 1.0f, 8), 8);
+  EXPECT_EQ(tap_count(100.0f, 1.0f, 8), 8);
+  EXPECT_EQ(tap_count(100.0f, 1.0f, 16), 16);
+  EXPECT_EQ(tap_count(100.0f, 1.0f, 1), 1) << "anisotropy 1: one lookup";
+}
+
+// What the rasterizer writes where a footprint has no direction, and what a hand-made
+// G-buffer might hold: one tap, or the most, never 0 or more than the most.
+TEST(TapCount, OddFootprintsTakeOneTapOrTheMost) {
+  EXPECT_EQ(tap_count(0.0f, 0.0f, 8), 1);  // 0/0: uncovered
+  EXPECT_EQ(tap_count(kInf, kInf, 8), 1);  // unbounded, no direction
+  EXPECT_EQ(tap_count(kNaN, 1.0f, 8), 1);
+  EXPECT_EQ(tap_count(1.0f, kNaN, 8), 1);
+  EXPECT_EQ(tap_count(0.5f, 0.0f, 8), 8);  // edge-on: as thin as can be
+  EXPECT_EQ(tap_count(kInf, 1.0f, 8), 8);
+  EXPECT_EQ(tap_count(1.0f, -1.0f, 8), 1);  // negative: not a footprint
+}
+
+// n taps spread evenly over the long side, centred on the point: a box filter along it.
+TEST(TapPosition, TapsCoverTheLongSideEvenlyAroundThePoint) {
+  const glm::dvec3 p(1e6, -3.0, 0.25);       // far from the origin: offsets stay exact in double
+  const glm::vec3 axis(0.0f, 0.03f, 0.04f);  // as long as the footprint, 0.05
+  for (const int n : {2, 3, 8}) {
+    glm::dvec3 sum(0.0);
+    for (int k = 0; k < n; ++k) sum += tap_position(p, axis, k, n) - p;
+    EXPECT_NEAR(glm::length(sum), 0.0, 1e-9) << n;
+    const glm::dvec3 first = tap_position(p, axis, 0, n);
+    const glm::dvec3 last = tap_position(p, axis, n - 1, n);
+    EXPECT_NEAR(glm::length(last - first), 0.05 * (n - 1) / n, 1e-9) << n;
+    for (int k = 1; k < n; ++k) {
+      const glm::dvec3 step = tap_position(p, axis, k, n) - tap_position(p, axis, k - 1, n);
+      EXPECT_NEAR(glm::length(step), 0.05 / n, 1e-9) << n << " tap " << k;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace soltex::render
