@@ -317,6 +317,8 @@ Image FrameRenderer::render_reference(const PreparedScene& scene, const Camera& 
   RenderOptions evaluated = options_;
   evaluated.access = TextureAccess::evaluated;
   evaluated.false_colour_levels = false;
+  // The ground truth stays what it was: each sub-pixel evaluated over its own footprint.
+  evaluated.anisotropy = 1;
   const render::FrameShading shading = frame_shading(
       scene, render::SurfaceUnprojection{glm::inverse(vp), camera.position, w, h}, evaluated);
   Image& sub_pixels = reference_image_;

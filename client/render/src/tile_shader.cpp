@@ -298,21 +298,36 @@ void TileShader::shade_evaluated(const GBuffer& g, Pixel pixel, const ObjectShad
     image.set(pixel.x, pixel.y, kEvaluatedColour.r, kEvaluatedColour.g, kEvaluatedColour.b);
     return;
   }
+  // Taps along a grazing footprint's long side, each evaluated over its share of it, as the
+  // cached lookups take them.
+  const int taps = frame_.options.anisotropy > 1 ? tap_count_at(g, pixel.index) : 1;
   if (evaluated_.count > 0 && evaluated_.object != &object) evaluate(image);
-  const std::size_t i = evaluated_.count++;
+  if (evaluated_.count + static_cast<std::size_t>(taps) > EvaluatedPixels::kCapacity) {
+    evaluate(image);
+  }
+  if (taps > 1) {
+    ++counts_.tapped;
+    counts_.taps += static_cast<std::size_t>(taps);
+  }
   evaluated_.object = &object;
-  evaluated_.pixels[i] = pixel;
   // The point and box are made for the whole batch at once (evaluated_inputs()).
   EvaluatedLanes& e = evaluated_.lanes;
   const glm::dvec3& p = g.texture_position[pixel.index];
   const glm::vec3& n = g.normal[pixel.index];
-  e.position_x[i] = p.x;
-  e.position_y[i] = p.y;
-  e.position_z[i] = p.z;
-  e.normal_x[i] = n.x;
-  e.normal_y[i] = n.y;
-  e.normal_z[i] = n.z;
-  e.footprint[i] = g.footprint[pixel.index];
+  const float footprint = g.footprint[pixel.index] / static_cast<float>(taps);
+  for (int k = 0; k < taps; ++k) {
+    const std::size_t i = evaluated_.count++;
+    evaluated_.pixels[i] = pixel;
+    evaluated_.taps[i] = static_cast<uint8_t>(k == 0 ? taps : 0);
+    const glm::dvec3 q = taps == 1 ? p : tap_position(p, g.footprint_axis[pixel.index], k, taps);
+    e.position_x[i] = q.x;
+    e.position_y[i] = q.y;
+    e.position_z[i] = q.z;
+    e.normal_x[i] = n.x;
+    e.normal_y[i] = n.y;
+    e.normal_z[i] = n.z;
+    e.footprint[i] = footprint;
+  }
   if (evaluated_.count == EvaluatedPixels::kCapacity) evaluate(image);
 }
 
@@ -325,10 +340,24 @@ void TileShader::evaluate(Image& image) {
                            {evaluated_.texels.data(), n});
   evaluated_.count = 0;
   const TextureSpec& spec = object.evaluator->spec();
-  for (std::size_t i = 0; i < n; ++i) {
+  const auto channels = static_cast<std::size_t>(spec.channels.sample_count());
+  for (std::size_t i = 0; i < n;) {
     float values[CachedBrick::kMaxChannels];
     texel_channels(spec, evaluated_.texels[i], values);
+    const std::size_t taps = evaluated_.taps[i];
+    SOLTEX_DCHECK(taps >= 1 && i + taps <= n);
+    if (taps > 1) {
+      // The taps' average: their sum, then times one tap's weight (as cached taps are).
+      for (std::size_t k = 1; k < taps; ++k) {
+        float more[CachedBrick::kMaxChannels];
+        texel_channels(spec, evaluated_.texels[i + k], more);
+        for (std::size_t c = 0; c < channels; ++c) values[c] += more[c];
+      }
+      const float weight = 1.0f / static_cast<float>(taps);
+      for (std::size_t c = 0; c < channels; ++c) values[c] *= weight;
+    }
     shade_values(evaluated_.pixels[i], object.material, values, image);
+    i += taps;
   }
 }
 

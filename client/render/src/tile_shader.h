@@ -94,6 +94,8 @@ class TileShader {
     std::size_t count = 0;
     const ObjectShading* object = nullptr;
     std::array<Pixel, kCapacity> pixels;
+    // A pixel's taps come one after another: the first holds their count, the others 0.
+    std::array<uint8_t, kCapacity> taps;
     EvaluatedLanes lanes;  // the G-buffer's inputs, and the points and boxes made of them
     std::array<Texel, kCapacity> texels;
   };

@@ -50,9 +50,9 @@ struct RenderOptions {
   bool misses_only = false;
   int threads = 0;  // 0: one per core
   // Anisotropic lookups: at most this many taps along a footprint's long side, each at the
-  // level its share of the side asks for (soltex/render/anisotropic_taps.h); 1: one lookup at
-  // the level of the long side (isotropic). Cached textures only: a texture evaluated per
-  // pixel is box-filtered over the long side.
+  // level its share of the side asks for, or for a texture evaluated per pixel over its share
+  // (soltex/render/anisotropic_taps.h); 1: one lookup or evaluation over the long side
+  // (isotropic). The reference (render_reference) keeps one evaluation per sub-pixel.
   int anisotropy = 8;
   // Sub-pixels per axis (1..4) whose colours each pixel averages: silhouettes, clip edges and
   // textures anti-aliased by supersampling, each sub-pixel textured at its own level, at about
