@@ -150,6 +150,9 @@ struct ViewerWindow::Impl {
   bool complete_at_cap = false;             // the last frame drew all it draws at the cap
   LevelBiasController bias_controller;
   bool adaptive_bias;
+  // What I turns anisotropic taps back on to: the --anisotropy given, or the default where
+  // the view started without them.
+  int taps_when_on = 0;
   ObjectPicker picker;
 
   bool quit = false;
@@ -360,6 +363,16 @@ void ViewerWindow::Impl::handle_key(const SDL_KeyboardEvent& key) {
       options.filter = next_filter(options.filter);
       rebuild_renderer();
       spdlog::info("filter: {}", sample_filter_name(options.filter));
+      break;
+    case SDLK_i:
+      if (taps_when_on == 0) {
+        taps_when_on = options.anisotropy > 1 ? options.anisotropy : RenderOptions{}.anisotropy;
+      }
+      options.anisotropy = options.anisotropy > 1 ? 1 : taps_when_on;
+      rebuild_renderer();
+      spdlog::info("anisotropic taps: {}", options.anisotropy > 1
+                                               ? "up to " + std::to_string(options.anisotropy)
+                                               : std::string("off (one lookup per pixel)"));
       break;
     case SDLK_a:
       adaptive_bias = !adaptive_bias;
