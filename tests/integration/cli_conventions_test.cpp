@@ -359,19 +359,17 @@ TEST_F(SoltexdCli, AStaleReadyFileIsRemovedBeforeListening) {
   // process that took the pid of one gone, and its file goes; the same start time stays.
   const std::string started = process_start_ticks_of_this_test();
   ASSERT_FALSE(started.empty());
-  const std::string reused = live + "pid_start=1" + started + "\n";
-  std::ofstream(ready) << reused;
-  EXPECT_EQ(run_tool(SOLTEXD_BINARY, {"--listen", taken, "--metrics-listen", "127.0.0.1:0",
-                                      "--ready-file", ready.string()})
-                .exit_code,
-            1);
+  const auto start_on_the_taken_port = [&] {
+    return run_tool(SOLTEXD_BINARY, {"--listen", taken, "--metrics-listen", "127.0.0.1:0",
+                                     "--ready-file", ready.string()})
+        .exit_code;
+  };
+  std::ofstream(ready) << live + "pid_start=1" + started + "\n";
+  EXPECT_EQ(start_on_the_taken_port(), 1);
   EXPECT_FALSE(std::filesystem::exists(ready)) << file_text(ready);
   const std::string same = live + "pid_start=" + started + "\n";
   std::ofstream(ready) << same;
-  EXPECT_EQ(run_tool(SOLTEXD_BINARY, {"--listen", taken, "--metrics-listen", "127.0.0.1:0",
-                                      "--ready-file", ready.string()})
-                .exit_code,
-            1);
+  EXPECT_EQ(start_on_the_taken_port(), 1);
   EXPECT_EQ(file_text(ready), same);
 }
 
