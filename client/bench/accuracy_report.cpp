@@ -142,7 +142,8 @@ void write_markdown(const AccuracyRun& run, const std::string& command,
       << "whose texture was evaluated.\n"
       << "- **AA:** `--antialias`, sub-pixels per axis for silhouettes and clip edges: the "
       << "frame's raster and shading work grows with its square, the textures' bricks stay "
-      << "the same.\n"
+      << "the same. **aniso:** `--anisotropy`, taps at most along a grazing footprint's long "
+      << "side (1: one lookup per pixel; docs/TEXTURES.md, \"Anisotropic taps\").\n"
       << "- **Codec rows** draw the default's frame (the cache holds decoded bricks): same "
       << "error, frame time and cache; only bytes and brick times differ.\n"
       << "- **front:** on the Pareto front of median " << clock_column
@@ -151,9 +152,9 @@ void write_markdown(const AccuracyRun& run, const std::string& command,
       << "![PSNR against frame time](" << plot_link.generic_string() << ")\n\n"
       << "| setting | level | B | filter | MIP | octaves | codec | PSNR dB | SSIM | max Δ R/G/B "
          "| ms/frame | CPU ms/frame | server µs/brick | encode µs | decode µs | bricks "
-         "| MB fetched | cache MiB | access | eval px % | AA | front |\n"
+         "| MB fetched | cache MiB | access | eval px % | AA | aniso | front |\n"
       << "|---|---:|---:|---|---|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---"
-         "|---:|---:|---|\n";
+         "|---:|---:|---:|---|\n";
   for (const SettingResult& r : run.results) {
     const AccuracySetting& s = r.setting;
     out << "| " << s.label() << " | " << s.finest_level << " | " << s.brick_size << " | "
@@ -166,7 +167,7 @@ void write_markdown(const AccuracyRun& run, const std::string& command,
         << r.cost.bricks << " | " << fixed(megabytes(static_cast<double>(r.cost.encoded_bytes)), 2)
         << " | " << fixed(mebibytes(static_cast<double>(r.resident_bytes)), 1) << " | "
         << texture_access_name(s.access) << " | " << fixed(evaluated_percent(r), 1) << " | "
-        << s.antialias << " | " << (r.on_front ? "yes" : "") << " |\n";
+        << s.antialias << " | " << s.anisotropy << " | " << (r.on_front ? "yes" : "") << " |\n";
   }
   write_automatic_access(out, run);
   const std::vector<const SettingResult*> front = front_fastest_first(run);
@@ -195,7 +196,7 @@ void write_csv(const AccuracyRun& run, const std::filesystem::path& path) {
   out << "setting,finest_level,brick_size,filter,mip,octaves,codec,psnr_db,ssim,max_abs_r,"
          "max_abs_g,max_abs_b,frame_ms,frame_ms_q1,frame_ms_q3,cpu_ms,cpu_ms_q1,cpu_ms_q3,"
          "server_us_per_brick,encode_us_per_brick,decode_us_per_brick,bricks,bytes_fetched,"
-         "resident_bytes,access,evaluated_pixels,covered_pixels,antialias,"
+         "resident_bytes,access,evaluated_pixels,covered_pixels,antialias,anisotropy,"
          "pareto_front\n";
   for (const SettingResult& r : run.results) {
     const AccuracySetting& s = r.setting;
@@ -210,7 +211,7 @@ void write_csv(const AccuracyRun& run, const std::filesystem::path& path) {
         << fixed(r.cost.encode_us, 2) << "," << fixed(r.cost.decode_us, 2) << "," << r.cost.bricks
         << "," << r.cost.encoded_bytes << "," << r.resident_bytes << ","
         << texture_access_name(s.access) << "," << r.evaluated_pixels << "," << r.covered_pixels
-        << "," << s.antialias << "," << (r.on_front ? 1 : 0) << "\n";
+        << "," << s.antialias << "," << s.anisotropy << "," << (r.on_front ? 1 : 0) << "\n";
   }
   close_checked(out, path);
 }

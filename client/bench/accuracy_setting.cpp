@@ -31,6 +31,9 @@ std::string AccuracySetting::label() const {
   if (access != defaults.access)
     parts.push_back(std::string("access=") + texture_access_name(access));
   if (antialias != defaults.antialias) parts.push_back("antialias=" + std::to_string(antialias));
+  if (anisotropy != defaults.anisotropy) {
+    parts.push_back("anisotropy=" + std::to_string(anisotropy));
+  }
   if (parts.empty()) return "default";
   std::string label = parts.front();
   for (std::size_t i = 1; i < parts.size(); ++i) label += " " + parts[i];

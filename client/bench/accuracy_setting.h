@@ -34,6 +34,8 @@ struct AccuracySetting {
   // Per texture: cached lookups, per-pixel evaluation, or the renderer's rule per pattern kind.
   TextureAccess access = TextureAccess::automatic;
   int antialias = 1;  // sub-pixels per axis for silhouettes and clip edges
+  // Taps at most along a grazing footprint's long side (1: one lookup per pixel).
+  int anisotropy = RenderOptions{}.anisotropy;
 
   // The knobs that differ from the default, e.g. "level=7 filter=nearest"; "default" for it.
   std::string label() const;

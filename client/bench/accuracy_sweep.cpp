@@ -17,6 +17,8 @@ constexpr int kOctaveCaps[] = {2, 4, 6};
 constexpr TextureAccess kAccesses[] = {TextureAccess::cached, TextureAccess::evaluated};
 // Sub-pixels per axis beside the default 1.
 constexpr int kAntialias[] = {2, 4};
+// Anisotropic taps at most beside the default 8: one lookup per pixel, and 4.
+constexpr int kAnisotropy[] = {1, 4};
 constexpr CodecChoice kCodecs[] = {
     {Codec::raw, 0}, {Codec::lz4, 0}, {Codec::zstd, 1}, {Codec::zstd, 3}};
 
@@ -42,6 +44,7 @@ std::vector<AccuracySetting> accuracy_sweep(const Scene& scene, bool quick) {
     if (scene_octaves && *scene_octaves > 2) vary([](AccuracySetting& s) { s.octave_cap = 2; });
     for (TextureAccess access : kAccesses) vary([&](AccuracySetting& s) { s.access = access; });
     vary([](AccuracySetting& s) { s.antialias = 2; });
+    vary([](AccuracySetting& s) { s.anisotropy = 1; });
     return sweep;
   }
   for (int level : kLevels) vary([&](AccuracySetting& s) { s.finest_level = level; });
@@ -55,6 +58,7 @@ std::vector<AccuracySetting> accuracy_sweep(const Scene& scene, bool quick) {
   for (const CodecChoice& codec : kCodecs) vary([&](AccuracySetting& s) { s.codec = codec; });
   for (TextureAccess access : kAccesses) vary([&](AccuracySetting& s) { s.access = access; });
   for (int k : kAntialias) vary([&](AccuracySetting& s) { s.antialias = k; });
+  for (int n : kAnisotropy) vary([&](AccuracySetting& s) { s.anisotropy = n; });
   for (int level : kLevels) {
     for (SampleFilter filter : kFilters) {
       vary([&](AccuracySetting& s) {

@@ -30,6 +30,7 @@ FrameUnderTest::FrameUnderTest(const Scene& scene, const AccuracySetting& settin
   options.threads = threads;
   options.access = setting.access;
   options.antialias = setting.antialias;
+  options.anisotropy = setting.anisotropy;
   renderer_ = std::make_unique<FrameRenderer>(*cache_, options);
   view::HeadlessOptions converge;
   converge.max_time = max_converge;
