@@ -75,9 +75,10 @@ void write_triangle_surface(const ScreenTriangle& t, uint32_t object_id, int64_t
   g.normal[i] = normal;
   const float footprint = std::isnan(kept_size) ? kInfinity : kept_size;
   g.footprint[i] = footprint;
-  const bool directed = footprint < kInfinity;
+  const float shorter = y_longer ? along_x : along_y;
+  const bool directed = footprint < kInfinity && !std::isnan(shorter);
   g.footprint_axis[i] = directed ? (y_longer ? ddy : ddx) : glm::vec3(0.0f);
-  g.footprint_minor[i] = directed ? std::sqrt(y_longer ? along_x : along_y) : footprint;
+  g.footprint_minor[i] = directed ? std::sqrt(shorter) : footprint;
 }
 
 }  // namespace

@@ -344,7 +344,7 @@ void interpolate(const Terms& t, Lanes& s, std::size_t count) {
     const float footprint = kept_size != kept_size ? kInfinity : kept_size;  // NaN -> +inf
     s.footprint[l] = footprint;
     // The long side's vector where the footprint is finite; else no direction (one tap).
-    const bool directed = footprint < kInfinity;
+    const bool directed = (footprint < kInfinity) & (shorter == shorter);  // not NaN
     const float long_x = y_longer ? ddy_x : ddx_x;
     const float long_y = y_longer ? ddy_y : ddx_y;
     const float long_z = y_longer ? ddy_z : ddx_z;

@@ -14,6 +14,7 @@
 #include "mesh_for_view.h"
 #include "soltex/common/overloaded.h"
 #include "soltex/common/texture_evaluator.h"
+#include "soltex/render/anisotropic_taps.h"
 #include "soltex/render/shading.h"
 #include "tile_shader.h"
 
@@ -123,6 +124,11 @@ FrameRenderer::FrameRenderer(BrickCache& cache, RenderOptions options)
     throw std::invalid_argument("RenderOptions::edge_antialias must be 0 (off) to " +
                                 std::to_string(kMaxEdgeGrid) + ", got " +
                                 std::to_string(options.edge_antialias));
+  }
+  if (options.anisotropy < 1 || options.anisotropy > render::kMaxTaps) {
+    throw std::invalid_argument("RenderOptions::anisotropy must be 1 (one lookup per pixel) to " +
+                                std::to_string(render::kMaxTaps) + ", got " +
+                                std::to_string(options.anisotropy));
   }
 }
 

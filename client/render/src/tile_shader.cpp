@@ -156,12 +156,15 @@ TileShader::TapsResult TileShader::look_up_taps(const glm::vec3& axis, const glm
   taps.average.fill(0.0f);
   ++counts_.tapped;
   counts_.taps += static_cast<std::size_t>(n);
+  // This pixel's list starts empty (a mark no tile slot has; the next tile pixel starts anew).
+  tap_misses_.begin(PixelMisses::kNone);
+  tap_misses_.keys.clear();
   for (int k = 0; k < n; ++k) {
     const glm::dvec3 q = tap_position(p, axis, k, n);
     const SampleResult r = options.misses_only
                                ? sampler.find_misses(q, lod, options.filter, &missed_)
                                : sampler.sample(q, lod, options.filter, &missed_);
-    for (const BrickKey& key : missed_.view()) misses_.add(key);
+    count_tap_misses();
     taps.incomplete |= !r.complete;
     taps.found |= r.level >= 0;
     taps.coarsest = std::max(taps.coarsest, r.level);
@@ -171,6 +174,12 @@ TileShader::TapsResult TileShader::look_up_taps(const glm::vec3& axis, const glm
   const float weight = 1.0f / static_cast<float>(n);
   for (float& value : taps.average) value *= weight;
   return taps;
+}
+
+void TileShader::count_tap_misses() {
+  for (const BrickKey& key : missed_.view()) {
+    if (tap_misses_.first_time(key)) misses_.add(key);
+  }
 }
 
 void TileShader::finish_taps() {
@@ -183,6 +192,7 @@ void TileShader::finish_taps() {
     ++counts_.shaded;
   }
   taps_.slots.clear();
+  tap_misses_.begin(PixelMisses::kNone);  // slots are numbered afresh in the next tile
 }
 
 void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
@@ -293,21 +303,21 @@ void TileShader::shade_pixels(const GBuffer& g, int origin_x, int origin_y,
 void TileShader::shade_evaluated(const GBuffer& g, Pixel pixel, const ObjectShading& object,
                                  Image& image) {
   ++counts_.evaluated;
+  // Taps along a grazing footprint's long side, each evaluated over its share of it, as the
+  // cached lookups take them; counted in every kind of frame alike.
+  const int taps = frame_.options.anisotropy > 1 ? tap_count_at(g, pixel.index) : 1;
+  if (taps > 1) {
+    ++counts_.tapped;
+    counts_.taps += static_cast<std::size_t>(taps);
+  }
   if (frame_.options.misses_only) return;  // evaluated textures miss no brick
   if (frame_.options.false_colour_levels) {
     image.set(pixel.x, pixel.y, kEvaluatedColour.r, kEvaluatedColour.g, kEvaluatedColour.b);
     return;
   }
-  // Taps along a grazing footprint's long side, each evaluated over its share of it, as the
-  // cached lookups take them.
-  const int taps = frame_.options.anisotropy > 1 ? tap_count_at(g, pixel.index) : 1;
   if (evaluated_.count > 0 && evaluated_.object != &object) evaluate(image);
   if (evaluated_.count + static_cast<std::size_t>(taps) > EvaluatedPixels::kCapacity) {
     evaluate(image);
-  }
-  if (taps > 1) {
-    ++counts_.tapped;
-    counts_.taps += static_cast<std::size_t>(taps);
   }
   evaluated_.object = &object;
   // The point and box are made for the whole batch at once (evaluated_inputs()).
@@ -486,10 +496,14 @@ void TileShader::look_up(int level, Image& image) {
     if (!result->complete) {
       // A miss (rare once warm): the single lookup again, for the bricks it names.
       again = sampler.sample_after_miss(group.points[i], level, filter, &missed_);
-      for (const BrickKey& key : missed_.view()) misses_.add(key);
       if ((slot & kTapSlot) == 0) {
+        for (const BrickKey& key : missed_.view()) misses_.add(key);
         if (!again.complete) ++counts_.fallback;
         if (again.level < 0) ++counts_.empty;
+      } else {
+        // A pixel's taps come one after another (add_taps() pushes them together).
+        tap_misses_.begin(slot & ~kTapSlot);
+        count_tap_misses();
       }
       result = &again;
     }

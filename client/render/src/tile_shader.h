@@ -16,6 +16,7 @@
 #include "soltex/common/texture_evaluator.h"
 #include "soltex/common/texture_sampler.h"
 #include "soltex/raster/gbuffer.h"
+#include "soltex/render/anisotropic_taps.h"
 #include "soltex/render/frame_renderer.h"
 #include "soltex/render/image.h"
 #include "texture_surface.h"
@@ -50,7 +51,7 @@ struct FrameShading {
 
 struct TileCounts {
   std::size_t covered = 0, fallback = 0, empty = 0, shaded = 0, evaluated = 0;
-  std::size_t tapped = 0, taps = 0;  // cached pixels that took several taps, and their taps
+  std::size_t tapped = 0, taps = 0;  // pixels that took several taps, and their taps
   std::chrono::steady_clock::duration shading{0};
 };
 
@@ -202,6 +203,30 @@ class TileShader {
     std::vector<uint32_t> slots;  // those taken in this tile, in order
   };
   TappedPixels taps_;  // about 22 KB, uninitialised but for the slots taken
+  static_assert(kMaxTaps <= static_cast<int>(EvaluatedPixels::kCapacity) && kMaxTaps <= 255,
+                "a pixel's taps fit one evaluated batch and its uint8_t count");
+  // The bricks one tapped pixel (`slot`) has reported missing: each once, however many of its
+  // taps missed it, so that a brick's count of pixels stays a count of pixels.
+  struct PixelMisses {
+    static constexpr uint32_t kNone = ~uint32_t{0};
+    uint32_t slot = kNone;
+    std::vector<BrickKey> keys;
+    void begin(uint32_t pixel) {
+      if (pixel == slot) return;
+      slot = pixel;
+      keys.clear();
+    }
+    bool first_time(const BrickKey& key) {
+      for (const BrickKey& k : keys) {
+        if (k == key) return false;
+      }
+      keys.push_back(key);
+      return true;
+    }
+  };
+  PixelMisses tap_misses_;
+  // Tallies missed_'s keys for the tapped pixel tap_misses_ holds, those it had not yet.
+  void count_tap_misses();
 };
 
 }  // namespace soltex::render

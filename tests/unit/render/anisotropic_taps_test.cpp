@@ -5,6 +5,11 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "soltex/common/brick_cache.h"
+#include "soltex/render/frame_renderer.h"
 
 namespace soltex::render {
 namespace {
@@ -54,6 +59,24 @@ TEST(TapPosition, TapsCoverTheLongSideEvenlyAroundThePoint) {
       EXPECT_NEAR(glm::length(step), 0.05 / n, 1e-9) << n << " tap " << k;
     }
   }
+}
+
+// RenderOptions::anisotropy is refused outside 1 to kMaxTaps, naming the bound: a pixel's taps
+// must fit one batch of evaluated pixels.
+TEST(TapCount, TheRendererRefusesAnAnisotropyOutOfRange) {
+  BrickCache cache(1u << 20);
+  for (const int anisotropy : {0, -3, kMaxTaps + 1, 1000}) {
+    try {
+      FrameRenderer renderer(cache, RenderOptions{.anisotropy = anisotropy});
+      FAIL() << anisotropy << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("1 (one lookup per pixel) to 16, got " +
+                                           std::to_string(anisotropy)),
+                std::string::npos)
+          << e.what();
+    }
+  }
+  EXPECT_NO_THROW(FrameRenderer(cache, RenderOptions{.anisotropy = kMaxTaps}));
 }
 
 }  // namespace

@@ -194,6 +194,8 @@ TEST(FrameRenderer, AMissesOnlyFrameMissesWhatTheShadedFrameMisses) {
       EXPECT_EQ(found.stats.fallback_pixels, shaded.stats.fallback_pixels);
       EXPECT_EQ(found.stats.empty_pixels, shaded.stats.empty_pixels);
       EXPECT_EQ(found.stats.evaluated_pixels, shaded.stats.evaluated_pixels);
+      EXPECT_EQ(found.stats.tapped_pixels, shaded.stats.tapped_pixels);
+      EXPECT_EQ(found.stats.taps, shaded.stats.taps);
       EXPECT_EQ(found.stats.shaded_pixels, 0u) << "nothing lit";
       partly_resident |= shaded.stats.fallback_pixels > shaded.stats.empty_pixels;
       if (shaded.complete()) break;

@@ -4,6 +4,9 @@
 
 namespace soltex::render {
 
+// The most taps a pixel may take (RenderOptions::anisotropy's bound).
+inline constexpr int kMaxTaps = 16;
+
 // Anisotropic lookups. A pixel seen at a grazing angle covers a long, thin patch of texture: one
 // lookup over a box as wide as the long side blurs it across the short side too (a floor's
 // stripes fade to grey towards the horizon, where the supersampled reference keeps them). It

@@ -44,9 +44,9 @@ struct RenderOptions {
   SampleFilter filter = SampleFilter::trilinear;
   double level_bias = 0.0;           // added to every pixel's level of detail (negative: finer)
   bool false_colour_levels = false;  // show the level each pixel drew from instead of shading
-  // Find the bricks the frame misses and draw nothing else (the image keeps its background):
-  // a client's first frame, drawn only to learn what to fetch. Frame::misses and the pixel
-  // counts are those the shaded frame would give.
+  // Find the bricks the frame misses and draw nothing else (the image is not a picture and may
+  // hold anything): a client's first frame, drawn only to learn what to fetch. Frame::misses
+  // and the pixel counts are those the shaded frame would give.
   bool misses_only = false;
   int threads = 0;  // 0: one per core
   // Anisotropic lookups: at most this many taps along a footprint's long side, each at the
@@ -81,8 +81,8 @@ struct FrameStats {
   std::size_t shaded_pixels = 0;     // lit (not unlit materials)
   std::size_t evaluated_pixels = 0;  // textures evaluated per pixel, not looked up
   std::size_t edge_pixels = 0;       // blended from coverage samples (edge_antialias)
-  // Cached pixels whose footprint took several taps (RenderOptions::anisotropy), and those
-  // taps in all.
+  // Pixels whose footprint took several taps (RenderOptions::anisotropy), cached or evaluated,
+  // and those taps in all.
   std::size_t tapped_pixels = 0;
   std::size_t taps = 0;
   // Objects whose texture this frame evaluated per pixel (and fetched no bricks for), and
