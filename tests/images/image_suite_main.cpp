@@ -1,7 +1,7 @@
 // image_suite: every scene of the suite drawn through the brick cache until converged and
-// compared with its 4 x 4 supersampled per-pixel reference. Prints one line per scene and
-// "N passed, N failed"; --table writes the markdown table of docs/IMAGES.md. Exit 0 when every
-// scene meets its floors, 1 otherwise, 2 on bad usage.
+// compared with its supersampled per-pixel reference (4 x 4, or as the case says). Prints one line
+// per scene and "N passed, N failed"; --table writes the markdown table of docs/IMAGES.md. Exit 0
+// when every scene meets its floors, 1 otherwise, 2 on bad usage.
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
@@ -60,7 +60,8 @@ Drawn draw(const ImageCase& c, const std::filesystem::path& scratch, bool with_r
   Drawn drawn;
   drawn.cached = std::move(result.image);
   if (with_reference) {
-    drawn.reference = renderer.render_reference(prepared, scene.camera, width, height, 4);
+    drawn.reference =
+        renderer.render_reference(prepared, scene.camera, width, height, c.reference_supersample);
   }
   return drawn;
 }
