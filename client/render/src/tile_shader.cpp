@@ -138,15 +138,16 @@ void TileShader::add_taps(const GBuffer& g, std::size_t i, uint32_t slot, int n,
   counts_.taps += static_cast<std::size_t>(n);
   const auto l = static_cast<std::size_t>(level);
   CachedPixels::Group& group = cached_.groups[l];
+  // A pixel's taps are looked up together, never split over two lookups of the group: its
+  // misses are tallied once per brick as they come (tile_tap_misses_).
+  if (group.count + static_cast<std::size_t>(n) > CachedPixels::kCapacity) look_up(level, image);
   const glm::dvec3& p = g.texture_position[i];
   const glm::vec3& axis = g.footprint_axis[i];
-  for (int k = 0; k < n; ++k) {
-    std::size_t count = group.count;
-    const bool full = group.push(count, slot | kTapSlot, tap_position(p, axis, k, n));
-    group.count = count;
-    cached_.pending |= 1u << l;
-    if (full) look_up(level, image);
-  }
+  std::size_t count = group.count;
+  for (int k = 0; k < n; ++k) group.push(count, slot | kTapSlot, tap_position(p, axis, k, n));
+  group.count = count;
+  cached_.pending |= 1u << l;
+  if (count == CachedPixels::kCapacity) look_up(level, image);
 }
 
 TileShader::TapsResult TileShader::look_up_taps(const glm::vec3& axis, const glm::dvec3& p, int n,
@@ -156,15 +157,13 @@ TileShader::TapsResult TileShader::look_up_taps(const glm::vec3& axis, const glm
   taps.average.fill(0.0f);
   ++counts_.tapped;
   counts_.taps += static_cast<std::size_t>(n);
-  // This pixel's list starts empty (a mark no tile slot has; the next tile pixel starts anew).
-  tap_misses_.begin(PixelMisses::kNone);
-  tap_misses_.keys.clear();
+  pixel_tap_misses_.keys.clear();
   for (int k = 0; k < n; ++k) {
     const glm::dvec3 q = tap_position(p, axis, k, n);
     const SampleResult r = options.misses_only
                                ? sampler.find_misses(q, lod, options.filter, &missed_)
                                : sampler.sample(q, lod, options.filter, &missed_);
-    count_tap_misses();
+    count_tap_misses(pixel_tap_misses_);
     taps.incomplete |= !r.complete;
     taps.found |= r.level >= 0;
     taps.coarsest = std::max(taps.coarsest, r.level);
@@ -176,9 +175,9 @@ TileShader::TapsResult TileShader::look_up_taps(const glm::vec3& axis, const glm
   return taps;
 }
 
-void TileShader::count_tap_misses() {
+void TileShader::count_tap_misses(PixelMisses& pixel) {
   for (const BrickKey& key : missed_.view()) {
-    if (tap_misses_.first_time(key)) misses_.add(key);
+    if (pixel.first_time(key)) misses_.add(key);
   }
 }
 
@@ -192,7 +191,7 @@ void TileShader::finish_taps() {
     ++counts_.shaded;
   }
   taps_.slots.clear();
-  tap_misses_.begin(PixelMisses::kNone);  // slots are numbered afresh in the next tile
+  tile_tap_misses_.begin(PixelMisses::kNone);  // slots are numbered afresh in the next tile
 }
 
 void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int y0, int x1, int y1,
@@ -502,8 +501,8 @@ void TileShader::look_up(int level, Image& image) {
         if (again.level < 0) ++counts_.empty;
       } else {
         // A pixel's taps come one after another (add_taps() pushes them together).
-        tap_misses_.begin(slot & ~kTapSlot);
-        count_tap_misses();
+        tile_tap_misses_.begin(slot & ~kTapSlot);
+        count_tap_misses(tile_tap_misses_);
       }
       result = &again;
     }

@@ -203,8 +203,9 @@ class TileShader {
     std::vector<uint32_t> slots;  // those taken in this tile, in order
   };
   TappedPixels taps_;  // about 22 KB, uninitialised but for the slots taken
-  static_assert(kMaxTaps <= static_cast<int>(EvaluatedPixels::kCapacity) && kMaxTaps <= 255,
-                "a pixel's taps fit one evaluated batch and its uint8_t count");
+  static_assert(kMaxTaps <= static_cast<int>(EvaluatedPixels::kCapacity) &&
+                    kMaxTaps <= static_cast<int>(CachedPixels::kCapacity) && kMaxTaps <= 255,
+                "a pixel's taps fit one evaluated batch, one cached group and a uint8_t count");
   // The bricks one tapped pixel (`slot`) has reported missing: each once, however many of its
   // taps missed it, so that a brick's count of pixels stays a count of pixels.
   struct PixelMisses {
@@ -224,9 +225,11 @@ class TileShader {
       return true;
     }
   };
-  PixelMisses tap_misses_;
-  // Tallies missed_'s keys for the tapped pixel tap_misses_ holds, those it had not yet.
-  void count_tap_misses();
+  // One for the fast path's tapped pixels (their taps looked up together, in one group), and
+  // one for look_up_taps().
+  PixelMisses tile_tap_misses_, pixel_tap_misses_;
+  // Tallies missed_'s keys for the tapped pixel `pixel` holds, those it had not yet.
+  void count_tap_misses(PixelMisses& pixel);
 };
 
 }  // namespace soltex::render
