@@ -343,8 +343,10 @@ void interpolate(const Terms& t, Lanes& s, std::size_t count) {
     const float kept_size = keep ? size : kInfinity;
     const float footprint = kept_size != kept_size ? kInfinity : kept_size;  // NaN -> +inf
     s.footprint[l] = footprint;
-    // The long side's vector where the footprint is finite; else no direction (one tap).
-    const bool directed = (footprint < kInfinity) & (shorter == shorter);  // not NaN
+    // The long side's vector where the footprint is finite; else no direction (one tap). A NaN
+    // short side is left to the writers (no_direction()): a test for it here costs the loop its
+    // vectorization.
+    const bool directed = footprint < kInfinity;
     const float long_x = y_longer ? ddy_x : ddx_x;
     const float long_y = y_longer ? ddy_y : ddx_y;
     const float long_z = y_longer ? ddy_z : ddx_z;
@@ -429,10 +431,12 @@ void resolve_long_run(const SurfaceRun& run, SurfaceChunk& chunk, const GBufferP
   std::fill_n(target.flags + i, n, run_flags);
   std::fill_n(target.object_id + i, n, run_object_id);
   std::copy_n(chunk.footprint.data(), n, target.footprint + i);
-  std::copy_n(chunk.minor.data(), n, target.footprint_minor + i);
+  float* __restrict minor = target.footprint_minor + i;
   glm::vec3* __restrict axis = target.footprint_axis + i;
   for (std::size_t l = 0; l < n; ++l) {
-    axis[l] = glm::vec3(chunk.axis_x[l], chunk.axis_y[l], chunk.axis_z[l]);
+    const bool none = no_direction(chunk.minor[l]);
+    minor[l] = none ? chunk.footprint[l] : chunk.minor[l];
+    axis[l] = none ? glm::vec3(0.0f) : glm::vec3(chunk.axis_x[l], chunk.axis_y[l], chunk.axis_z[l]);
   }
   glm::vec3* __restrict normal = target.normal + i;
   for (std::size_t l = 0; l < n; ++l) {

@@ -95,6 +95,12 @@ struct BinDraw {
 inline constexpr std::size_t kBinPrefetchAhead = 8;
 void draw_bin(const BinDraw& bin, float* depth, const ScreenTriangle** winner, RasterStats& stats);
 
+// A footprint whose short side came out NaN (derivatives of absurd inputs) has no direction:
+// its pixel takes one tap, as a cap's does.
+inline bool no_direction(float minor) {
+  return minor != minor;
+}
+
 // The G-buffer's planes as raw pointers, taken once per tile: a store through uint8_t* (the
 // flags) may alias anything, so through the vectors every store would reload every data pointer.
 struct GBufferPlanes {

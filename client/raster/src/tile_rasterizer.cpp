@@ -106,8 +106,10 @@ struct SurfaceBatch {
                     glm::dvec3(glm::vec3(lanes.offset_x[l], lanes.offset_y[l], lanes.offset_z[l]));
       normal[i] = glm::vec3(lanes.normal_x[l], lanes.normal_y[l], lanes.normal_z[l]);
       footprint[i] = lanes.footprint[l];
-      axis[i] = glm::vec3(lanes.axis_x[l], lanes.axis_y[l], lanes.axis_z[l]);
-      minor[i] = lanes.minor[l];
+      const bool none = no_direction(lanes.minor[l]);
+      axis[i] =
+          none ? glm::vec3(0.0f) : glm::vec3(lanes.axis_x[l], lanes.axis_y[l], lanes.axis_z[l]);
+      minor[i] = none ? lanes.footprint[l] : lanes.minor[l];
     }
     back_faces += back;
   }
