@@ -116,7 +116,29 @@ void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y,
 }
 
 int TileShader::tap_count_at(const GBuffer& g, std::size_t i) const {
-  return tap_count(g.footprint[i], g.footprint_minor[i], frame_.options.anisotropy);
+  const int most = frame_.options.anisotropy;
+  return most > 1 ? tap_count(g.footprint[i], g.footprint_minor[i], most) : 1;
+}
+
+glm::dvec3 TileShader::lookup_point(const GBuffer& g, std::size_t i, const ObjectShading& object,
+                                    double lod) const {
+  const glm::dvec3& p = g.texture_position[i];
+  if (object.cached_inset <= 0.0) return p;
+  // The coarser of the levels a lookup may read sets the step (quadrilinear reads two).
+  const double spacing = std::ldexp(object.level0_spacing, static_cast<int>(std::ceil(lod)));
+  return axis_face_inset(p, object.surface.normal(g.normal[i]), object.cached_inset * spacing);
+}
+
+TileShader::TapsResult TileShader::tapped_lookup(const GBuffer& g, std::size_t i, int n,
+                                                 const ObjectShading& object,
+                                                 TextureSampler& sampler) {
+  // Each tap covers its share of the long side.
+  const double lod = lod_of(object, sampler, g.footprint[i] / static_cast<float>(n));
+  const TapsResult taps =
+      look_up_taps(g.footprint_axis[i], lookup_point(g, i, object, lod), n, lod, sampler);
+  counts_.fallback += taps.incomplete ? 1 : 0;
+  counts_.empty += taps.found ? 0 : 1;
+  return taps;
 }
 
 double TileShader::lod_of(const ObjectShading& object, const TextureSampler& sampler,
@@ -304,7 +326,7 @@ void TileShader::shade_evaluated(const GBuffer& g, Pixel pixel, const ObjectShad
   ++counts_.evaluated;
   // Taps along a grazing footprint's long side, each evaluated over its share of it, as the
   // cached lookups take them; counted in every kind of frame alike.
-  const int taps = frame_.options.anisotropy > 1 ? tap_count_at(g, pixel.index) : 1;
+  const int taps = tap_count_at(g, pixel.index);
   if (taps > 1) {
     ++counts_.tapped;
     counts_.taps += static_cast<std::size_t>(taps);
@@ -373,20 +395,8 @@ void TileShader::evaluate(Image& image) {
 void TileShader::shade_cached(const GBuffer& g, Pixel pixel, const ObjectShading& object,
                               TextureSampler& sampler, Image& image) {
   const RenderOptions& options = frame_.options;
-  const int n = options.anisotropy > 1 ? tap_count_at(g, pixel.index) : 1;
-  // Each tap covers its share of the long side (x / 1 is x: one tap is the footprint's level).
-  const double lod = lod_of(object, sampler, g.footprint[pixel.index] / static_cast<float>(n));
-  glm::dvec3 p = g.texture_position[pixel.index];
-  if (object.cached_inset > 0.0) {
-    // The coarser of the levels a lookup may read sets the step (quadrilinear reads two).
-    const double spacing = std::ldexp(object.level0_spacing, static_cast<int>(std::ceil(lod)));
-    p = axis_face_inset(p, object.surface.normal(g.normal[pixel.index]),
-                        object.cached_inset * spacing);
-  }
-  if (n > 1) {
-    const TapsResult taps = look_up_taps(g.footprint_axis[pixel.index], p, n, lod, sampler);
-    counts_.fallback += taps.incomplete ? 1 : 0;
-    counts_.empty += taps.found ? 0 : 1;
+  if (const int n = tap_count_at(g, pixel.index); n > 1) {
+    const TapsResult taps = tapped_lookup(g, pixel.index, n, object, sampler);
     if (options.misses_only) return;
     if (options.false_colour_levels) {
       const glm::vec3 colour = level_colour(taps.coarsest);
@@ -396,6 +406,8 @@ void TileShader::shade_cached(const GBuffer& g, Pixel pixel, const ObjectShading
     shade_values(pixel, object.material, taps.average.data(), image);
     return;
   }
+  const double lod = lod_of(object, sampler, g.footprint[pixel.index]);
+  const glm::dvec3 p = lookup_point(g, pixel.index, object, lod);
   if (object.rgb_fast_path) {
     add_cached(pixel, p, static_cast<int>(lod), object, sampler, image);
     return;
@@ -429,32 +441,18 @@ void TileShader::find_run_misses(const GBuffer& g, std::size_t first, std::size_
   int level = -1;
   glm::ivec3 brick{0};
   uint32_t pixels = 0;  // the pixels that miss what the last lookup missed
-  const bool anisotropic = frame_.options.anisotropy > 1;
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t i = first + k;
-    if (const int n = anisotropic ? tap_count_at(g, i) : 1; n > 1) {
+    if (const int n = tap_count_at(g, i); n > 1) {
       // Taps spread over several bricks: each looked up on its own, the pixel counted once.
       count_lookup(result, pixels);
       pixels = 0;
       level = -1;
-      const int tap_level = object.level_table.level(g.footprint[i] / static_cast<float>(n));
-      glm::dvec3 p = g.texture_position[i];
-      if (object.cached_inset > 0.0) {
-        p = axis_face_inset(p, object.surface.normal(g.normal[i]),
-                            object.cached_inset * std::ldexp(object.level0_spacing, tap_level));
-      }
-      const TapsResult taps =
-          look_up_taps(g.footprint_axis[i], p, n, static_cast<double>(tap_level), sampler);
-      counts_.fallback += taps.incomplete ? 1 : 0;
-      counts_.empty += taps.found ? 0 : 1;
+      tapped_lookup(g, i, n, object, sampler);
       continue;
     }
     const int l = levels[k];
-    glm::dvec3 p = g.texture_position[i];
-    if (object.cached_inset > 0.0) {
-      p = axis_face_inset(p, object.surface.normal(g.normal[i]),
-                          object.cached_inset * std::ldexp(object.level0_spacing, l));
-    }
+    const glm::dvec3 p = lookup_point(g, i, object, static_cast<double>(l));
     const glm::ivec3 b = sampler.brick_of(p, l);
     if (l == level && b == brick) {
       ++pixels;

@@ -157,7 +157,16 @@ class TileShader {
   };
   TapsResult look_up_taps(const glm::vec3& axis, const glm::dvec3& p, int n, double lod,
                           TextureSampler& sampler);
+  // The taps pixel i takes (1 with anisotropy 1).
   int tap_count_at(const GBuffer& g, std::size_t i) const;
+  // Where pixel i looks `object` up at level of detail `lod`: its texture position, stepped
+  // inside across a planar pattern's face (cached_inset) by the coarser level's spacing.
+  glm::dvec3 lookup_point(const GBuffer& g, std::size_t i, const ObjectShading& object,
+                          double lod) const;
+  // Pixel i's n > 1 taps, at the level of their share of its footprint: look_up_taps(), and the
+  // pixel counted once in the fallback and empty counts.
+  TapsResult tapped_lookup(const GBuffer& g, std::size_t i, int n, const ObjectShading& object,
+                           TextureSampler& sampler);
   // The level of detail of a lookup whose footprint is `footprint`, as the frame takes it.
   double lod_of(const ObjectShading& object, const TextureSampler& sampler, float footprint) const;
   // Tallies the bricks the lookup that gave `result` missed (in missed_) and its counts, for
