@@ -306,8 +306,8 @@ const TexturedPixels& bunny_pixels(WarmScene& w) {
   static std::unique_ptr<TexturedPixels> pixels;
   if (pixels) return *pixels;
   pixels = std::make_unique<TexturedPixels>();
-  soltex::FrameRenderer keeping(*w.cache,
-                                soltex::RenderOptions{.threads = 1, .keep_gbuffer = true});
+  soltex::FrameRenderer keeping(
+      *w.cache, soltex::RenderOptions{.threads = 1, .anisotropy = 1, .keep_gbuffer = true});
   keeping.render(w.prepared, w.scene.camera, kWidth, kHeight);
   const soltex::GBuffer& g = keeping.last_gbuffer();
   // In the tile shader's order: its tiles, rows within a tile.
@@ -439,7 +439,9 @@ void evaluated_pass(benchmark::State& state, WarmScene& w, const TexturedPixels&
 }
 
 void BM_TexturePass(benchmark::State& state) {
-  WarmScene& w = warm_scene(state);
+  // One lookup, or one evaluation, per pixel at its footprint's level: the isotropic frame's
+  // cache holds those bricks (the tapped frame's holds finer ones where its taps fall).
+  WarmScene& w = warm_scene(state, /*isotropic=*/true);
   const TexturedPixels& pixels = bunny_pixels(w);
   if (state.range(2) == 0) {
     batched_pass(state, w, pixels);
