@@ -71,7 +71,7 @@ inline void TileShader::add_cached(Pixel pixel, const glm::dvec3& p, int level,
 // and the group of the level in hand kept (with its count) while the level stays the same, as
 // it mostly does from one pixel to the next.
 void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y, std::size_t first,
-                                const int32_t* levels, const ObjectShading& object,
+                                const RowLevels& row, const ObjectShading& object,
                                 TextureSampler& sampler, Image& image) {
   SOLTEX_DCHECK(by_tile_);
   use_cached_object(object, sampler, image);
@@ -83,19 +83,16 @@ void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y,
   CachedPixels::Group* group = nullptr;
   int level = -1;
   std::size_t count = 0;
-  const bool taps = frame_.options.anisotropy > 1;
   for (int x = x_begin; x < x_end; ++x) {
     const std::size_t i = first + static_cast<std::size_t>(x - x_begin);
-    if (taps) {
-      if (const int n = tap_count_at(g, i); n > 1) {
-        if (group != nullptr) group->count = count;
-        group = nullptr;
-        level = -1;
-        add_taps(g, i, first_slot + static_cast<uint32_t>(x - x_begin), n, object, image);
-        continue;
-      }
+    const int l = row.levels[x - x_begin];
+    if (const int n = row.taps[x - x_begin]; n > 1) {
+      if (group != nullptr) group->count = count;
+      group = nullptr;
+      level = -1;
+      add_taps(g, i, first_slot + static_cast<uint32_t>(x - x_begin), n, l, image);
+      continue;
     }
-    const int l = levels[x - x_begin];
     if (l != level) {
       if (group != nullptr) group->count = count;
       level = l;
@@ -118,6 +115,28 @@ void TileShader::add_cached_run(const GBuffer& g, int x_begin, int x_end, int y,
 int TileShader::tap_count_at(const GBuffer& g, std::size_t i) const {
   const int most = frame_.options.anisotropy;
   return most > 1 ? tap_count(g.footprint[i], g.footprint_minor[i], most) : 1;
+}
+
+void TileShader::make_row_levels(const GBuffer& g, std::size_t row, std::size_t count,
+                                 const ObjectShading& object, RowLevelArrays& out) const {
+  SOLTEX_DCHECK(count <= out.levels.size());
+  const float* footprint = &g.footprint[row];
+  const int most = frame_.options.anisotropy;
+  if (most <= 1) {
+    std::fill_n(out.taps.begin(), count, uint8_t{1});
+    object.level_table.levels({footprint, count}, out.levels.data());
+    return;
+  }
+  // A pixel of n taps is looked up at the level of its footprint's n-th share (as
+  // tapped_lookup() takes it); a share of 1 is the footprint itself, bit for bit.
+  const float* minor = &g.footprint_minor[row];
+  alignas(64) std::array<float, kTile> share;
+  for (std::size_t j = 0; j < count; ++j) {
+    const int n = tap_count(footprint[j], minor[j], most);
+    out.taps[j] = static_cast<uint8_t>(n);
+    share[j] = footprint[j] / static_cast<float>(n);
+  }
+  object.level_table.levels({share.data(), count}, out.levels.data());
 }
 
 glm::dvec3 TileShader::lookup_point(const GBuffer& g, std::size_t i, const ObjectShading& object,
@@ -147,12 +166,12 @@ double TileShader::lod_of(const ObjectShading& object, const TextureSampler& sam
                            : sampler.level_of_detail(footprint) + frame_.options.level_bias;
 }
 
-void TileShader::add_taps(const GBuffer& g, std::size_t i, uint32_t slot, int n,
-                          const ObjectShading& object, Image& image) {
+void TileShader::add_taps(const GBuffer& g, std::size_t i, uint32_t slot, int n, int level,
+                          Image& image) {
   SOLTEX_DCHECK(by_tile_ && slot < LitTile::kPixels && n > 1);
-  const int level = object.level_table.level(g.footprint[i] / static_cast<float>(n));
+  SOLTEX_DCHECK(level == cached_.object->level_table.level(g.footprint[i] / static_cast<float>(n)));
   taps_.sum[slot] = glm::vec3(0.0f);
-  taps_.weight[slot] = 1.0f / static_cast<float>(n);
+  taps_.weight[slot] = tap_weight(n);
   taps_.incomplete[slot] = 0;
   taps_.found[slot] = 0;
   taps_.slots.push_back(slot);
@@ -192,7 +211,7 @@ TileShader::TapsResult TileShader::look_up_taps(const glm::vec3& axis, const glm
     for (std::size_t c = 0; c < taps.average.size(); ++c) taps.average[c] += r.values[c];
   }
   // As finish_taps() averages the fast path's taps: the sum, then times one tap's weight.
-  const float weight = 1.0f / static_cast<float>(n);
+  const float weight = tap_weight(n);
   for (float& value : taps.average) value *= weight;
   return taps;
 }
@@ -233,10 +252,10 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
   // Counted in a register and added once: an increment in memory per pixel chains each pixel
   // to the one before through a store and a load.
   std::size_t covered = 0;
-  // The fast path's levels of the row's pixels, by the table of `levels_object`: made for the
-  // whole row at once (whole vectors, one call) when a run first needs them, again only where
-  // the row's runs see another object.
-  std::array<int32_t, kTile> row_levels;
+  // The fast path's levels and taps of the row's pixels, by the table of `levels_object`: made
+  // for the whole row at once (whole vectors, one call) when a run first needs them, again only
+  // where the row's runs see another object.
+  RowLevelArrays row_levels;
   for (int y = y0; y < y1; ++y) {
     std::copy_n(background.begin(), 3 * (x1 - x0),
                 image.rgb.begin() + 3 * (static_cast<std::ptrdiff_t>(y) * image.width + x0));
@@ -264,15 +283,14 @@ void TileShader::shade(const GBuffer& g, int origin_x, int origin_y, int x0, int
         if (levels_object != &object) {
           // The row's uncovered pixels too: their footprints are written (0) with the rest of
           // the G-buffer, and their levels are made and never read.
-          object.level_table.levels({&g.footprint[row], static_cast<std::size_t>(x1 - x0)},
-                                    row_levels.data());
+          make_row_levels(g, row, static_cast<std::size_t>(x1 - x0), object, row_levels);
           levels_object = &object;
         }
-        const int32_t* levels = &row_levels[static_cast<std::size_t>(x - x0)];
+        const RowLevels run = row_levels.from(static_cast<std::size_t>(x - x0));
         if (misses_run) {
-          find_run_misses(g, i, static_cast<std::size_t>(end - x), levels, object, *samplers_[id]);
+          find_run_misses(g, i, static_cast<std::size_t>(end - x), run, object, *samplers_[id]);
         } else {
-          add_cached_run(g, x, end, y, i, levels, object, *samplers_[id], image);
+          add_cached_run(g, x, end, y, i, run, object, *samplers_[id], image);
         }
         x = end;
         continue;
@@ -384,7 +402,7 @@ void TileShader::evaluate(Image& image) {
         texel_channels(spec, evaluated_.texels[i + k], more);
         for (std::size_t c = 0; c < channels; ++c) values[c] += more[c];
       }
-      const float weight = 1.0f / static_cast<float>(taps);
+      const float weight = tap_weight(static_cast<int>(taps));
       for (std::size_t c = 0; c < channels; ++c) values[c] *= weight;
     }
     shade_values(evaluated_.pixels[i], object.material, values, image);
@@ -434,7 +452,7 @@ void TileShader::count_lookup(const SampleResult& result, uint32_t pixels) {
 }
 
 void TileShader::find_run_misses(const GBuffer& g, std::size_t first, std::size_t count,
-                                 const int32_t* levels, const ObjectShading& object,
+                                 const RowLevels& row, const ObjectShading& object,
                                  TextureSampler& sampler) {
   const SampleFilter filter = frame_.options.filter;
   SampleResult result{};
@@ -443,7 +461,7 @@ void TileShader::find_run_misses(const GBuffer& g, std::size_t first, std::size_
   uint32_t pixels = 0;  // the pixels that miss what the last lookup missed
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t i = first + k;
-    if (const int n = tap_count_at(g, i); n > 1) {
+    if (const int n = row.taps[k]; n > 1) {
       // Taps spread over several bricks: each looked up on its own, the pixel counted once.
       count_lookup(result, pixels);
       pixels = 0;
@@ -451,7 +469,7 @@ void TileShader::find_run_misses(const GBuffer& g, std::size_t first, std::size_
       tapped_lookup(g, i, n, object, sampler);
       continue;
     }
-    const int l = levels[k];
+    const int l = row.levels[k];
     const glm::dvec3 p = lookup_point(g, i, object, static_cast<double>(l));
     const glm::ivec3 b = sampler.brick_of(p, l);
     if (l == level && b == brick) {

@@ -132,14 +132,27 @@ class TileShader {
   void use_cached_object(const ObjectShading& object, TextureSampler& sampler, Image& image);
   void add_cached(Pixel pixel, const glm::dvec3& p, int level, const ObjectShading& object,
                   TextureSampler& sampler, Image& image);
+  // A row's pixels as the fast path takes them: each one's taps (1: a single lookup) and the
+  // level it is looked up at (its taps' level where it takes several).
+  struct RowLevels {
+    const int32_t* levels;
+    const uint8_t* taps;
+  };
+  struct RowLevelArrays {
+    std::array<int32_t, static_cast<std::size_t>(kTile)> levels;
+    std::array<uint8_t, static_cast<std::size_t>(kTile)> taps;
+    RowLevels from(std::size_t k) const { return {&levels[k], &taps[k]}; }
+  };
+  // Pixels [row, row + count) of `g`, all in `object`'s fast path or not read.
+  void make_row_levels(const GBuffer& g, std::size_t row, std::size_t count,
+                       const ObjectShading& object, RowLevelArrays& out) const;
   void add_cached_run(const GBuffer& g, int x_begin, int x_end, int y, std::size_t first,
-                      const int32_t* levels, const ObjectShading& object, TextureSampler& sampler,
+                      const RowLevels& row, const ObjectShading& object, TextureSampler& sampler,
                       Image& image);
   // A pixel of shade()'s fast path whose footprint asks for n > 1 taps: each tap goes to the
   // group of their level with the pixel's slot marked kTapSlot, look_up() adds its value into
   // taps_, and finish_taps() writes each such pixel's average once every lookup is done.
-  void add_taps(const GBuffer& g, std::size_t i, uint32_t slot, int n, const ObjectShading& object,
-                Image& image);
+  void add_taps(const GBuffer& g, std::size_t i, uint32_t slot, int n, int level, Image& image);
   void finish_taps();
   void look_up(int level, Image& image);
   void look_up_all(Image& image);
@@ -173,10 +186,10 @@ class TileShader {
   // `pixels` pixels that miss the same.
   void count_lookup(const SampleResult& result, uint32_t pixels = 1);
   // A misses-only frame's run of `count` pixels of `object` from G-buffer index `first`, each
-  // pixel's level in `levels`: what each would miss, looked up once for each stretch of
+  // pixel's taps and level in `row`: what each would miss, looked up once for each stretch of
   // pixels in one brick (they miss the same bricks).
-  void find_run_misses(const GBuffer& g, std::size_t first, std::size_t count,
-                       const int32_t* levels, const ObjectShading& object, TextureSampler& sampler);
+  void find_run_misses(const GBuffer& g, std::size_t first, std::size_t count, const RowLevels& row,
+                       const ObjectShading& object, TextureSampler& sampler);
   void shade_values(Pixel pixel, const MaterialInputs& m, const float* values, Image& image);
   void flush(Image& image);
 

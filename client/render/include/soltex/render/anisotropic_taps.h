@@ -2,6 +2,8 @@
 
 #include <glm/vec3.hpp>
 
+#include "soltex/common/check.h"
+
 namespace soltex::render {
 
 // The most taps a pixel may take (RenderOptions::anisotropy's bound).
@@ -22,17 +24,44 @@ inline constexpr int kMaxTaps = 16;
 // floor: the default scene's turbulence floor, at ratios 1.5 to 2, fetched 3,499 bricks from
 // 2 on, 4,626 from 1.5 and 1,551 with none, for 39.53, 39.78 and 39.37 dB
 // (docs/PERFORMANCE.md, "Frame targets", paragraph 25).
+// Written without branches (selects and a clamp before the conversion, so a NaN or infinite
+// ratio never reaches it): the tile shader counts a whole row's taps in one vectorized loop.
 inline int tap_count(float footprint, float minor, int most) {
   const float ratio = footprint / minor;
-  if (!(ratio >= 2.0f)) return 1;
   const float largest = static_cast<float>(most);
-  return ratio >= largest ? most : static_cast<int>(ratio + 0.5f);
+  const float clamped = ratio >= 2.0f ? (ratio < largest ? ratio : largest) : 1.0f;
+  return static_cast<int>(clamped + 0.5f);
 }
+
+namespace taps_detail {
+// Tap k of n's offset (k + 0.5) / n - 0.5 and a tap's weight 1 / n, for every n <= kMaxTaps,
+// made at compile time (the same correctly rounded operations as at run time): a tapped
+// pixel costs no division.
+struct TapTables {
+  double offset[kMaxTaps + 1][kMaxTaps] = {};
+  float weight[kMaxTaps + 1] = {};
+  constexpr TapTables() {
+    for (int n = 1; n <= kMaxTaps; ++n) {
+      weight[n] = 1.0f / static_cast<float>(n);
+      for (int k = 0; k < n; ++k) {
+        offset[n][k] = (static_cast<double>(k) + 0.5) / static_cast<double>(n) - 0.5;
+      }
+    }
+  }
+};
+inline constexpr TapTables kTapTables;
+}  // namespace taps_detail
 
 // Tap k of n: spread evenly over the long side `axis` (a vector as long as it), centred on p.
 inline glm::dvec3 tap_position(const glm::dvec3& p, const glm::vec3& axis, int k, int n) {
-  const double t = (static_cast<double>(k) + 0.5) / static_cast<double>(n) - 0.5;
-  return p + glm::dvec3(axis) * t;
+  SOLTEX_DCHECK(n >= 1 && n <= kMaxTaps && k >= 0 && k < n);
+  return p + glm::dvec3(axis) * taps_detail::kTapTables.offset[n][k];
+}
+
+// One tap's weight in the average of n: 1 / n.
+inline float tap_weight(int n) {
+  SOLTEX_DCHECK(n >= 1 && n <= kMaxTaps);
+  return taps_detail::kTapTables.weight[n];
 }
 
 }  // namespace soltex::render
