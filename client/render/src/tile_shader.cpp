@@ -461,15 +461,33 @@ void TileShader::find_run_misses(const GBuffer& g, std::size_t first, std::size_
   uint32_t pixels = 0;  // the pixels that miss what the last lookup missed
   for (std::size_t k = 0; k < count; ++k) {
     const std::size_t i = first + k;
+    const int l = row.levels[k];
     if (const int n = row.taps[k]; n > 1) {
-      // Taps spread over several bricks: each looked up on its own, the pixel counted once.
+      // The pixel counted once, each brick its taps miss once for it: the run so far is
+      // tallied, and the taps go on from its lookup (missed_ holds what `result` missed).
       count_lookup(result, pixels);
       pixels = 0;
-      level = -1;
-      tapped_lookup(g, i, n, object, sampler);
+      ++counts_.tapped;
+      counts_.taps += static_cast<std::size_t>(n);
+      pixel_tap_misses_.keys.clear();
+      const glm::dvec3 p = lookup_point(g, i, object, static_cast<double>(l));
+      bool incomplete = false, found = false;
+      for (int t = 0; t < n; ++t) {
+        const glm::dvec3 q = tap_position(p, g.footprint_axis[i], t, n);
+        const glm::ivec3 b = sampler.brick_of(q, l);
+        if (l != level || b != brick) {
+          result = sampler.find_misses(q, static_cast<double>(l), filter, &missed_);
+          level = l;
+          brick = b;
+        }
+        count_tap_misses(pixel_tap_misses_);
+        incomplete |= !result.complete;
+        found |= result.level >= 0;
+      }
+      counts_.fallback += incomplete ? 1 : 0;
+      counts_.empty += found ? 0 : 1;
       continue;
     }
-    const int l = row.levels[k];
     const glm::dvec3 p = lookup_point(g, i, object, static_cast<double>(l));
     const glm::ivec3 b = sampler.brick_of(p, l);
     if (l == level && b == brick) {
