@@ -178,117 +178,6 @@ void GradientPoints(const OctaveColumnsView& c, std::size_t n, const float* HWY_
   }
 }
 
-// The row's faces in one vector (lane f: face f) and each point's faces found in it by lane
-// lookup: for rows whose faces fit one vector, as a brick's rows of 17 samples do at every
-// octave band-limiting keeps. Written to memory by the face pass and read back at once by the
-// point pass, the faces cost a stall per load: a full-width load over the face pass's
-// narrower stores, or one lane off them (a point's right face), is not forwarded from the
-// store buffer but waits for the stores to reach the cache.
-class FacesInRegister {
- public:
-  HWY_INLINE VF left(VF faces, VI lo) const {
-    return hn::TableLookupLanes(faces, hn::IndicesFromVec(DF(), lo));
-  }
-  HWY_INLINE VF right(VF faces, VI lo) const {
-    return hn::TableLookupLanes(faces, hn::IndicesFromVec(DF(), hn::Add(lo, hn::Set(DI(), 1))));
-  }
-};
-
-template <bool kAbsolute>
-void ValuePointsInRegister(const OctaveColumnsView& c, std::size_t n, VF edge, float weight,
-                           float mean, float* HWY_RESTRICT acc) {
-  const DF df;
-  const FacesInRegister faces;
-  const VF w = hn::Set(df, weight), m = hn::Set(df, mean);
-  for (std::size_t i = 0; i < n; i += hn::Lanes(df)) {
-    const VI lo = hn::LoadU(DI(), c.face_lo + i);
-    VF noise = Lerp(faces.left(edge, lo), faces.right(edge, lo), hn::LoadU(df, c.frac + i));
-    if constexpr (kAbsolute) noise = hn::Abs(noise);
-    const VF term = hn::Add(hn::Mul(w, noise), m);
-    hn::StoreU(hn::Add(hn::LoadU(df, acc + i), term), df, acc + i);
-  }
-}
-
-template <bool kAbsolute>
-void GradientPointsInRegister(const OctaveColumnsView& c, std::size_t n, VF slope, VF offset,
-                              float weight, float mean, float* HWY_RESTRICT acc) {
-  const DF df;
-  const FacesInRegister faces;
-  const VF w = hn::Set(df, weight), m = hn::Set(df, mean), one = hn::Set(df, 1.0f);
-  for (std::size_t i = 0; i < n; i += hn::Lanes(df)) {
-    const VI lo = hn::LoadU(DI(), c.face_lo + i);
-    const VF fx = hn::LoadU(df, c.frac + i);
-    // gradient_cell_finish, as GradientPoints
-    const VF a0 = hn::Add(faces.left(offset, lo), hn::Mul(faces.left(slope, lo), fx));
-    const VF a1 =
-        hn::Add(faces.right(offset, lo), hn::Mul(faces.right(slope, lo), hn::Sub(fx, one)));
-    VF noise = Lerp(a0, a1, Fade(df, fx));
-    if constexpr (kAbsolute) noise = hn::Abs(noise);
-    const VF term = hn::Add(hn::Mul(w, noise), m);
-    hn::StoreU(hn::Add(hn::LoadU(df, acc + i), term), df, acc + i);
-  }
-}
-
-// v in the low lanes of a full vector (the rest zero): the face pass runs as narrow as the
-// row's faces allow (WithFaceWidth), the point pass looks them up in full vectors.
-template <class DN>
-HWY_INLINE VF WidenToFull(DN /* tag */, hn::Vec<DN> v) {
-#if HWY_TARGET == HWY_SCALAR
-  return v;  // one lane: every tag is the full one
-#else
-  if constexpr (hn::MaxLanes(DN()) >= hn::MaxLanes(DF())) {
-    return v;
-  } else {
-    const hn::Twice<DN> dt;
-    return WidenToFull(dt, hn::ZeroExtendVector(dt, v));
-  }
-#endif
-}
-
-// AddOctave for a row whose faces fit one vector (c.faces <= Lanes(DF)): the face pass as
-// ValueFaces and GradientFaces compute it, lane for lane, kept in registers.
-void AddOctaveFacesInRegister(const OctavePlan& plan, const Octave& octave,
-                              const OctaveColumnsView& c, std::size_t n, const LatticeSplit& sy,
-                              const LatticeSplit& sz, float* HWY_RESTRICT acc) {
-  const NoiseTables& tables = noise_tables();
-  const float weight = octave.noise_weight, mean = octave.mean_term;
-  if (plan.basis == NoiseBasis::value) {
-    const RowHashes h = row_hashes(tables, sy.cell, sz.cell);
-    VF edge;
-    WithFaceWidth(c.faces, [&](auto d) {
-      const auto vy = hn::Set(d, sy.frac), vz = hn::Set(d, sz.frac);
-      const FaceTable corner(d, tables.value_at.data(), c.face_x);
-      edge = WidenToFull(d, Lerp(Lerp(corner(h.h00), corner(h.h10), vy),
-                                 Lerp(corner(h.h01), corner(h.h11), vy), vz));
-    });
-    if (plan.absolute) {
-      ValuePointsInRegister<true>(c, n, edge, weight, mean, acc);
-    } else {
-      ValuePointsInRegister<false>(c, n, edge, weight, mean, acc);
-    }
-    return;
-  }
-  const GradientRow row = gradient_row(tables, sy, sz);
-  VF slope, offset;
-  WithFaceWidth(c.faces, [&](auto d) {
-    const hn::RebindToSigned<decltype(d)> di;
-    const GradientRowVec<decltype(d)> r{hn::Set(d, row.fy), hn::Set(d, row.fy - 1.0f),
-                                        hn::Set(d, row.fz), hn::Set(d, row.fz - 1.0f),
-                                        hn::Set(d, row.v),  hn::Set(d, row.w)};
-    const FaceTable perm(di, tables.perm.data(), c.face_x);
-    hn::Vec<decltype(d)> face_slope, face_offset;
-    GradientFace(d, r, perm(row.hashes.h00), perm(row.hashes.h10), perm(row.hashes.h01),
-                 perm(row.hashes.h11), face_slope, face_offset);
-    slope = WidenToFull(d, face_slope);
-    offset = WidenToFull(d, face_offset);
-  });
-  if (plan.absolute) {
-    GradientPointsInRegister<true>(c, n, slope, offset, weight, mean, acc);
-  } else {
-    GradientPointsInRegister<false>(c, n, slope, offset, weight, mean, acc);
-  }
-}
-
 // One evaluated octave along the row, added into acc (padded length).
 void AddOctave(const OctavePlan& plan, const Octave& octave, const OctaveColumnsView& c,
                std::size_t n, double y, double z, float* HWY_RESTRICT acc,
@@ -296,10 +185,6 @@ void AddOctave(const OctavePlan& plan, const Octave& octave, const OctaveColumns
   const NoiseTables& tables = noise_tables();
   const LatticeSplit sy = split_lattice_in_kernel(y * octave.frequency);
   const LatticeSplit sz = split_lattice_in_kernel(z * octave.frequency);
-  if (c.faces <= hn::Lanes(DF())) {
-    AddOctaveFacesInRegister(plan, octave, c, n, sy, sz, acc);
-    return;
-  }
   const float weight = octave.noise_weight, mean = octave.mean_term;
   if (plan.basis == NoiseBasis::value) {
     const RowHashes hashes = row_hashes(tables, sy.cell, sz.cell);
