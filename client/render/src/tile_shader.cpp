@@ -155,8 +155,7 @@ TileShader::TapsResult TileShader::tapped_lookup(const GBuffer& g, std::size_t i
   const double lod = lod_of(object, sampler, g.footprint[i] / static_cast<float>(n));
   const TapsResult taps =
       look_up_taps(g.footprint_axis[i], lookup_point(g, i, object, lod), n, lod, sampler);
-  counts_.fallback += taps.incomplete ? 1 : 0;
-  counts_.empty += taps.found ? 0 : 1;
+  count_tapped_result(taps.incomplete, taps.found);
   return taps;
 }
 
@@ -175,8 +174,7 @@ void TileShader::add_taps(const GBuffer& g, std::size_t i, uint32_t slot, int n,
   taps_.incomplete[slot] = 0;
   taps_.found[slot] = 0;
   taps_.slots.push_back(slot);
-  ++counts_.tapped;
-  counts_.taps += static_cast<std::size_t>(n);
+  count_tapped_pixel(n);
   const auto l = static_cast<std::size_t>(level);
   CachedPixels::Group& group = cached_.groups[l];
   // A pixel's taps are looked up together, never split over two lookups of the group: its
@@ -196,9 +194,7 @@ TileShader::TapsResult TileShader::look_up_taps(const glm::vec3& axis, const glm
   const RenderOptions& options = frame_.options;
   TapsResult taps;
   taps.average.fill(0.0f);
-  ++counts_.tapped;
-  counts_.taps += static_cast<std::size_t>(n);
-  pixel_tap_misses_.keys.clear();
+  begin_tapped_lookups(n);
   for (int k = 0; k < n; ++k) {
     const glm::dvec3 q = tap_position(p, axis, k, n);
     const SampleResult r = options.misses_only
@@ -214,6 +210,21 @@ TileShader::TapsResult TileShader::look_up_taps(const glm::vec3& axis, const glm
   const float weight = tap_weight(n);
   for (float& value : taps.average) value *= weight;
   return taps;
+}
+
+void TileShader::count_tapped_pixel(int n) {
+  ++counts_.tapped;
+  counts_.taps += static_cast<std::size_t>(n);
+}
+
+void TileShader::begin_tapped_lookups(int n) {
+  count_tapped_pixel(n);
+  pixel_tap_misses_.keys.clear();
+}
+
+void TileShader::count_tapped_result(bool incomplete, bool found) {
+  counts_.fallback += incomplete ? 1 : 0;
+  counts_.empty += found ? 0 : 1;
 }
 
 void TileShader::count_tap_misses(PixelMisses& pixel) {
@@ -345,10 +356,7 @@ void TileShader::shade_evaluated(const GBuffer& g, Pixel pixel, const ObjectShad
   // Taps along a grazing footprint's long side, each evaluated over its share of it, as the
   // cached lookups take them; counted in every kind of frame alike.
   const int taps = tap_count_at(g, pixel.index);
-  if (taps > 1) {
-    ++counts_.tapped;
-    counts_.taps += static_cast<std::size_t>(taps);
-  }
+  if (taps > 1) count_tapped_pixel(taps);
   if (frame_.options.misses_only) return;  // evaluated textures miss no brick
   if (frame_.options.false_colour_levels) {
     image.set(pixel.x, pixel.y, kEvaluatedColour.r, kEvaluatedColour.g, kEvaluatedColour.b);
@@ -467,9 +475,7 @@ void TileShader::find_run_misses(const GBuffer& g, std::size_t first, std::size_
       // tallied, and the taps go on from its lookup (missed_ holds what `result` missed).
       count_lookup(result, pixels);
       pixels = 0;
-      ++counts_.tapped;
-      counts_.taps += static_cast<std::size_t>(n);
-      pixel_tap_misses_.keys.clear();
+      begin_tapped_lookups(n);
       const glm::dvec3 p = lookup_point(g, i, object, static_cast<double>(l));
       bool incomplete = false, found = false;
       for (int t = 0; t < n; ++t) {
@@ -484,8 +490,7 @@ void TileShader::find_run_misses(const GBuffer& g, std::size_t first, std::size_
         incomplete |= !result.complete;
         found |= result.level >= 0;
       }
-      counts_.fallback += incomplete ? 1 : 0;
-      counts_.empty += found ? 0 : 1;
+      count_tapped_result(incomplete, found);
       continue;
     }
     const glm::dvec3 p = lookup_point(g, i, object, static_cast<double>(l));

@@ -196,7 +196,9 @@ class TileShader {
   const FrameShading& frame_;
   std::vector<std::unique_ptr<TextureSampler>>& samplers_;
   MissTally misses_;
-  MissedBricks missed_;  // one pixel's, refilled by each lookup (kept: not zeroed per pixel)
+  // The last lookup's misses, refilled by each (kept: not zeroed per pixel); a misses-only
+  // run reads them again for the pixels and taps that reuse that lookup.
+  MissedBricks missed_;
   TileCounts counts_;
   // Where a cached pixel's colour goes, kept in its group: its place in tile_ (shade()), or
   // its index in the list (shade_pixels(), which sets list_at_ to each pixel's in turn).
@@ -252,6 +254,12 @@ class TileShader {
   PixelMisses tile_tap_misses_, pixel_tap_misses_;
   // Tallies missed_'s keys for the tapped pixel `pixel` holds, those it had not yet.
   void count_tap_misses(PixelMisses& pixel);
+  // A pixel of n > 1 taps counted (tapped, taps); begin_tapped_lookups() also starts the
+  // pixel's own tally of the bricks its taps miss (pixel_tap_misses_), and
+  // count_tapped_result() counts it once in the fallback and empty counts.
+  void count_tapped_pixel(int n);
+  void begin_tapped_lookups(int n);
+  void count_tapped_result(bool incomplete, bool found);
 };
 
 }  // namespace soltex::render

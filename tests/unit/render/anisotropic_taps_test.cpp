@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "soltex/common/brick_cache.h"
 #include "soltex/render/frame_renderer.h"
@@ -41,6 +42,46 @@ TEST(TapCount, OddFootprintsTakeOneTapOrTheMost) {
   EXPECT_EQ(tap_count(0.5f, 0.0f, 8), 8);  // edge-on: as thin as can be
   EXPECT_EQ(tap_count(kInf, 1.0f, 8), 8);
   EXPECT_EQ(tap_count(1.0f, -1.0f, 8), 1);  // negative: not a footprint
+}
+
+// The count without branches is the rule as first written (a branch for below 2, NaN
+// included, and one for the most), on every ratio around the thresholds and odd operands.
+TEST(TapCount, EqualsTheRuleWithBranches) {
+  const auto with_branches = [](float footprint, float minor, int most) {
+    const float ratio = footprint / minor;
+    if (!(ratio >= 2.0f)) return 1;
+    return ratio >= static_cast<float>(most) ? most : static_cast<int>(ratio + 0.5f);
+  };
+  std::vector<float> values = {0.0f, -0.0f, 1.0f, -1.0f, kInf, -kInf, kNaN, 1e-45f, 3e38f};
+  for (int half_steps = 3; half_steps <= 35; ++half_steps) {
+    const float h = 0.5f * static_cast<float>(half_steps);  // 1.5, 2, 2.5 ... 17.5
+    values.insert(values.end(), {h, std::nextafter(h, 0.0f), std::nextafter(h, kInf)});
+  }
+  for (float r = 1.5f; r < 17.5f; r += 0.0137f) values.push_back(r);
+  for (int most = 1; most <= kMaxTaps; ++most) {
+    for (const float footprint : values) {
+      for (const float minor : {1.0f, 0.0f, -0.0f, 0.25f, kInf, kNaN, 1e-45f}) {
+        EXPECT_EQ(tap_count(footprint, minor, most), with_branches(footprint, minor, most))
+            << footprint << " / " << minor << ", most " << most;
+      }
+    }
+  }
+}
+
+// The tables' offsets and weights are the operations done at run time, bit for bit (a volatile
+// keeps the compiler from folding them).
+TEST(TapPosition, TablesHoldTheRunTimeOffsetsAndWeights) {
+  volatile double half = 0.5;
+  volatile float one = 1.0f;
+  const glm::dvec3 origin(0.0);
+  const glm::vec3 axis(1.0f, 0.0f, 0.0f);
+  for (int n = 1; n <= kMaxTaps; ++n) {
+    EXPECT_EQ(tap_weight(n), one / static_cast<float>(n)) << n;
+    for (int k = 0; k < n; ++k) {
+      const double t = (static_cast<double>(k) + half) / static_cast<double>(n) - half;
+      EXPECT_EQ(tap_position(origin, axis, k, n).x, t) << k << " of " << n;
+    }
+  }
 }
 
 // n taps spread evenly over the long side, centred on the point: a box filter along it.
