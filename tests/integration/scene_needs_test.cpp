@@ -72,7 +72,7 @@ KeySet surface_bricks(const PreparedScene& scene, const GBuffer& g, BrickCache& 
     TextureSampler& sampler = *samplers[g.object_id[i]];
     const int n =
         render::tap_count(g.footprint[i], g.footprint_minor[i], RenderOptions{}.anisotropy);
-    const double lod = std::min(sampler.level_of_detail(g.footprint[i] / static_cast<float>(n)),
+    const double lod = std::min(sampler.level_of_detail(render::tap_share(g.footprint[i], n)),
                                 static_cast<double>(sampler.layout().coarsest_level()));
     for (int k = 0; k < n; ++k) {
       const glm::dvec3 p =

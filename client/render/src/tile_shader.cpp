@@ -127,14 +127,14 @@ void TileShader::make_row_levels(const GBuffer& g, std::size_t row, std::size_t 
     object.level_table.levels({footprint, count}, out.levels.data());
     return;
   }
-  // A pixel of n taps is looked up at the level of its footprint's n-th share (as
-  // tapped_lookup() takes it); a share of 1 is the footprint itself, bit for bit.
+  // A pixel of n taps is looked up at the level of its taps' share (as tapped_lookup() takes
+  // it), one lookup at its footprint's.
   const float* minor = &g.footprint_minor[row];
   alignas(64) std::array<float, kTile> share;
   for (std::size_t j = 0; j < count; ++j) {
     const int n = tap_count(footprint[j], minor[j], most);
     out.taps[j] = static_cast<uint8_t>(n);
-    share[j] = footprint[j] / static_cast<float>(n);
+    share[j] = tap_share(footprint[j], n);
   }
   object.level_table.levels({share.data(), count}, out.levels.data());
 }
@@ -152,7 +152,7 @@ TileShader::TapsResult TileShader::tapped_lookup(const GBuffer& g, std::size_t i
                                                  const ObjectShading& object,
                                                  TextureSampler& sampler) {
   // Each tap covers its share of the long side.
-  const double lod = lod_of(object, sampler, g.footprint[i] / static_cast<float>(n));
+  const double lod = lod_of(object, sampler, tap_share(g.footprint[i], n));
   const TapsResult taps =
       look_up_taps(g.footprint_axis[i], lookup_point(g, i, object, lod), n, lod, sampler);
   count_tapped_result(taps.incomplete, taps.found);
@@ -168,7 +168,7 @@ double TileShader::lod_of(const ObjectShading& object, const TextureSampler& sam
 void TileShader::add_taps(const GBuffer& g, std::size_t i, uint32_t slot, int n, int level,
                           Image& image) {
   SOLTEX_DCHECK(by_tile_ && slot < LitTile::kPixels && n > 1);
-  SOLTEX_DCHECK(level == cached_.object->level_table.level(g.footprint[i] / static_cast<float>(n)));
+  SOLTEX_DCHECK(level == cached_.object->level_table.level(tap_share(g.footprint[i], n)));
   taps_.sum[slot] = glm::vec3(0.0f);
   taps_.weight[slot] = tap_weight(n);
   taps_.incomplete[slot] = 0;
@@ -238,8 +238,7 @@ void TileShader::finish_taps() {
     const glm::vec3 average = taps_.sum[slot] * taps_.weight[slot];
     const float rgb[3] = {average.r, average.g, average.b};
     tile_.add_albedo(slot, rgb);
-    counts_.fallback += taps_.incomplete[slot];
-    counts_.empty += taps_.found[slot] == 0 ? 1 : 0;
+    count_tapped_result(taps_.incomplete[slot] != 0, taps_.found[slot] != 0);
     ++counts_.shaded;
   }
   taps_.slots.clear();
@@ -371,7 +370,7 @@ void TileShader::shade_evaluated(const GBuffer& g, Pixel pixel, const ObjectShad
   EvaluatedLanes& e = evaluated_.lanes;
   const glm::dvec3& p = g.texture_position[pixel.index];
   const glm::vec3& n = g.normal[pixel.index];
-  const float footprint = g.footprint[pixel.index] / static_cast<float>(taps);
+  const float footprint = tap_share(g.footprint[pixel.index], taps);
   for (int k = 0; k < taps; ++k) {
     const std::size_t i = evaluated_.count++;
     evaluated_.pixels[i] = pixel;

@@ -58,6 +58,12 @@ inline glm::dvec3 tap_position(const glm::dvec3& p, const glm::vec3& axis, int k
   return p + glm::dvec3(axis) * taps_detail::kTapTables.offset[n][k];
 }
 
+// The footprint each of n taps covers, its level's footprint: the long side over n (n = 1:
+// the footprint itself, bit for bit).
+inline float tap_share(float footprint, int n) {
+  return footprint / static_cast<float>(n);
+}
+
 // One tap's weight in the average of n: 1 / n.
 inline float tap_weight(int n) {
   SOLTEX_DCHECK(n >= 1 && n <= kMaxTaps);
