@@ -1,6 +1,5 @@
 // soltex-load: puts a measured, bounded load on one soltexd and reports per-brick throughput,
 // latency percentiles and errors by status code.
-#include <absl/synchronization/mutex.h>
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -26,10 +25,7 @@ int main(int argc, char** argv) {
   soltex::net::add_channel_security_options(app, security);
   if (const auto exit_code = cli::parse(app, "soltex-load", argc, argv)) return *exit_code;
   cli::start_logging("soltex-load", log_level);
-  cli::keep_freed_memory();
-  // gRPC locks abseil mutexes several times per message; Debian's abseil tracks their lock
-  // order for deadlock detection on every acquisition unless told not to.
-  absl::SetMutexDeadlockDetectionMode(absl::OnDeadlockCycle::kIgnore);
+  cli::prepare_for_grpc_streams();
   try {
     options.security = soltex::net::finish_channel_security(security);
   } catch (const std::exception& e) {

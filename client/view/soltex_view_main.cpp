@@ -165,6 +165,7 @@ int main(int argc, char** argv) {
   net::add_channel_security_options(app, security_options);
   if (const auto exit_code = cli::parse(app, "soltex-view", argc, argv)) return *exit_code;
   cli::start_logging("soltex-view", log_level);
+  cli::prepare_for_grpc_streams();
   if (const auto exit_code = refuse(options)) return *exit_code;
   try {
     return run(options, app, security_options, timeline);

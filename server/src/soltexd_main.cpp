@@ -1,5 +1,4 @@
 // soltexd: evaluates procedural texture bricks on request and streams them over gRPC.
-#include <absl/synchronization/mutex.h>
 #include <signal.h>
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
@@ -73,10 +72,7 @@ int main(int argc, char** argv) {
   }
   soltex::cli::start_logging("soltexd", config.log_level, soltex::cli::LogStyle::timestamped);
   soltex::server::route_grpc_logs_to_spdlog();
-  soltex::cli::keep_freed_memory();
-  // gRPC locks abseil mutexes several times per message; Debian's abseil tracks their lock
-  // order for deadlock detection on every acquisition unless told not to.
-  absl::SetMutexDeadlockDetectionMode(absl::OnDeadlockCycle::kIgnore);
+  soltex::cli::prepare_for_grpc_streams();
   raise_descriptor_limit();
 
   // A ready file says "serving now": one left by an earlier run that is gone must not say so

@@ -1,5 +1,6 @@
 #include "soltex/cli/tool_cli.h"
 
+#include <absl/synchronization/mutex.h>
 #include <malloc.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
@@ -155,10 +156,11 @@ void start_logging(const std::string& tool, const std::string& level, LogStyle s
                           : "%^%l%$ " + tool + ": %v");
 }
 
-void keep_freed_memory() {
+void prepare_for_grpc_streams() {
   // 32 MiB is glibc's largest mmap threshold; blocks above it are rare and long-lived here.
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, 256 << 20);
+  absl::SetMutexDeadlockDetectionMode(absl::OnDeadlockCycle::kIgnore);
 }
 
 CLI::Validator IntegerIn(long long min, long long max) {

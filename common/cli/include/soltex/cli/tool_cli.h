@@ -62,11 +62,16 @@ CLI::Validator ServerAddress();
 // The environment variable an option's long name maps to: "--max-time-s" -> "SOLTEX_MAX_TIME_S".
 std::string environment_name(const std::string& long_name);
 
-// For the network tools (soltexd, soltex-load): fixed glibc malloc thresholds, so that freed
-// memory stays in the process. By default glibc serves large blocks with mmap and gives the
-// free top of a heap back to the kernel; gRPC's message and socket buffers (tens of KB, made
-// and freed per message) then cost a page fault per 4 KB on every message.
-void keep_freed_memory();
+// For the programs that stream gRPC messages (soltexd, soltex-load, soltex-view), before their
+// first channel or server:
+// - fixed glibc malloc thresholds, so that freed memory stays in the process. By default glibc
+//   serves large blocks with mmap and gives the free top of a heap back to the kernel; gRPC's
+//   message and socket buffers (tens of KB, made and freed per message) then cost a page fault
+//   per 4 KB on every message;
+// - no lock-order tracking in abseil's mutexes, which gRPC takes several times per message:
+//   Debian's abseil tracks the order for deadlock detection on every acquisition unless told
+//   not to.
+void prepare_for_grpc_streams();
 
 enum class LogStyle { plain, timestamped };
 
