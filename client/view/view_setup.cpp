@@ -3,6 +3,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -53,8 +55,14 @@ Codec choose_codec(std::optional<Codec> forced, const capability::Capability& me
   return codec;
 }
 
-double round_trip_ms(net::BrickFetcher& fetcher) {
-  return static_cast<double>(fetcher.measure_round_trip().count()) / 1e3;
+// The server's first answer, within 5 s and within a headless run's --max-time-s.
+double round_trip_ms(net::BrickFetcher& fetcher, const ViewOptions& options) {
+  auto timeout = std::chrono::milliseconds(5000);
+  if (options.headless) {
+    timeout = std::min(timeout, std::chrono::milliseconds(
+                                    static_cast<long>(std::ceil(options.max_seconds * 1000.0))));
+  }
+  return static_cast<double>(fetcher.measure_round_trip(timeout).count()) / 1e3;
 }
 
 // Over loopback the link is this machine's memory: the probe would find no latency worth a
@@ -76,7 +84,7 @@ void probe_link(const ViewOptions& options, const Scene& scene, net::FetcherOpti
   fetcher_options.on_event = nullptr;
   BrickCache probe_cache(256u << 20);
   net::BrickFetcher probe(options.server, probe_cache, fetcher_options);
-  measured.round_trip_ms = round_trip_ms(probe);
+  measured.round_trip_ms = round_trip_ms(probe, options);
   mark_on(timeline,
           fmt::format("connected: GetServerInfo answered in {:.2f} ms", measured.round_trip_ms));
   capability::measure_link(probe, scene.objects.front().material.texture, measured,
@@ -157,7 +165,7 @@ ViewSetup set_up_view(const ViewOptions& options, const Scene& scene,
     auto fetcher =
         std::make_unique<net::BrickFetcher>(options.server, *setup.cache, fetcher_options);
     if (link_kind != Link::probed) {
-      setup.measured.round_trip_ms = round_trip_ms(*fetcher);
+      setup.measured.round_trip_ms = round_trip_ms(*fetcher, options);
       mark_on(timeline, fmt::format("connected: GetServerInfo answered in {:.2f} ms (no link "
                                     "probe)",
                                     setup.measured.round_trip_ms));

@@ -2,10 +2,15 @@
 #include "soltex/net/brick_fetcher.h"
 
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <utility>
@@ -288,6 +293,51 @@ TEST(BrickFetcher, AServerBackOnItsPortIsReachedBeforeTheBackoffEnds) {
       << "not reconnected: waiting out the 120 s backoff";
   EXPECT_GE(fetcher.stats().reconnects, 1u);
   EXPECT_TRUE(cache.contains({id, 1, {3, 3, 3}}));
+}
+
+// A listening socket that no one accepts from: the kernel completes TCP handshakes into its
+// backlog, so a client connects and then hears nothing, as from a stopped server.
+class SilentListener {
+ public:
+  SilentListener() : fd_(socket(AF_INET, SOCK_STREAM, 0)) {
+    sockaddr_in address{};
+    address.sin_family = AF_INET;
+    address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t size = sizeof address;
+    if (fd_ < 0 || bind(fd_, reinterpret_cast<sockaddr*>(&address), size) != 0 ||
+        listen(fd_, 16) != 0 ||
+        getsockname(fd_, reinterpret_cast<sockaddr*>(&address), &size) != 0) {
+      throw std::runtime_error("cannot listen on loopback");
+    }
+    port_ = ntohs(address.sin_port);
+  }
+  ~SilentListener() { close(fd_); }
+  SilentListener(const SilentListener&) = delete;
+  SilentListener& operator=(const SilentListener&) = delete;
+  int port() const { return port_; }
+
+ private:
+  int fd_;
+  int port_ = 0;
+};
+
+TEST(BrickFetcher, AServerThatNeverAnswersFailsWithinTheTimeoutAndStopsPromptly) {
+  SilentListener silent;
+  BrickCache cache(16 << 20);
+  const auto start = std::chrono::steady_clock::now();
+  {
+    net::BrickFetcher fetcher("127.0.0.1:" + std::to_string(silent.port()), cache, {});
+    try {
+      fetcher.measure_round_trip(std::chrono::milliseconds(300));
+      ADD_FAILURE() << "a silent server answered";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("did not answer within 300 ms"), std::string::npos)
+          << e.what();
+    }
+    // Stopping cancels the stream still waiting for its connection, rather than waiting out
+    // gRPC's 20 s connect timeout.
+  }
+  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(10));
 }
 
 TEST(BrickFetcher, CorruptBricksAreFetchedAgain) {

@@ -72,13 +72,15 @@ BrickFetcher::BrickFetcher(std::string server_address, BrickCache& cache, Fetche
 }
 
 BrickFetcher::~BrickFetcher() {
-  std::shared_ptr<Stream> stream;
+  std::shared_ptr<Stream> stream, opening;
   {
     std::lock_guard lock(mutex_);
     stopping_ = true;
     stream = stream_;
+    opening = opening_;
   }
   if (stream) stream->context.TryCancel();
+  if (opening) opening->context.TryCancel();
   changed_.notify_all();
   writer_.join();
   supervisor_.join();
@@ -128,9 +130,15 @@ void BrickFetcher::supervise() {
     {
       auto stream = std::make_shared<Stream>();
       authorize(options_.security, stream->context);
+      {
+        std::lock_guard lock(mutex_);
+        if (stopping_) return;
+        opening_ = stream;
+      }
       stream->call = channel_->stub->StreamBricks(&stream->context);
       {
         std::lock_guard lock(mutex_);
+        opening_.reset();
         if (stopping_) return;
         stream_ = stream;
         stats_.connected = true;
@@ -456,15 +464,16 @@ SourceStats BrickFetcher::stats() const {
   return s;
 }
 
-std::chrono::microseconds BrickFetcher::measure_round_trip() {
+std::chrono::microseconds BrickFetcher::measure_round_trip(std::chrono::milliseconds timeout) {
   const auto start = std::chrono::steady_clock::now();
   grpc::ClientContext context;
   authorize(options_.security, context);
-  context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
+  context.set_deadline(std::chrono::system_clock::now() + timeout);
   v1::ServerInfo info;
   const grpc::Status status = channel_->stub->GetServerInfo(&context, {}, &info);
   if (!status.ok()) {
-    throw std::runtime_error("server " + address_ + " did not answer: " + status.error_message());
+    throw std::runtime_error("server " + address_ + " did not answer within " +
+                             std::to_string(timeout.count()) + " ms: " + status.error_message());
   }
   return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() -
                                                                start);

@@ -86,8 +86,10 @@ class BrickFetcher final : public BrickSource {
   SourceStats stats() const override;
 
   // Round-trip time of GetServerInfo, and throughput of a short brick burst, for the
-  // capability probe.
-  std::chrono::microseconds measure_round_trip();
+  // capability probe. Throws std::runtime_error when the server does not answer within
+  // `timeout`.
+  std::chrono::microseconds measure_round_trip(
+      std::chrono::milliseconds timeout = std::chrono::seconds(5));
 
  private:
   struct Channel;
@@ -112,7 +114,11 @@ class BrickFetcher final : public BrickSource {
 
   mutable std::mutex mutex_;
   std::condition_variable changed_;
-  std::shared_ptr<Stream> stream_;                           // null while disconnected
+  std::shared_ptr<Stream> stream_;  // null while disconnected
+  // A stream whose call is still starting: gRPC's synchronous start waits for the connection,
+  // which a server that accepts but never answers holds for its whole connect timeout (20 s);
+  // kept here so that stopping can cancel it.
+  std::shared_ptr<Stream> opening_;
   std::unordered_map<uint64_t, std::string> registrations_;  // id -> serialized request
   std::vector<uint64_t> unsent_registrations_;               // registered since the stream opened
   std::vector<BrickWant> waiting_;                           // best first, not yet sent
