@@ -124,6 +124,26 @@ bool CapTracer::trace(int x, int y, const glm::dmat4& texture_from_world, uint32
   return true;
 }
 
+bool CapTracer::trace_through(int x, int y, const glm::dmat4& texture_from_world,
+                              uint32_t plane_mask, CapRayRows& rows, CapSample& sample) const {
+  const Ray& ray = ray_at(x, y, rows);
+  double entry = 0.0;
+  double exit = kInfinity;
+  for (std::size_t j = 0; j < plane_count_; ++j) {
+    if (((plane_mask >> j) & 1u) == 0) continue;
+    const double start = signed_distance(planes_[j], ray.origin);
+    const double along = glm::dot(glm::dvec3(planes_[j]), ray.direction);
+    if (start < 0.0) {
+      if (!(along > 0.0)) return false;
+      entry = std::max(entry, -start / along);
+    } else if (along < 0.0) {
+      exit = std::min(exit, -start / along);
+    }
+  }
+  if (!(entry < exit)) return false;
+  return trace(x, y, texture_from_world, plane_mask, rows, sample);
+}
+
 void CapTracer::trace_run(int x_begin, int x_end, int y, const glm::dmat4& texture_from_world,
                           uint32_t plane_mask, CapRayRows& rows, CapRayLanes& rays,
                           CapPixelLanes& lanes) const {

@@ -66,6 +66,12 @@ class CapTracer {
   bool trace(int x, int y, const glm::dmat4& texture_from_world, uint32_t plane_mask,
              CapRayRows& rows, CapSample& sample) const;
 
+  // trace() for a pixel whose ray met the object only past the kept region: also false when
+  // the ray leaves the region (through a plane whose kept side holds its start) before it
+  // enters it, so that the region is empty along the ray.
+  bool trace_through(int x, int y, const glm::dmat4& texture_from_world, uint32_t plane_mask,
+                     CapRayRows& rows, CapSample& sample) const;
+
   // trace() for the pixels [x_begin, x_end) of row y (at most CapPixelLanes::kCapacity), in
   // vector lanes (cap_kernels.cpp): lane k of `lanes` holds pixel x_begin + k's result, its
   // `hit` what trace() returns, the rest the sample trace() writes. The same bits.

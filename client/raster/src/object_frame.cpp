@@ -1,8 +1,23 @@
 #include "object_frame.h"
 
+#include <cmath>
+#include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
 
 namespace soltex::raster_internal {
+
+uint32_t planes_keeping_the_eye(const RasterView& view) {
+  // The eye projects to clip (0, 0, z, 0): it is where the inverse takes that direction.
+  const glm::dvec4 eye = glm::inverse(glm::dmat4(view.view_projection)) * glm::dvec4(0, 0, 1, 0);
+  if (!(std::abs(eye.w) > 0.0)) return 0;
+  const glm::dvec3 at = glm::dvec3(eye) / eye.w;
+  uint32_t mask = 0;
+  for (std::size_t j = 0; j < view.clip_planes.size(); ++j) {
+    const glm::dvec4& plane = view.clip_planes[j];
+    if (glm::dot(glm::dvec3(plane), at) + plane.w >= 0.0) mask |= 1u << j;
+  }
+  return mask;
+}
 
 ObjectFrame make_object_frame(const RasterObject& object, const RasterView& view,
                               std::size_t first_vertex) {
@@ -22,6 +37,11 @@ ObjectFrame make_object_frame(const RasterObject& object, const RasterView& view
   frame.first_vertex = first_vertex;
   const uint32_t planes_here = (1u << view.clip_planes.size()) - 1u;  // at most kMaxClipPlanes
   frame.cull_back_faces = object.cull_back_faces && (object.clip_plane_mask & planes_here) == 0;
+  const uint32_t cutting = object.clip_plane_mask & planes_here;
+  const uint32_t keeping_eye = cutting & planes_keeping_the_eye(view);
+  if (object.closed && keeping_eye != 0 && keeping_eye != cutting) {
+    frame.beyond_planes = keeping_eye;
+  }
   return frame;
 }
 

@@ -24,7 +24,17 @@ struct ObjectFrame {
   std::size_t first_vertex = 0;  // where its vertices start in TransformedVertices
   // RasterObject::cull_back_faces, unless one of this frame's clip planes cuts the object.
   bool cull_back_faces = false;
+  // The planes cutting the object whose kept side holds the eye, when another plane cutting
+  // it does not: a view ray may then enter the kept region through one plane and leave it
+  // through one of these before meeting the object, and whether it entered inside the solid
+  // is told by the surface beyond (TileRasterizer's "beyond" fragments). Triangles wholly on
+  // the cut side of these planes are drawn for that test alone. 0 for most objects.
+  uint32_t beyond_planes = 0;
 };
+
+// The frame's clip planes whose kept side holds the eye (bit j for plane j); 0 when the view
+// has no eye at a finite point.
+uint32_t planes_keeping_the_eye(const RasterView& view);
 
 ObjectFrame make_object_frame(const RasterObject& object, const RasterView& view,
                               std::size_t first_vertex);

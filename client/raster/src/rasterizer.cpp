@@ -324,6 +324,10 @@ RasterStats Rasterizer::draw(const RasterView& view, std::span<const RasterObjec
   if (plane_count > 0) impl.caps.emplace(view);
   const std::optional<CapTracer>& caps = impl.caps;
   const TileFrame tile_frame{impl.objects, caps ? &*caps : nullptr};
+  uint32_t beyond_planes = 0;
+  for (const raster_internal::ObjectFrame& object : impl.objects) {
+    beyond_planes |= object.beyond_planes;
+  }
   impl.grid = grid;
   impl.chunk_count = chunk_count;
   impl.width = view.width;
@@ -349,7 +353,7 @@ RasterStats Rasterizer::draw(const RasterView& view, std::span<const RasterObjec
     }
     TileRasterizer& tiles = *impl.tiles[static_cast<std::size_t>(worker)];
     RasterStats& stats = impl.worker_stats[static_cast<std::size_t>(worker)];
-    tiles.begin(x0, y0, x1, y1);
+    tiles.begin(x0, y0, x1, y1, beyond_planes);
     for (std::size_t c = 0; c < chunk_count; ++c) {
       const SetupChunk& chunk = impl.chunks[c];
       const uint32_t begin = chunk.bin_start[tile], end = chunk.bin_start[tile + 1];

@@ -18,6 +18,17 @@ constexpr float kFarDepth = 1.0f;
 // loop.
 constexpr int kVectorColumns = 8;
 
+// The planes of `mask` whose clip form is negative at (dx, dy) from the triangle's vertex 0.
+uint32_t failed_planes(uint32_t mask, const AffineForm* forms, float dx, float dy) {
+  uint32_t failed = 0;
+  for (; mask != 0; mask &= mask - 1) {
+    const int j = std::countr_zero(mask);
+    const AffineForm& form = forms[j];
+    if (form.at_vertex0 + form.per_x * dx + form.per_y * dy < 0.0f) failed |= 1u << j;
+  }
+  return failed;
+}
+
 // Pixels [i, i + count) of one row: nothing drawn.
 void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) {
   std::fill_n(target.depth + i, count, std::numeric_limits<float>::infinity());
@@ -152,6 +163,7 @@ struct TileRow {
   std::ptrdiff_t start;  // where pixel (0, y) would be in the target
   const ScreenTriangle* const* winners;
   const float* depth;
+  const ScreenTriangle* const* beyond;  // TileRasterizer::beyond_winner_'s row, or null
 };
 
 // Resolving one tile, row by row: what its rows share (the batches of pixels waiting to be
@@ -178,9 +190,13 @@ class TileResolve {
       const uint64_t later = offset >= 64 ? 0 : starts >> offset << offset;
       const int end = later != 0 ? x0_ + std::countr_zero(later) : x1_;
       if (winner == nullptr) {
-        // A run of empty pixels is written plane by plane (memset-like stores).
-        write_empty(target_, static_cast<std::size_t>(row.start + x),
-                    static_cast<std::size_t>(end - x));
+        if (row.beyond != nullptr) {
+          resolve_unkept_run(row, x, end);
+        } else {
+          // A run of empty pixels is written plane by plane (memset-like stores).
+          write_empty(target_, static_cast<std::size_t>(row.start + x),
+                      static_cast<std::size_t>(end - x));
+        }
         x = end;
         continue;
       }
@@ -189,7 +205,11 @@ class TileResolve {
       const ObjectFrame* object =
           frame_.caps != nullptr ? &frame_.objects[winner->object] : nullptr;
       if (object == nullptr || !winner->back_face || !object->source->closed) {
-        resolve_surface_run(row, winner, x, end);
+        if (row.beyond != nullptr) {
+          resolve_surface_or_beyond_cap(row, winner, x, end);
+        } else {
+          resolve_surface_run(row, winner, x, end);
+        }
         x = end;
       } else {
         x = resolve_cap_run(row, *object, winner, x, end);
@@ -261,6 +281,77 @@ class TileResolve {
     return end;
   }
 
+  // A back face of a closed solid other than the pixel's kept fragment's, whose nearest
+  // fragment along the ray it is among those kept or past the kept region: a cap of that
+  // solid may lie in front of what the pixel keeps. Null when there is none.
+  const ObjectFrame* beyond_solid(const TileRow& row, int x, const ScreenTriangle* kept) const {
+    const ScreenTriangle* beyond = row.beyond[x - x0_];
+    if (beyond == nullptr || !beyond->back_face) return nullptr;
+    if (kept != nullptr && beyond->object == kept->object) return nullptr;
+    const ObjectFrame& object = frame_.objects[beyond->object];
+    return object.source->closed ? &object : nullptr;
+  }
+
+  // Pixels [x, end) of the row, which see `winner`'s surface unless a cap of another solid
+  // lies in front of it (beyond_solid()).
+  void resolve_surface_or_beyond_cap(const TileRow& row, const ScreenTriangle* winner, int x,
+                                     int end) {
+    int first = x;
+    while (first < end && beyond_solid(row, first, winner) == nullptr) ++first;
+    if (first == end) {
+      resolve_surface_run(row, winner, x, end);
+      return;
+    }
+    covered_ += static_cast<uint64_t>(end - x);
+    for (; x < end; ++x) {
+      const ObjectFrame* solid = beyond_solid(row, x, winner);
+      CapSample cap;
+      if (solid != nullptr) {
+        ++cap_rays_;
+        if (frame_.caps->trace_through(x, row.y, solid->texture_from_world,
+                                       solid->source->clip_plane_mask, rays_, cap) &&
+            cap.depth < row.depth[x - x0_]) {
+          ++caps_;
+          write_cap(static_cast<std::size_t>(row.start + x), *solid, cap);
+          continue;
+        }
+      }
+      add_pixel(row, x);
+    }
+  }
+
+  // Pixels [x, end) of the row, where no fragment was kept: each is empty, or sees a cap
+  // where the nearest fragment past the kept region is a back face of a closed solid (the
+  // ray crossed the kept region inside it) and the ray enters and leaves that region.
+  void resolve_unkept_run(const TileRow& row, int x, int end) {
+    for (; x < end; ++x) {
+      const auto at = static_cast<std::size_t>(row.start + x);
+      if (const ObjectFrame* solid = beyond_solid(row, x, nullptr)) {
+        CapSample cap;
+        ++cap_rays_;
+        if (frame_.caps->trace_through(x, row.y, solid->texture_from_world,
+                                       solid->source->clip_plane_mask, rays_, cap)) {
+          ++caps_;
+          ++covered_;
+          write_cap(at, *solid, cap);
+          continue;
+        }
+      }
+      write_empty(target_, at, 1);
+    }
+  }
+
+  void write_cap(std::size_t at, const ObjectFrame& object, const CapSample& cap) {
+    target_.depth[at] = cap.depth;
+    target_.flags[at] = GBuffer::kCovered | GBuffer::kCap;
+    target_.object_id[at] = object.source->object_id;
+    target_.texture_position[at] = cap.texture_position;
+    target_.normal[at] = cap.normal;
+    target_.footprint[at] = cap.footprint;
+    target_.footprint_axis[at] = glm::vec3(0.0f);  // a cap's footprint has no direction
+    target_.footprint_minor[at] = cap.footprint;
+  }
+
   const TileFrame& frame_;
   const GBufferPlanes target_;
   const int x0_, x1_, y0_;
@@ -274,7 +365,12 @@ class TileResolve {
 
 }  // namespace
 
-void TileRasterizer::begin(int x0, int y0, int x1, int y1) {
+void TileRasterizer::begin(int x0, int y0, int x1, int y1, uint32_t beyond_planes) {
+  beyond_planes_ = beyond_planes;
+  if (beyond_planes != 0) {
+    beyond_depth_.fill(std::numeric_limits<float>::infinity());
+    beyond_winner_.fill(nullptr);
+  }
   x0_ = x0;
   y0_ = y0;
   x1_ = x1;
@@ -296,6 +392,8 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   const float x0 = t.x0_pixels();
   const float y0 = t.y0_pixels();
   const AffineForm* forms = t.clip_mask != 0 ? clip_forms.data() + t.first_clip_form : nullptr;
+  // A triangle of an object with beyond planes (all of whose triangles test their fragments).
+  const bool tracked = (t.clip_mask & beyond_planes_) != 0;
   if (forms == nullptr && coverage == nullptr) {
     // A triangle at most 64 pixels across (most of a mesh's) is drawn in 32-bit lanes, a
     // larger one in 64-bit lanes where it spans enough of the tile's columns.
@@ -329,22 +427,22 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
       }
       const float dx = static_cast<float>(x) + 0.5f - x0;
       const float depth = t.depth.at_vertex0 + t.depth.per_x * dx + t.depth.per_y * dy;
-      if (!(depth < depth_row[x - x0_]) || depth > kFarDepth) continue;
+      const bool nearer = depth < depth_row[x - x0_];
+      if (!(nearer || tracked) || !(depth <= kFarDepth)) continue;
       if (forms != nullptr) {
         ++clip_tested;
-        bool kept = true;
-        for (uint32_t mask = t.clip_mask; mask != 0; mask &= mask - 1) {
-          const AffineForm& form = forms[std::countr_zero(mask)];
-          if (form.at_vertex0 + form.per_x * dx + form.per_y * dy < 0.0f) {
-            kept = false;
-            break;
-          }
+        const uint32_t failed = failed_planes(t.clip_mask, forms, dx, dy);
+        // Kept, or cut away past the kept region only: the nearest such fragment tells
+        // whether the ray crossed the region inside the solid.
+        if (tracked && (failed & ~beyond_planes_) == 0) {
+          keep_beyond(static_cast<std::size_t>(row_start + x - x0_), depth, t);
         }
-        if (!kept) {
+        if (failed != 0) {
           ++clip_discarded;
           continue;
         }
       }
+      if (!nearer) continue;
       ++depth_passed;
       depth_row[x - x0_] = depth;
       winner_row[x - x0_] = &t;
@@ -357,6 +455,13 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   stats.fragments_depth_passed += depth_passed;
   stats.fragments_clip_tested += clip_tested;
   stats.fragments_clip_discarded += clip_discarded;
+}
+
+void TileRasterizer::keep_beyond(std::size_t pixel, float depth, const ScreenTriangle& t) {
+  if (depth < beyond_depth_[pixel]) {
+    beyond_depth_[pixel] = depth;
+    beyond_winner_[pixel] = &t;
+  }
 }
 
 void TileRasterizer::draw_bin(const ScreenTriangle* triangles, std::span<const uint32_t> items,
@@ -397,7 +502,8 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
     const auto from = static_cast<std::ptrdiff_t>((y - y0_) * kTileSize);  // pixel (x0_, y)
     // Where pixel (0, y) would be in the target: x is added to it (x >= origin_x).
     const std::ptrdiff_t start = static_cast<std::ptrdiff_t>(y - origin_y) * width - origin_x;
-    tile.resolve_row(TileRow{y, start, winner_.data() + from, depth_.data() + from});
+    tile.resolve_row(TileRow{y, start, winner_.data() + from, depth_.data() + from,
+                             beyond_planes_ != 0 ? beyond_winner_.data() + from : nullptr});
   }
   tile.finish(stats);
 }

@@ -32,7 +32,9 @@ struct TileFrame {
 class TileRasterizer {
  public:
   // Starts the tile of pixels [x0, x1) x [y0, y1), at most kTileSize on a side.
-  void begin(int x0, int y0, int x1, int y1);
+  // `beyond_planes`: the frame's objects' ObjectFrame::beyond_planes together; where it is not
+  // 0, the tile also keeps each pixel's nearest fragment cut away by those planes alone.
+  void begin(int x0, int y0, int x1, int y1, uint32_t beyond_planes = 0);
 
   // Draws the triangle's pixels in this tile. `clip_forms`: the frame's clip-form array of the
   // triangle's chunk (used when triangle.clip_mask != 0). `coverage`: the G-buffer's coverage
@@ -57,9 +59,19 @@ class TileRasterizer {
   bool began_at(int x0, int y0) const { return x0_ == x0 && y0_ == y0; }
 
  private:
+  // Keeps the fragment at tile pixel `pixel` as its nearest one past the kept region, if it is.
+  void keep_beyond(std::size_t pixel, float depth, const ScreenTriangle& t);
+
   int x0_ = 0, y0_ = 0, x1_ = 0, y1_ = 0;
   std::array<float, kTileSize * kTileSize + kPlanePadding> depth_{};
   std::array<const ScreenTriangle*, kTileSize * kTileSize + kPlanePadding> winner_{};
+  // Where beyond_planes_ is not 0: per pixel, the nearest fragment past the kept region (cut
+  // away by planes keeping the eye, and by no other). Read only where no fragment was kept: a
+  // back face there means the ray crossed the kept region inside the solid, which then shows
+  // a cap where the ray entered it.
+  uint32_t beyond_planes_ = 0;
+  std::array<float, kTileSize * kTileSize> beyond_depth_{};
+  std::array<const ScreenTriangle*, kTileSize * kTileSize> beyond_winner_{};
 };
 
 }  // namespace soltex::raster_internal

@@ -284,12 +284,15 @@ bool TriangleSetup::classify(const ObjectFrame& object, uint32_t object_index,
         c.source.plane_distance[k][j] = distance;
         removed += distance < 0.0f ? 1 : 0;
       }
-      if (removed == 3) {
+      if (removed == 3 && ((object.beyond_planes >> j) & 1u) == 0) {
         ++stats.triangles_clip_rejected;
         return false;
       }
       if (removed > 0) c.source.straddling_planes |= 1u << j;
     }
+    // Each fragment of such an object is tested, so that the tile knows the nearest one along
+    // each ray, kept or past the kept region (ObjectFrame::beyond_planes).
+    c.source.straddling_planes |= object.beyond_planes;
     if (c.source.straddling_planes != 0) ++stats.triangles_clip_straddling;
   }
   return true;

@@ -6,6 +6,8 @@
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
+#include <limits>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -394,6 +396,101 @@ TEST(ClipPlanes, TwoPlanesCutAWedgeWithTwoCapFaces) {
   EXPECT_GT(on_z, 300);
   EXPECT_GT(on_x, 300);
   EXPECT_EQ(stats.back_face_pixels, 0u);
+}
+
+// Where a pixel's ray first enters the kept region of `planes` (each a, b, c, d keeping
+// a x + b y + c z + d >= 0), if it enters and leaves it again later; the ray starts outside.
+std::optional<glm::dvec3> entry_into(const raster_test::Ray& ray,
+                                     const std::vector<glm::dvec4>& planes) {
+  double entry = -std::numeric_limits<double>::infinity();
+  double exit = std::numeric_limits<double>::infinity();
+  for (const glm::dvec4& plane : planes) {
+    const double start = glm::dot(glm::dvec3(plane), ray.origin) + plane.w;
+    const double along = glm::dot(glm::dvec3(plane), ray.direction);
+    if (along > 0.0) {
+      entry = std::max(entry, -start / along);
+    } else if (along < 0.0) {
+      exit = std::min(exit, -start / along);
+    } else if (start < 0.0) {
+      return std::nullopt;
+    }
+  }
+  if (!(entry < exit) || !(entry > 0.0)) return std::nullopt;
+  return ray.origin + entry * ray.direction;
+}
+
+// Pixels whose ray enters the kept region at a point well inside the unit sphere see a cap
+// there; pixels whose entry point lies well outside it, or whose ray misses the region, see
+// nothing of the object. `planes` keep a region whose far side is cut away too, so the
+// sphere's back faces behind the region are gone and tell the inside by being beyond it.
+// `backdrop`: a second object, uncut, drawn too (behind the sphere); nullptr for none.
+int expect_caps_where_rays_enter_inside(const std::vector<glm::dvec4>& planes, const glm::vec3& eye,
+                                        const RasterObject* backdrop = nullptr) {
+  std::vector<RasterObject> objects = {RasterObject{unit_sphere().view()}};
+  if (backdrop != nullptr) objects.push_back(*backdrop);
+  const glm::mat4 view_projection =
+      raster_test::perspective_look_at(eye, {0, 0, 0}, kWidth, kHeight);
+  Rasterizer rasterizer({.threads = 2});
+  GBuffer g;
+  const RasterStats stats =
+      rasterizer.render({kWidth, kHeight, view_projection, planes}, objects, g);
+  int caps = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const std::size_t i = g.index(x, y);
+      const auto entry =
+          entry_into(raster_test::pixel_ray(view_projection, kWidth, kHeight, x, y), planes);
+      // The mesh is a polygon inscribed in the sphere: 0.98 keeps clear of its facets.
+      if (entry && glm::length(*entry) < 0.98) {
+        EXPECT_TRUE(g.is_cap(i)) << "pixel " << x << "," << y;
+        EXPECT_LE(glm::length(g.texture_position[i] - *entry), 1e-9) << x << "," << y;
+      }
+      if (!entry || glm::length(*entry) > 1.01) {
+        EXPECT_FALSE(g.is_cap(i)) << "pixel " << x << "," << y;
+      }
+      caps += g.is_cap(i) ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(stats.cap_pixels, static_cast<uint64_t>(caps));
+  EXPECT_TRUE(raster_test::all_values_sane(g));
+  return caps;
+}
+
+// The slab |z| <= 0.5 seen head-on: its near face is a disc of cap; no back face of the
+// sphere is left behind the slab to say the slab's inside is the sphere's.
+TEST(ClipPlanes, ASlabSeenHeadOnShowsItsNearFaceAsACap) {
+  const int caps = expect_caps_where_rays_enter_inside(
+      {{0.0, 0.0, -1.0, 0.5}, {0.0, 0.0, 1.0, 0.5}}, {0.0f, 0.0f, 3.0f});
+  EXPECT_GT(caps, 1000);
+}
+
+// The same slab in front of a wall: where the slab's face is, the cap hides the wall.
+TEST(ClipPlanes, ASlabsCapHidesAnUncutObjectBehindIt) {
+  Mesh wall;
+  wall.positions = {{-4, -4, -2}, {4, -4, -2}, {4, 4, -2}, {-4, 4, -2}};
+  wall.add_triangle(0, 1, 2);
+  wall.add_triangle(0, 2, 3);
+  RasterObject backdrop{wall.view()};
+  backdrop.closed = false;
+  backdrop.clip_plane_mask = 0;
+  const int caps = expect_caps_where_rays_enter_inside(
+      {{0.0, 0.0, -1.0, 0.5}, {0.0, 0.0, 1.0, 0.5}}, {0.3f, 0.2f, 3.0f}, &backdrop);
+  EXPECT_GT(caps, 1000);
+}
+
+// Six planes keep the cube |x|, |y|, |z| <= 0.5, wholly inside the sphere: seen from a
+// corner, three of its faces are caps, and nothing else is drawn.
+TEST(ClipPlanes, SixPlanesCutACubeOutOfTheSolid) {
+  std::vector<glm::dvec4> planes;
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const double side : {-1.0, 1.0}) {
+      glm::dvec4 plane(0.0, 0.0, 0.0, 0.5);
+      plane[axis] = side;
+      planes.push_back(plane);
+    }
+  }
+  const int caps = expect_caps_where_rays_enter_inside(planes, {2.0f, 1.6f, 2.4f});
+  EXPECT_GT(caps, 1000);
 }
 
 TEST(ClipPlanes, OpenMeshesAndCamerasOnTheKeptSideGetNoCaps) {

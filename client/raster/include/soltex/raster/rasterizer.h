@@ -26,7 +26,11 @@
 // Both faces are drawn; GBuffer::kBackFace records which won. With user clip planes, a
 // fragment on the removed side is discarded, and a pixel whose nearest remaining fragment is
 // a back face of a closed object looks into the cut solid: it becomes a cap, at the point
-// where its view ray enters the kept region (computed in double).
+// where its view ray enters the kept region (computed in double). Where several planes cut an
+// object and the eye is on the kept side of some, a ray may cross the whole kept region inside
+// the solid, its back faces all cut away behind the region (a slab, a box of planes): the
+// nearest fragment past the region then tells, and the cap is drawn in front of whatever the
+// pixel keeps behind it.
 namespace soltex {
 
 struct RasterOptions {
