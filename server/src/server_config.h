@@ -22,7 +22,7 @@ struct ServerConfig {
   // The texture registry: least recently used textures no stream uses are evicted beyond these.
   uint32_t max_textures = 16384;
   uint32_t registry_mb = 8;
-  uint32_t max_textures_per_client = 256;
+  uint32_t max_textures_per_client = 1024;
   uint32_t max_keys_per_request = 1024;
   uint32_t max_queued_per_stream = 4096;
   uint32_t max_message_bytes = 4u << 20;

@@ -44,7 +44,7 @@ class RegistryFull : public std::runtime_error {
 struct RegistryLimits {
   std::size_t max_bytes = 8u << 20;
   std::size_t max_textures = 16384;
-  std::size_t max_textures_per_client = 256;
+  std::size_t max_textures_per_client = 1024;
 };
 
 struct RegistryStats {

@@ -63,7 +63,7 @@ std::string tokens_file(const std::string& text) {
 
 TEST(Registry, OneClientFillingItCannotRefuseAnothersTexture) {
   const std::string tokens = tokens_file("filler AAAA\nviewer BBBB\n");
-  SoltexdProcess server({"--token-file", tokens});
+  SoltexdProcess server({"--token-file", tokens, "--max-textures-per-client", "256"});
   auto stub = connect(server);
   // The registration that once locked everyone out until a restart: 992 distinct textures.
   for (int i = 0; i < 992; ++i) {
@@ -77,7 +77,7 @@ TEST(Registry, OneClientFillingItCannotRefuseAnothersTexture) {
   EXPECT_EQ(served.bricks.size(), 1u);
   EXPECT_TRUE(served.request_errors.empty());
 
-  // The filler churned its own share (--max-textures-per-client, 256 by default).
+  // The filler churned its own share (--max-textures-per-client).
   const std::string m = metrics(server);
   EXPECT_EQ(metric_value(m, "soltex_textures_registered"), 257.0);
   EXPECT_EQ(metric_value(m, "soltex_textures_evicted_total"), 992.0 - 256.0);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <string>
 
 #include "headless_session.h"
 #include "soltex/capability/capability.h"
@@ -10,6 +11,7 @@
 #include "soltex/net/local_brick_source.h"
 #include "soltex/render/frame_renderer.h"
 #include "soltex/scene/default_scene.h"
+#include "soltex/scene/scene_loader.h"
 #include "soltexd_process.h"
 
 namespace soltex {
@@ -54,6 +56,32 @@ TEST(ViewRender, ConvergedImageEqualsTheInProcessSourceBitForBit) {
   EXPECT_GT(remote.stats.received, 0u);
   EXPECT_GT(remote.stats.bytes, 0u);
   EXPECT_TRUE(remote.image == in_process.image);
+}
+
+// As many objects as a scene may hold, each with a texture of its own (marble, which the
+// client draws from bricks): a soltexd with its default limits serves them all to one client.
+TEST(ViewRender, ASceneOfTheMostObjectsConvergesAgainstADefaultServer) {
+  std::string objects;
+  constexpr int kSide = 32;
+  static_assert(kSide * kSide == SceneLimits::kMaxObjects);
+  for (int i = 0; i < SceneLimits::kMaxObjects; ++i) {
+    if (i > 0) objects += ",";
+    objects += R"({"mesh": {"box": {"size": 0.2}}, "transform": {"translate": [)" +
+               std::to_string((i % kSide - kSide / 2) * 0.3) + ", 0, " +
+               std::to_string(-(i / kSide) * 0.3) + R"(]}, "material": {"texture": {"marble": )" +
+               R"({"frequency": )" + std::to_string(1.0 + i * 0.001) + "}}}}";
+  }
+  const Scene scene = parse_scene(
+      R"({"camera": {"position": [0, 6, 4], "target": [0, 0, -4], "far": 100}, "objects": [)" +
+          objects + "]}",
+      "<most objects>");
+  SoltexdProcess server;
+  BrickCache cache(256u << 20);
+  net::BrickFetcher fetcher(server.grpc_address(), cache);
+  const Rendered rendered = render_with(fetcher, cache, scene, 5);
+  EXPECT_TRUE(rendered.converged);
+  EXPECT_EQ(rendered.stats.errors, 0u);
+  EXPECT_GE(rendered.stats.received, static_cast<uint64_t>(SceneLimits::kMaxObjects));
 }
 
 // Smooth textures (marble, turbulence): their cached, trilinearly filtered image approaches
