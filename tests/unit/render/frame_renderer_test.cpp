@@ -115,6 +115,27 @@ SphereFrame draw_fine_sphere(bool levels) {
 
 // A cold frame hands each tile's new misses out while it is drawn (from the render threads),
 // and its misses at the end are the same, key for key and pixel for pixel, as without.
+// Depth is float: a near plane of 1e-6 (which the scene format allows) would leave surfaces
+// a few units away too close in depth to draw in order. Where no object comes nearer, the
+// frame moves its near plane out; the picture is the one a near plane of 0.1 gives.
+TEST(FrameRenderer, ATinyNearPlaneDrawsWhatAnOrdinaryOneDraws) {
+  Scene scene = default_scene();
+  BrickCache cache(256u << 20);
+  net::LocalBrickSource source(cache);
+  const PreparedScene prepared = prepare_scene(scene, TextureResolution{6, 16, {}}, source);
+  FrameRenderer renderer(cache, RenderOptions{.threads = 2, .keep_gbuffer = true});
+  const auto draw = [&](double near, double far) {
+    scene.camera.near = near;
+    scene.camera.far = far;
+    return renderer.render(prepared, scene.camera, 320, 180);
+  };
+  const Frame ordinary = draw(0.1, 100.0);
+  const GBufferPlane<uint32_t> ordinary_ids = renderer.last_gbuffer().object_id;
+  const Frame tiny = draw(1e-6, 1e7);
+  EXPECT_TRUE(tiny.image == ordinary.image);
+  EXPECT_TRUE(renderer.last_gbuffer().object_id == ordinary_ids);
+}
+
 TEST(FrameRenderer, TileMissesAddUpToTheFramesMisses) {
   const Scene scene = default_scene();
   BrickCache cache(256u << 20);
