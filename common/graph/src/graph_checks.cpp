@@ -196,13 +196,7 @@ class TypeInference {
     } else if (!node.type.empty()) {
       type = declared_or(node, def, def.fallback_type);
     } else {
-      for (const auto& [d, t] : got) {
-        if ((d->slot == Slot::working || d->slot == Slot::working_or_float) &&
-            t != ValueType::float_) {
-          type = t;
-          break;
-        }
-      }
+      type = inferred_working_type(node, got, type);
     }
     for (const NodeInput& input : node.inputs) {
       for (const auto& [d, t] : got) {
@@ -212,6 +206,25 @@ class TypeInference {
     state_[i] = 2;
     types_[i] = type;
     return type;
+  }
+
+  // The first non-float type a working input brings, a node's output before a constant's
+  // shape: [x, y, z] is vector3 or color3 alike, so it decides only where no node does,
+  // whatever the order of the inputs.
+  static ValueType inferred_working_type(
+      const Node& node, const std::vector<std::pair<const InputDef*, ValueType>>& got,
+      ValueType fallback) {
+    std::optional<ValueType> from_constant;
+    for (const auto& [d, t] : got) {
+      if ((d->slot != Slot::working && d->slot != Slot::working_or_float) ||
+          t == ValueType::float_) {
+        continue;
+      }
+      const InputValue* value = find_input(node, d->name);
+      if (value != nullptr && std::holds_alternative<NodeRef>(*value)) return t;
+      if (!from_constant) from_constant = t;
+    }
+    return from_constant.value_or(fallback);
   }
 
   void check_input_type(const Node& node, const NodeDef& def, const InputDef& d,

@@ -69,6 +69,23 @@ TEST(GraphValidation, VectorAndColourDoNotMix) {
   EXPECT_EQ(e.field(), "graph.nodes[s].in2");
 }
 
+// A constant [x, y, z] is vector3 or color3 alike: the node's type comes from the node it is
+// combined with, whichever input comes first.
+TEST(GraphValidation, AConstantVectorTakesTheTypeOfTheNodeBesideIt) {
+  const auto colour_with = [](std::vector<NodeInput> inputs, const std::string& category) {
+    return grey({node("cc", "colour_cube"), node("c", category, std::move(inputs))}, "c");
+  };
+  const glm::dvec3 blue(0, 0, 1);
+  EXPECT_NO_THROW(compile(colour_with({{"in1", blue}, {"in2", ref("cc")}}, "add")));
+  EXPECT_NO_THROW(compile(colour_with({{"in1", ref("cc")}, {"in2", blue}}, "add")));
+  EXPECT_NO_THROW(compile(colour_with({{"fg", ref("cc")}, {"bg", blue}, {"mix", 0.5}}, "mix")));
+  EXPECT_NO_THROW(compile(colour_with({{"bg", blue}, {"fg", ref("cc")}, {"mix", 0.5}}, "mix")));
+  // Without a node beside it, a constant vector keeps its shape's type: vector3, no colour.
+  const SpecError e = error_of(grey({node("c", "add", {{"in1", blue}, {"in2", blue}})}, "c"));
+  EXPECT_EQ(e.field(), "graph.outputs.colour");
+  EXPECT_EQ(e.bound(), "must be color3");
+}
+
 TEST(GraphValidation, MissingRequiredInput) {
   const SpecError e = error_of(grey({node("c", "ramp", {{"in", 0.5}})}, "c"));
   EXPECT_EQ(e.field(), "graph.nodes[c].keys");
