@@ -1,9 +1,31 @@
 #include "view_options.h"
 
+#include <cctype>
+#include <filesystem>
+#include <string>
+
 #include "soltex/cli/tool_cli.h"
+#include "soltex/scene/scene_loader.h"
 
 namespace soltex::view {
 namespace {
+
+// A frame side: 0 for the scene's, else within the bounds a scene's image size has.
+CLI::Validator FrameSide() {
+  const std::string range = "[" + std::to_string(SceneLimits::kMinImageSide) + ", " +
+                            std::to_string(SceneLimits::kMaxImageSide) + "]";
+  return CLI::Validator(
+      [range](std::string& text) -> std::string {
+        if (text == "0") return {};
+        if (const std::string problem =
+                cli::IntegerIn(SceneLimits::kMinImageSide, SceneLimits::kMaxImageSide)(text);
+            !problem.empty()) {
+          return problem + " (or 0: the scene's)";
+        }
+        return {};
+      },
+      "0 or INTEGER in " + range);
+}
 
 // Where bricks and the scene come from.
 void add_source_options(CLI::App& app, ViewOptions& o) {
@@ -27,7 +49,17 @@ void add_source_options(CLI::App& app, ViewOptions& o) {
 // How the run ends and what it writes: headless until converged, or a window.
 void add_run_options(CLI::App& app, ViewOptions& o) {
   app.add_flag("--headless", o.headless, "render until converged, write --out, print statistics");
-  app.add_option("--out", o.out, "PNG to write (headless)")->capture_default_str();
+  app.add_option("--out", o.out, "PNG to write (headless)")
+      ->check(CLI::Validator(
+          [](std::string& path) -> std::string {
+            std::string extension = std::filesystem::path(path).extension().string();
+            for (char& c : extension)
+              c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+            if (extension == ".png") return {};
+            return "soltex-view writes PNG images: name the file NAME.png (" + path + ")";
+          },
+          "NAME.png"))
+      ->capture_default_str();
   app.add_flag("--exact", o.exact,
                "wait for every brick, so the image depends on the settings alone (every "
                "headless run now does: one that does not converge exits 3)");
@@ -97,10 +129,10 @@ void add_picture_options(CLI::App& app, ViewOptions& o) {
       ->capture_default_str();
   app.add_option("--width", o.width,
                  "frame width (0: the scene's; a window scales the scene's to this machine)")
-      ->check(cli::IntegerIn(0, 16384));
+      ->check(FrameSide());
   app.add_option("--height", o.height,
                  "frame height (0: the scene's; a window scales the scene's to this machine)")
-      ->check(cli::IntegerIn(0, 16384));
+      ->check(FrameSide());
 }
 
 MipMode mip_mode(const std::string& mip_name) {

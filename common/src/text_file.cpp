@@ -2,6 +2,8 @@
 
 #include <array>
 #include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <fstream>
 #include <stdexcept>
 
@@ -19,15 +21,27 @@ std::optional<std::string> read_at_most(std::istream& in, std::size_t max_bytes)
   return text;
 }
 
+namespace {
+
+// Why the last open or read failed, as the C library says it (iostreams keep errno).
+std::string cannot_read(const std::string& what, const std::string& path) {
+  const int error = errno;
+  return "cannot read the " + what + " file '" + path + "'" +
+         (error != 0 ? std::string(": ") + std::strerror(error) : std::string());
+}
+
+}  // namespace
+
 std::string read_text_file(const std::string& path, const std::string& what) {
+  errno = 0;
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read the " + what + " file '" + path + "'");
+  if (!in) throw std::runtime_error(cannot_read(what, path));
   std::optional<std::string> text = read_at_most(in, kMaxTextFileBytes);
   if (!text) {
     throw std::runtime_error("the " + what + " file '" + path + "' holds more than " +
                              std::to_string(kMaxTextFileBytes) + " bytes, the most it may");
   }
-  if (in.bad()) throw std::runtime_error("cannot read the " + what + " file '" + path + "'");
+  if (in.bad()) throw std::runtime_error(cannot_read(what, path));
   return std::move(*text);
 }
 

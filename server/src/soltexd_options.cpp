@@ -1,6 +1,7 @@
 #include "soltexd_options.h"
 
 #include <fstream>
+#include <sstream>
 
 #include "access_tokens.h"
 #include "address_range.h"
@@ -226,6 +227,11 @@ std::string usage_problem(const ServerConfig& config) {
     return "--max-keys-per-request (" + std::to_string(config.max_keys_per_request) +
            ") must not exceed --max-queued-per-stream (" +
            std::to_string(config.max_queued_per_stream) + ")";
+  }
+  if (config.listen_watchdog_seconds > 0.0 && config.listen_watchdog_seconds < 0.1) {
+    std::ostringstream given;
+    given << config.listen_watchdog_seconds;
+    return "--listen-watchdog-s " + given.str() + ": must be 0 (off) or at least 0.1";
   }
   if (config.tls_cert_file.empty() != config.tls_key_file.empty()) {
     return "TLS needs both --tls-cert and --tls-key";

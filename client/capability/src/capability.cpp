@@ -1,6 +1,8 @@
 #include "soltex/capability/capability.h"
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -12,6 +14,8 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <system_error>
 #include <vector>
 
 #include "soltex/common/brick_cache.h"
@@ -34,6 +38,13 @@ std::size_t available_memory_mb() {
   return 1024;  // unknown: assume a modest machine
 }
 
+// The shortest text that reads back as `v` (16777216, not 1.67772e+07).
+std::string shortest(double v) {
+  std::array<char, 32> text{};
+  const auto [end, error] = std::to_chars(text.data(), text.data() + text.size(), v);
+  return error == std::errc() ? std::string(text.data(), end) : std::to_string(v);
+}
+
 double parse_number(const std::string& item, const std::string& value, double lo, double hi) {
   std::size_t used = 0;
   double v = 0.0;
@@ -44,8 +55,8 @@ double parse_number(const std::string& item, const std::string& value, double lo
   }
   if (used != value.size() || !std::isfinite(v) || v < lo || v > hi) {
     std::ostringstream message;
-    message << "--capability " << item << "=" << value << ": must be a number in [" << lo << ", "
-            << hi << "]";
+    message << "--capability " << item << "=" << value << ": must be a number in [" << shortest(lo)
+            << ", " << shortest(hi) << "]";
     throw std::invalid_argument(message.str());
   }
   return v;
@@ -378,11 +389,15 @@ Choice choose(const Capability& capability, const Scene& scene, int width, int h
   choose_frame(capability, width, height, limits, choice, why);
 
   // Cache: an eighth of the available memory, within [32 MiB, 1 GiB].
-  const std::size_t budget_mb =
-      std::clamp<std::size_t>(capability.available_memory_mb / 8, 32, 1024);
+  const std::size_t eighth_mb = capability.available_memory_mb / 8;
+  const std::size_t budget_mb = std::clamp<std::size_t>(eighth_mb, 32, 1024);
   choice.cache_budget_bytes = budget_mb << 20;
   why << "cache " << budget_mb << " MiB: 1/8 of " << capability.available_memory_mb
-      << " MiB available\n";
+      << " MiB available";
+  if (budget_mb != eighth_mb) {
+    why << (budget_mb > eighth_mb ? ", raised to 32 MiB" : ", at most 1 GiB");
+  }
+  why << "\n";
 
   const FrameBricks frame_bricks{
       static_cast<double>(std::max<std::size_t>(scene.objects.size(), 1)),

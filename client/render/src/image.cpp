@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -13,9 +15,13 @@
 namespace soltex {
 
 void write_png(const std::filesystem::path& path, const Image& image) {
+  errno = 0;
   if (!stbi_write_png(path.c_str(), image.width, image.height, 3, image.rgb.data(),
                       image.width * 3)) {
-    throw std::runtime_error("cannot write PNG " + path.string());
+    // stb opens the file with fopen, which says why it could not.
+    const int error = errno;
+    throw std::runtime_error("cannot write PNG " + path.string() +
+                             (error != 0 ? std::string(": ") + std::strerror(error) : ""));
   }
 }
 

@@ -85,6 +85,10 @@ void read_face(std::string_view rest, std::size_t line_number, const std::string
     int64_t index = 0;
     const auto [end, error] =
         std::from_chars(index_text.data(), index_text.data() + index_text.size(), index);
+    if (error == std::errc::result_out_of_range) {
+      throw ObjError(name, where() + ": vertex index " + shortened(token) +
+                               " is past 2^32, the most a mesh can index");
+    }
     if (error != std::errc() || end != index_text.data() + index_text.size()) {
       throw ObjError(name, where() + ": \"" + shortened(token) + "\" is not a vertex index");
     }

@@ -80,7 +80,10 @@ void read_camera(const JsonValue& value, Scene& scene) {
   const glm::dvec3 view = camera.target - camera.position;
   if (!(glm::length(view) > 1e-9)) value.fail("position and target must differ");
   if (!(glm::length(glm::cross(glm::normalize(view), camera.up)) > 1e-6)) {
-    (up ? *up : value).fail("must not be parallel to the view direction (target - position)");
+    if (up) up->fail("must not be parallel to the view direction (target - position)");
+    value.fail(
+        "up, absent, is [0, 1, 0], parallel to the view direction (target - position): give "
+        "an up not parallel to it");
   }
 }
 
