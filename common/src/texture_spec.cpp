@@ -71,6 +71,12 @@ void check_fractal(const FieldChecker& check, const FractalParams& f) {
   // The largest frequency must stay where the lattice split is meaningful.
   check.in_range("scale * 2^octave_max", std::ldexp(f.scale, f.octave_max), 0.0,
                  SpecLimits::kMaxFrequency * 1024.0);
+  // A field that would change nothing is refused rather than ignored: the texture's id, and
+  // so its bricks, would differ from the same texture's without it.
+  if (f.signed_octaves && f.basis != NoiseBasis::gradient) {
+    throw SpecError(check.path("signed_octaves"), "true",
+                    "applies to the gradient basis only: value noise octaves are never folded");
+  }
 }
 
 void check_pattern(const Pattern& pattern) {

@@ -98,13 +98,25 @@ std::string fractal_rows() {
          !accepted(marble(defaults.scale, std::max(0, highest - count + 1), highest))) {
     --highest;
   }
+  // Which bases take signed octaves, asked of validated().
+  std::string signed_bases;
+  for (const auto& [basis, name] : {std::pair{soltex::NoiseBasis::value, "value"},
+                                    std::pair{soltex::NoiseBasis::gradient, "gradient"}}) {
+    soltex::TurbulenceParams turbulence;
+    turbulence.fractal.basis = basis;
+    turbulence.fractal.signed_octaves = true;
+    soltex::TextureSpec spec;
+    spec.pattern = turbulence;
+    if (accepted(spec)) signed_bases += std::string(signed_bases.empty() ? "" : ", ") + name;
+  }
   std::ostringstream out;
   out << "| octave_min, octave_max | octave_max in [0, " << SpecLimits::kMaxOctave
       << "]; octave_min in [0, octave_max]; at most " << count
       << " octaves (octave_max − octave_min + 1) |\n"
       << "| highest frequency | scale · 2^octave_max ≤ " << with_thousands(top)
       << ": with the default scale " << number(defaults.scale) << ", octave_max ≤ " << highest
-      << " |\n";
+      << " |\n"
+      << "| signed_octaves | true only with the " << signed_bases << " basis |\n";
   return out.str();
 }
 

@@ -91,6 +91,19 @@ TEST(Validated, OctaveBounds) {
   EXPECT_EQ(error_of(spec_of(t)).field(), "turbulence.fractal.octave_min");
 }
 
+// signed_octaves changes gradient octaves only; asked of value noise it is refused, not
+// ignored.
+TEST(Validated, SignedOctavesNeedTheGradientBasis) {
+  TurbulenceParams t;
+  t.fractal.signed_octaves = true;
+  t.fractal.basis = NoiseBasis::value;
+  const SpecError e = error_of(spec_of(t));
+  EXPECT_EQ(e.field(), "turbulence.fractal.signed_octaves");
+  EXPECT_THAT(e.what(), HasSubstr("gradient basis only"));
+  t.fractal.basis = NoiseBasis::gradient;
+  EXPECT_NO_THROW(validated(spec_of(t)));
+}
+
 TEST(Validated, RampKeys) {
   TextureSpec spec = spec_of(NoiseParams{});
   spec.ramp.keys = {{0.6f, glm::vec3(0.0f)}, {0.2f, glm::vec3(1.0f)}};

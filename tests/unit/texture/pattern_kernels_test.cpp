@@ -245,7 +245,7 @@ TEST(PatternKernels, EveryTargetMapsGridsThroughAnyRampAsTheScalarDefinition) {
     product.turbulence = {0.5, 0, 1, NoiseBasis::value, false};
     for (const Pattern& pattern :
          {Pattern{MarbleParams{}}, Pattern{WoodParams{}}, Pattern{product},
-          Pattern{TurbulenceParams{{3.0, 0, 7, NoiseBasis::value, true}}}}) {
+          Pattern{TurbulenceParams{{3.0, 0, 7, NoiseBasis::gradient, true}}}}) {
       for (const ColourRamp& ramp : ramps_to_check()) {
         TextureSpec spec;
         spec.pattern = pattern;
