@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -113,6 +114,23 @@ std::vector<RecordedRequest> read_replay(const LoadOptions& options) {
     throw LoadSetupError(e.what());
   }
   if (replay.empty()) throw LoadSetupError(options.replay_file + ": no requests to replay");
+  // The log keeps keys, not the volume they were cut from: say which finest level the keys
+  // need rather than let nearly every one be refused as out of range.
+  int needed = 0;
+  for (const RecordedRequest& r : replay) {
+    const int64_t widest = std::max({r.x, r.y, r.z, 0});
+    int log2_bricks = 0;
+    while ((int64_t{1} << log2_bricks) <= widest && log2_bricks < 40) ++log2_bricks;
+    needed = std::max(needed, r.level + log2_bricks +
+                                  std::countr_zero(static_cast<unsigned>(options.brick_size)));
+  }
+  if (needed > options.finest_level) {
+    throw LoadSetupError(options.replay_file + ": its keys need --finest-level " +
+                         std::to_string(needed) + " or more (with --brick-size " +
+                         std::to_string(options.brick_size) + "); the volume has 2^" +
+                         std::to_string(options.finest_level) +
+                         " cells, so they would be refused as out of range");
+  }
   return replay;
 }
 
