@@ -1,8 +1,12 @@
 #include "load_options.h"
 
 #include <CLI/CLI.hpp>
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <map>
+#include <string>
+#include <system_error>
 #include <vector>
 
 #include "soltex/cli/tool_cli.h"
@@ -62,11 +66,11 @@ void require(bool condition, const std::string& message) {
   if (!condition) throw LoadOptionsError(message);
 }
 
+// The shortest text that reads back as `value`: 0.5, 1e+300 (not 300 digits), nan.
 std::string text(double value) {
-  std::string s = std::to_string(value);
-  s.erase(s.find_last_not_of('0') + 1);
-  if (!s.empty() && s.back() == '.') s.pop_back();
-  return s;
+  std::array<char, 32> buffer{};
+  const auto [end, error] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  return error == std::errc() ? std::string(buffer.data(), end) : std::to_string(value);
 }
 
 // An enum option spelled by name: help shows "hot|uniform|replay" and the default's name.
