@@ -9,6 +9,7 @@
 #include <span>
 
 #include "cap_kernels.h"
+#include "soltex/raster/gbuffer.h"
 #include "soltex/raster/raster_view.h"
 
 // Caps of clipped solids, traced per pixel in double.
@@ -27,6 +28,20 @@ struct CapSample {
   float depth = 0.0f;      // window depth of the cap point
   float footprint = 0.0f;  // texture-space distance to the neighbouring pixels' cap points
 };
+
+// Writes `cap` as pixel `at` of a G-buffer's planes (a GBuffer, or GBufferPlanes' pointers),
+// a cap of the object `object_id`.
+template <typename Planes>
+void write_cap_pixel(Planes& target, std::size_t at, uint32_t object_id, const CapSample& cap) {
+  target.depth[at] = cap.depth;
+  target.flags[at] = GBuffer::kCovered | GBuffer::kCap;
+  target.object_id[at] = object_id;
+  target.texture_position[at] = cap.texture_position;
+  target.normal[at] = cap.normal;
+  target.footprint[at] = cap.footprint;
+  target.footprint_axis[at] = glm::vec3(0.0f);  // a cap's footprint has no direction
+  target.footprint_minor[at] = cap.footprint;
+}
 
 struct CapRay {
   glm::dvec3 origin;     // on the near plane

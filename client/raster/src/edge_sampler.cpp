@@ -336,14 +336,7 @@ void EdgeSampler::resolve(const TileFrame& frame, EdgeSurfaces& out) const {
         CapSample cap;
         if (frame.caps->trace(pixel.x, pixel.y, object.texture_from_world,
                               object.source->clip_plane_mask, cap_rays, cap)) {
-          layer.depth[i] = cap.depth;
-          layer.flags[i] = GBuffer::kCovered | GBuffer::kCap;
-          layer.object_id[i] = object.source->object_id;
-          layer.texture_position[i] = cap.texture_position;
-          layer.normal[i] = cap.normal;
-          layer.footprint[i] = cap.footprint;
-          layer.footprint_axis[i] = glm::vec3(0.0f);
-          layer.footprint_minor[i] = cap.footprint;
+          write_cap_pixel(layer, i, object.source->object_id, cap);
           continue;
         }
       }

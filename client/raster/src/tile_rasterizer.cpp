@@ -312,7 +312,8 @@ class TileResolve {
                                        solid->source->clip_plane_mask, rays_, cap) &&
             cap.depth < row.depth[x - x0_]) {
           ++caps_;
-          write_cap(static_cast<std::size_t>(row.start + x), *solid, cap);
+          write_cap_pixel(target_, static_cast<std::size_t>(row.start + x),
+                          solid->source->object_id, cap);
           continue;
         }
       }
@@ -333,23 +334,12 @@ class TileResolve {
                                        solid->source->clip_plane_mask, rays_, cap)) {
           ++caps_;
           ++covered_;
-          write_cap(at, *solid, cap);
+          write_cap_pixel(target_, at, solid->source->object_id, cap);
           continue;
         }
       }
       write_empty(target_, at, 1);
     }
-  }
-
-  void write_cap(std::size_t at, const ObjectFrame& object, const CapSample& cap) {
-    target_.depth[at] = cap.depth;
-    target_.flags[at] = GBuffer::kCovered | GBuffer::kCap;
-    target_.object_id[at] = object.source->object_id;
-    target_.texture_position[at] = cap.texture_position;
-    target_.normal[at] = cap.normal;
-    target_.footprint[at] = cap.footprint;
-    target_.footprint_axis[at] = glm::vec3(0.0f);  // a cap's footprint has no direction
-    target_.footprint_minor[at] = cap.footprint;
   }
 
   const TileFrame& frame_;
