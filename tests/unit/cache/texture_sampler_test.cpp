@@ -314,7 +314,9 @@ TEST(TextureSampler, FindMissesAnswersAsSampleDoes) {
     for (int z = 0; z < per_axis; ++z) {
       for (int y = 0; y < per_axis; ++y) {
         for (int x = 0; x < per_axis; ++x) {
-          if (n++ % 3 == 0) ASSERT_TRUE(texture.insert(partial, level, {x, y, z}));
+          if (n++ % 3 == 0) {
+            ASSERT_TRUE(texture.insert(partial, level, {x, y, z}));
+          }
         }
       }
     }

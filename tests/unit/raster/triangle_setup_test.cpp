@@ -146,7 +146,7 @@ TEST(TriangleSetup, RangesInLanesSetUpWhatSetupDoes) {
   }
   const std::vector<glm::dvec4> plane = {{0.3, 0.0, 1.0, 3.0}};
   // With edge sampling too: triangles between pixel centres are kept, by the pixels they touch.
-  for (const auto [with_plane, edge_sampling] :
+  for (const auto& [with_plane, edge_sampling] :
        {std::pair{false, false}, std::pair{true, false}, std::pair{false, true}}) {
     RasterView view{kWidth,
                     kHeight,
