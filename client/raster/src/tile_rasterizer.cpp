@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <glm/geometric.hpp>
@@ -163,7 +164,8 @@ struct TileRow {
   std::ptrdiff_t start;  // where pixel (0, y) would be in the target
   const ScreenTriangle* const* winners;
   const float* depth;
-  const ScreenTriangle* const* beyond;  // TileRasterizer::beyond_winner_'s row, or null
+  // TileRasterizer::beyond_winner_'s two slots' rows, or nulls.
+  std::array<const ScreenTriangle* const*, 2> beyond;
 };
 
 // Resolving one tile, row by row: what its rows share (the batches of pixels waiting to be
@@ -190,7 +192,7 @@ class TileResolve {
       const uint64_t later = offset >= 64 ? 0 : starts >> offset << offset;
       const int end = later != 0 ? x0_ + std::countr_zero(later) : x1_;
       if (winner == nullptr) {
-        if (row.beyond != nullptr) {
+        if (row.beyond[0] != nullptr) {
           resolve_unkept_run(row, x, end);
         } else {
           // A run of empty pixels is written plane by plane (memset-like stores).
@@ -204,15 +206,15 @@ class TileResolve {
       // triangle's second cache line, which drawing did not load.
       const ObjectFrame* object =
           frame_.caps != nullptr ? &frame_.objects[winner->object] : nullptr;
-      if (object == nullptr || !winner->back_face || !object->source->closed) {
-        if (row.beyond != nullptr) {
-          resolve_surface_or_beyond_cap(row, winner, x, end);
-        } else {
-          resolve_surface_run(row, winner, x, end);
-        }
+      const bool own_cap = object != nullptr && winner->back_face && object->source->closed;
+      if (row.beyond[0] != nullptr && any_beyond_solid(row, winner, x, end)) {
+        resolve_beside_beyond_caps(row, winner, own_cap, x, end);
         x = end;
-      } else {
+      } else if (own_cap) {
         x = resolve_cap_run(row, *object, winner, x, end);
+      } else {
+        resolve_surface_run(row, winner, x, end);
+        x = end;
       }
     }
   }
@@ -282,42 +284,76 @@ class TileResolve {
   }
 
   // A back face of a closed solid other than the pixel's kept fragment's, whose nearest
-  // fragment along the ray it is among those kept or past the kept region: a cap of that
-  // solid may lie in front of what the pixel keeps. Null when there is none.
-  const ObjectFrame* beyond_solid(const TileRow& row, int x, const ScreenTriangle* kept) const {
-    const ScreenTriangle* beyond = row.beyond[x - x0_];
+  // fragment along the ray it is among those kept or past the kept region (slot 0: the
+  // nearest of all; slot 1: the nearest of another object): a cap of that solid may lie in
+  // front of what the pixel keeps. Null when there is none.
+  const ObjectFrame* beyond_solid(const TileRow& row, int slot, int x,
+                                  const ScreenTriangle* kept) const {
+    const ScreenTriangle* beyond = row.beyond[slot][x - x0_];
     if (beyond == nullptr || !beyond->back_face) return nullptr;
     if (kept != nullptr && beyond->object == kept->object) return nullptr;
     const ObjectFrame& object = frame_.objects[beyond->object];
     return object.source->closed ? &object : nullptr;
   }
 
-  // Pixels [x, end) of the row, which see `winner`'s surface unless a cap of another solid
-  // lies in front of it (beyond_solid()).
-  void resolve_surface_or_beyond_cap(const TileRow& row, const ScreenTriangle* winner, int x,
-                                     int end) {
-    int first = x;
-    while (first < end && beyond_solid(row, first, winner) == nullptr) ++first;
-    if (first == end) {
-      resolve_surface_run(row, winner, x, end);
-      return;
+  // Whether a pixel of [x, end) may see a cap of another solid than `winner`'s in front of
+  // what it keeps (beyond_solid()).
+  bool any_beyond_solid(const TileRow& row, const ScreenTriangle* winner, int x, int end) const {
+    for (; x < end; ++x) {
+      if (beyond_solid(row, 0, x, winner) != nullptr) return true;
+      if (beyond_solid(row, 1, x, winner) != nullptr) return true;
     }
+    return false;
+  }
+
+  // The nearest cap in front of `limit` (a window depth) of the solids beyond_solid() finds
+  // for pixel x, written to `cap`; null when there is none.
+  const ObjectFrame* nearest_beyond_cap(const TileRow& row, int x, const ScreenTriangle* kept,
+                                        float limit, CapSample& cap) {
+    const ObjectFrame* nearest = nullptr;
+    for (int slot = 0; slot < 2; ++slot) {
+      const ObjectFrame* solid = beyond_solid(row, slot, x, kept);
+      if (solid == nullptr) continue;
+      CapSample candidate;
+      ++cap_rays_;
+      if (frame_.caps->trace_through(x, row.y, solid->texture_from_world,
+                                     solid->source->clip_plane_mask, rays_, candidate) &&
+          candidate.depth < limit) {
+        limit = candidate.depth;
+        cap = candidate;
+        nearest = solid;
+      }
+    }
+    return nearest;
+  }
+
+  // Pixels [x, end) of the row, whose kept fragment is `winner`, one at a time: each shows
+  // what it would alone (the surface, or where `own_cap` the cap of `winner`'s solid), unless a
+  // cap of another solid (beyond_solid()) lies in front of that.
+  void resolve_beside_beyond_caps(const TileRow& row, const ScreenTriangle* winner, bool own_cap,
+                                  int x, int end) {
+    const ObjectFrame& object = frame_.objects[winner->object];
     covered_ += static_cast<uint64_t>(end - x);
     for (; x < end; ++x) {
-      const ObjectFrame* solid = beyond_solid(row, x, winner);
-      CapSample cap;
-      if (solid != nullptr) {
+      const auto at = static_cast<std::size_t>(row.start + x);
+      CapSample own;
+      bool own_hit = false;
+      if (own_cap) {
         ++cap_rays_;
-        if (frame_.caps->trace_through(x, row.y, solid->texture_from_world,
-                                       solid->source->clip_plane_mask, rays_, cap) &&
-            cap.depth < row.depth[x - x0_]) {
-          ++caps_;
-          write_cap_pixel(target_, static_cast<std::size_t>(row.start + x),
-                          solid->source->object_id, cap);
-          continue;
-        }
+        own_hit = frame_.caps->trace(x, row.y, object.texture_from_world,
+                                     object.source->clip_plane_mask, rays_, own);
       }
-      add_pixel(row, x);
+      CapSample cap;
+      const float depth = own_hit ? own.depth : row.depth[x - x0_];
+      if (const ObjectFrame* solid = nearest_beyond_cap(row, x, winner, depth, cap)) {
+        ++caps_;
+        write_cap_pixel(target_, at, solid->source->object_id, cap);
+      } else if (own_hit) {
+        ++caps_;
+        write_cap_pixel(target_, at, object.source->object_id, own);
+      } else {
+        add_pixel(row, x);
+      }
     }
   }
 
@@ -325,18 +361,21 @@ class TileResolve {
   // where the nearest fragment past the kept region is a back face of a closed solid (the
   // ray crossed the kept region inside it) and the ray enters and leaves that region.
   void resolve_unkept_run(const TileRow& row, int x, int end) {
+    if (std::all_of(row.beyond[0] + (x - x0_), row.beyond[0] + (end - x0_),
+                    [](const ScreenTriangle* t) { return t == nullptr; })) {
+      write_empty(target_, static_cast<std::size_t>(row.start + x),
+                  static_cast<std::size_t>(end - x));
+      return;
+    }
     for (; x < end; ++x) {
       const auto at = static_cast<std::size_t>(row.start + x);
-      if (const ObjectFrame* solid = beyond_solid(row, x, nullptr)) {
-        CapSample cap;
-        ++cap_rays_;
-        if (frame_.caps->trace_through(x, row.y, solid->texture_from_world,
-                                       solid->source->clip_plane_mask, rays_, cap)) {
-          ++caps_;
-          ++covered_;
-          write_cap_pixel(target_, at, solid->source->object_id, cap);
-          continue;
-        }
+      CapSample cap;
+      if (const ObjectFrame* solid =
+              nearest_beyond_cap(row, x, nullptr, std::numeric_limits<float>::infinity(), cap)) {
+        ++caps_;
+        ++covered_;
+        write_cap_pixel(target_, at, solid->source->object_id, cap);
+        continue;
       }
       write_empty(target_, at, 1);
     }
@@ -358,8 +397,10 @@ class TileResolve {
 void TileRasterizer::begin(int x0, int y0, int x1, int y1, uint32_t beyond_planes) {
   beyond_planes_ = beyond_planes;
   if (beyond_planes != 0) {
-    beyond_depth_.fill(std::numeric_limits<float>::infinity());
-    beyond_winner_.fill(nullptr);
+    for (int slot = 0; slot < 2; ++slot) {
+      beyond_depth_[slot].fill(std::numeric_limits<float>::infinity());
+      beyond_winner_[slot].fill(nullptr);
+    }
   }
   x0_ = x0;
   y0_ = y0;
@@ -417,16 +458,16 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
       }
       const float dx = static_cast<float>(x) + 0.5f - x0;
       const float depth = t.depth.at_vertex0 + t.depth.per_x * dx + t.depth.per_y * dy;
+      const auto pixel = static_cast<std::size_t>(row_start + x - x0_);
       const bool nearer = depth < depth_row[x - x0_];
-      if (!(nearer || tracked) || !(depth <= kFarDepth)) continue;
+      const bool nearer_beyond = tracked && beyond_nearer(pixel, depth, t);
+      if (!(nearer || nearer_beyond) || !(depth <= kFarDepth)) continue;
       if (forms != nullptr) {
         ++clip_tested;
         const uint32_t failed = failed_planes(t.clip_mask, forms, dx, dy);
         // Kept, or cut away past the kept region only: the nearest such fragment tells
         // whether the ray crossed the region inside the solid.
-        if (tracked && (failed & ~beyond_planes_) == 0) {
-          keep_beyond(static_cast<std::size_t>(row_start + x - x0_), depth, t);
-        }
+        if (nearer_beyond && (failed & ~beyond_planes_) == 0) keep_beyond(pixel, depth, t);
         if (failed != 0) {
           ++clip_discarded;
           continue;
@@ -447,11 +488,33 @@ void TileRasterizer::draw(const ScreenTriangle& t, std::span<const AffineForm> c
   stats.fragments_clip_discarded += clip_discarded;
 }
 
+bool TileRasterizer::beyond_nearer(std::size_t pixel, float depth, const ScreenTriangle& t) const {
+  if (depth < beyond_depth_[0][pixel]) return true;
+  const ScreenTriangle* first = beyond_winner_[0][pixel];
+  return first != nullptr && first->object != t.object && depth < beyond_depth_[1][pixel];
+}
+
 void TileRasterizer::keep_beyond(std::size_t pixel, float depth, const ScreenTriangle& t) {
-  if (depth < beyond_depth_[pixel]) {
-    beyond_depth_[pixel] = depth;
-    beyond_winner_[pixel] = &t;
+  assert(beyond_nearer(pixel, depth, t));
+  const ScreenTriangle* first = beyond_winner_[0][pixel];
+  if (depth < beyond_depth_[0][pixel]) {
+    // The nearest of another object than the new nearest: the old nearest, nearer than all
+    // else, unless it is of the same object (slot 1 then stays as it is).
+    if (first != nullptr && first->object != t.object) {
+      beyond_depth_[1][pixel] = beyond_depth_[0][pixel];
+      beyond_winner_[1][pixel] = first;
+    }
+    beyond_depth_[0][pixel] = depth;
+    beyond_winner_[0][pixel] = &t;
+    return;
   }
+  beyond_depth_[1][pixel] = depth;
+  beyond_winner_[1][pixel] = &t;
+}
+
+const ScreenTriangle* const* TileRasterizer::beyond_row(int slot, std::ptrdiff_t from) const {
+  return beyond_planes_ != 0 ? beyond_winner_[static_cast<std::size_t>(slot)].data() + from
+                             : nullptr;
 }
 
 void TileRasterizer::draw_bin(const ScreenTriangle* triangles, std::span<const uint32_t> items,
@@ -493,7 +556,7 @@ void TileRasterizer::resolve(const TileFrame& frame, GBuffer& gbuffer, int origi
     // Where pixel (0, y) would be in the target: x is added to it (x >= origin_x).
     const std::ptrdiff_t start = static_cast<std::ptrdiff_t>(y - origin_y) * width - origin_x;
     tile.resolve_row(TileRow{y, start, winner_.data() + from, depth_.data() + from,
-                             beyond_planes_ != 0 ? beyond_winner_.data() + from : nullptr});
+                             beyond_row(0, from), beyond_row(1, from)});
   }
   tile.finish(stats);
 }

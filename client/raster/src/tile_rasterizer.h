@@ -59,19 +59,27 @@ class TileRasterizer {
   bool began_at(int x0, int y0) const { return x0_ == x0 && y0_ == y0; }
 
  private:
-  // Keeps the fragment at tile pixel `pixel` as its nearest one past the kept region, if it is.
+  // Whether a fragment at tile pixel `pixel` is nearer than slot 0's, or than slot 1's and of
+  // another object than slot 0's (the two slots below).
+  bool beyond_nearer(std::size_t pixel, float depth, const ScreenTriangle& t) const;
+  // Keeps such a fragment in its slot.
   void keep_beyond(std::size_t pixel, float depth, const ScreenTriangle& t);
+  // Slot `slot`'s row from tile pixel `from`, or null where nothing is kept past the region.
+  const ScreenTriangle* const* beyond_row(int slot, std::ptrdiff_t from) const;
 
   int x0_ = 0, y0_ = 0, x1_ = 0, y1_ = 0;
   std::array<float, kTileSize * kTileSize + kPlanePadding> depth_{};
   std::array<const ScreenTriangle*, kTileSize * kTileSize + kPlanePadding> winner_{};
-  // Where beyond_planes_ is not 0: per pixel, the nearest fragment past the kept region (cut
-  // away by planes keeping the eye, and by no other). Read only where no fragment was kept: a
-  // back face there means the ray crossed the kept region inside the solid, which then shows
-  // a cap where the ray entered it.
+  // Where beyond_planes_ is not 0: per pixel, the nearest fragment of an object with beyond
+  // planes, kept or past the kept region (cut away by planes keeping the eye, and by no
+  // other), in slot 0, and the nearest of another object than that one in slot 1. A back face
+  // there means the ray crossed the kept region inside that solid, which then shows a cap
+  // where the ray entered the region, unless what the pixel keeps lies in front of it. Two
+  // slots: one object's cut-away part in front of another's solid would otherwise hide the
+  // other's back face.
   uint32_t beyond_planes_ = 0;
-  std::array<float, kTileSize * kTileSize> beyond_depth_{};
-  std::array<const ScreenTriangle*, kTileSize * kTileSize> beyond_winner_{};
+  std::array<std::array<float, kTileSize * kTileSize>, 2> beyond_depth_{};
+  std::array<std::array<const ScreenTriangle*, kTileSize * kTileSize>, 2> beyond_winner_{};
 };
 
 }  // namespace soltex::raster_internal

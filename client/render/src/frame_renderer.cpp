@@ -47,6 +47,7 @@ struct EyeRelative {
   std::vector<RasterObject> objects;
   std::vector<glm::dvec4> clip_planes;
   glm::dmat4 view_projection;
+  double near = 0.0;  // the near plane view_projection has (frame_near())
 };
 
 // The near plane a frame is drawn with: the camera's, or further out where no object comes
@@ -107,6 +108,7 @@ EyeRelative eye_relative(const PreparedScene& scene, const Camera& camera, int w
   at_origin.target = camera.target - eye;
   at_origin.position = glm::dvec3(0.0);
   at_origin.near = frame_near(scene, camera, width, height, from_world);
+  r.near = at_origin.near;
   r.view_projection = view_projection(at_origin, width, height);
   return r;
 }
@@ -258,7 +260,7 @@ Frame FrameRenderer::render_pixels(const PreparedScene& scene, const Camera& cam
   if (options.edge_antialias > 0) {
     if (!edges_) edges_ = std::make_shared<render::EdgeAntialiasing>();
     edges = edges_.get();
-    edges->begin_frame(width, height, camera.near, camera.far, options.edge_antialias,
+    edges->begin_frame(width, height, relative.near, camera.far, options.edge_antialias,
                        rasterizer_.thread_count());
   }
   const auto shade_raster_tile = [&](const GBuffer& g, int origin_x, int origin_y, int x0, int y0,

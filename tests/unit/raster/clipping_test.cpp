@@ -478,6 +478,66 @@ TEST(ClipPlanes, ASlabsCapHidesAnUncutObjectBehindIt) {
   EXPECT_GT(caps, 1000);
 }
 
+// The same slab seen from inside a closed, uncut room: the room's back faces, which the
+// pixels keep, lie behind the cap.
+TEST(ClipPlanes, ASlabsCapShowsInsideAClosedRoom) {
+  static const Mesh room = raster_test::box(glm::vec3(10.0f));
+  RasterObject backdrop{room.view()};
+  backdrop.clip_plane_mask = 0;
+  const int caps = expect_caps_where_rays_enter_inside(
+      {{0.0, 0.0, -1.0, 0.5}, {0.0, 0.0, 1.0, 0.5}}, {0.3f, 0.2f, 3.0f}, &backdrop);
+  EXPECT_GT(caps, 1000);
+}
+
+// A small sphere in front of the slab, cut by planes of its own: where its cut-away part
+// lies along the ray, the slab's cap still shows (that part is past the small sphere's kept
+// region, not in front of the slab).
+TEST(ClipPlanes, AnotherSolidsCutAwayPartDoesNotHideACap) {
+  static const Mesh small = raster_test::uv_sphere(32, 64, 0.3f);
+  const std::vector<glm::dvec4> planes = {
+      {0.0, 0.0, -1.0, 0.5},  // 0, 1: the unit sphere's slab |z| <= 0.5
+      {0.0, 0.0, 1.0, 0.5},
+      {1.0, 0.0, 0.0, 0.05},   // 2: the small sphere keeps x >= -0.05, the eye's side
+      {0.0, 0.0, -1.0, 3.0}};  // 3: and z <= 3, which the eye is not on
+  RasterObject slab{unit_sphere().view()};
+  slab.clip_plane_mask = 0b0011;
+  RasterObject cut{small.view()};
+  cut.model = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 1.5f));
+  cut.clip_plane_mask = 0b1100;
+  cut.object_id = 1;
+  const std::vector<RasterObject> objects = {slab, cut};
+  const glm::vec3 eye(0.0f, 0.0f, 3.5f);
+  const glm::mat4 view_projection =
+      raster_test::perspective_look_at(eye, {0, 0, 0}, kWidth, kHeight);
+  Rasterizer rasterizer({.threads = 2});
+  GBuffer g;
+  rasterizer.render({kWidth, kHeight, view_projection, planes}, objects, g);
+  const std::vector<glm::dvec4> slab_planes(planes.begin(), planes.begin() + 2);
+  int behind_cut_away = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const raster_test::Ray ray = raster_test::pixel_ray(view_projection, kWidth, kHeight, x, y);
+      const auto entry = entry_into(ray, slab_planes);
+      if (!entry || glm::length(*entry) > 0.98) continue;
+      // Where the ray meets the small sphere at all, by more than a facet's depth.
+      const glm::dvec3 to_centre = glm::dvec3(0.0, 0.0, 1.5) - ray.origin;
+      const glm::dvec3 unit = glm::normalize(ray.direction);
+      const double along = glm::dot(to_centre, unit);
+      const double miss = glm::length(to_centre - along * unit);
+      if (miss < 0.31) {
+        const glm::dvec3 front =
+            ray.origin + (along - std::sqrt(std::max(0.0, 0.09 - miss * miss))) * unit;
+        if (front.x > -0.06) continue;  // the small sphere's kept part, or too near its cut
+        ++behind_cut_away;
+      }
+      const std::size_t i = g.index(x, y);
+      EXPECT_TRUE(g.is_cap(i)) << "pixel " << x << "," << y;
+      EXPECT_EQ(g.object_id[i], 0u) << "pixel " << x << "," << y;
+    }
+  }
+  EXPECT_GT(behind_cut_away, 50);
+}
+
 // Six planes keep the cube |x|, |y|, |z| <= 0.5, wholly inside the sphere: seen from a
 // corner, three of its faces are caps, and nothing else is drawn.
 TEST(ClipPlanes, SixPlanesCutACubeOutOfTheSolid) {
