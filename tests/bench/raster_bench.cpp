@@ -7,6 +7,9 @@
 //   BM_RasterFrame         no clip planes (no clipping or capping work at all)
 //   BM_RasterFrameCut      one clip plane through the torus: per-fragment tests on the
 //                          straddling triangles and caps traced where the cut is seen
+//   BM_RasterFrameSlab     two parallel planes keep a slab of it, the eye on the kept side
+//                          of the far one: every triangle's fragments tested, and those past
+//                          the slab kept, to tell where the view crosses it inside the solid
 // The argument is the thread count (the caller's thread included). Times are wall-clock per
 // frame; the CPU column is the whole process's CPU time (all render threads) per frame.
 
@@ -97,6 +100,11 @@ void BM_RasterFrameCut(benchmark::State& state) {
   run_frames(state, planes);
 }
 
+void BM_RasterFrameSlab(benchmark::State& state) {
+  static const std::vector<glm::dvec4> planes = {{0.3, 0.0, -1.0, 0.15}, {-0.3, 0.0, 1.0, 0.15}};
+  run_frames(state, planes);
+}
+
 BENCHMARK(BM_RasterFrame)
     ->Arg(1)
     ->Arg(2)
@@ -104,6 +112,12 @@ BENCHMARK(BM_RasterFrame)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
 BENCHMARK(BM_RasterFrameCut)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+BENCHMARK(BM_RasterFrameSlab)
     ->Arg(1)
     ->Arg(2)
     ->Unit(benchmark::kMillisecond)
