@@ -128,6 +128,7 @@ int run(const view::ViewOptions& options, const CLI::App& app,
         const net::ChannelSecurityOptions& security, view::StartupTimeline& timeline) {
   net::FetcherOptions fetcher_options;
   fetcher_options.security = net::finish_channel_security(security);
+  fetcher_options.register_timeout = options.server_wait(fetcher_options.register_timeout);
   // Null marks nothing: the timeline costs only where it is printed.
   view::StartupTimeline* const marks =
       options.print_timeline && options.headless ? &timeline : nullptr;

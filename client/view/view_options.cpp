@@ -1,6 +1,8 @@
 #include "view_options.h"
 
+#include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -152,6 +154,12 @@ std::optional<Codec> ViewOptions::forced_codec() const {
 
 TextureResolution ViewOptions::texture_resolution(int finest_level_log2) const {
   return TextureResolution{finest_level_log2, brick_size, MipSettings{mip_mode(mip_name), 2}};
+}
+
+std::chrono::milliseconds ViewOptions::server_wait(std::chrono::milliseconds most) const {
+  if (!headless) return most;
+  return std::min(most,
+                  std::chrono::milliseconds(static_cast<int64_t>(std::ceil(max_seconds * 1000.0))));
 }
 
 RenderOptions ViewOptions::render_options() const {

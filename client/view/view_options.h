@@ -1,6 +1,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <chrono>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -50,6 +51,9 @@ struct ViewOptions {
   TextureResolution texture_resolution(int finest_level_log2) const;
   // The renderer's settings named on the command line.
   RenderOptions render_options() const;
+  // How long to wait for one answer from the server: `most`, and in a headless run no longer
+  // than its --max-time-s.
+  std::chrono::milliseconds server_wait(std::chrono::milliseconds most) const;
 };
 
 // Declares every soltex-view option on `app`, each writing into `options`.

@@ -57,11 +57,7 @@ Codec choose_codec(std::optional<Codec> forced, const capability::Capability& me
 
 // The server's first answer, within 5 s and within a headless run's --max-time-s.
 double round_trip_ms(net::BrickFetcher& fetcher, const ViewOptions& options) {
-  auto timeout = std::chrono::milliseconds(5000);
-  if (options.headless) {
-    timeout = std::min(timeout, std::chrono::milliseconds(
-                                    static_cast<long>(std::ceil(options.max_seconds * 1000.0))));
-  }
+  const auto timeout = options.server_wait(std::chrono::seconds(5));
   return static_cast<double>(fetcher.measure_round_trip(timeout).count()) / 1e3;
 }
 
