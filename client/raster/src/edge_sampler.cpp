@@ -92,7 +92,7 @@ glm::ivec2 EdgeSampler::sample_offset(int s, int grid) {
 }
 
 void EdgeSampler::begin(int x0, int y0, int x1, int y1, std::span<const glm::ivec2> pixels,
-                        int grid) {
+                        int grid, uint32_t beyond_planes) {
   if (grid < 1 || grid > kMaxGrid) {
     throw std::invalid_argument("edge samples: grid must be 1.." + std::to_string(kMaxGrid) +
                                 " per axis, got " + std::to_string(grid));
@@ -132,6 +132,11 @@ void EdgeSampler::begin(int x0, int y0, int x1, int y1, std::span<const glm::ive
   const std::size_t n = pixels_.size() * static_cast<std::size_t>(samples_);
   depth_.assign(n, std::numeric_limits<float>::infinity());
   winner_.assign(n, nullptr);
+  beyond_planes_ = beyond_planes;
+  if (beyond_planes != 0) {
+    beyond_depth_.assign(n, std::numeric_limits<float>::infinity());
+    beyond_winner_.assign(n, nullptr);
+  }
 }
 
 void EdgeSampler::draw(const ScreenTriangle& t, std::span<const AffineForm> clip_forms) {
@@ -206,33 +211,54 @@ void EdgeSampler::draw_at(const ScreenTriangle& t, const AffineForm* forms, int 
   for (std::size_t k = 0; k < 3; ++k) {
     centre_inside &= corner[k] + along_y[k][centre] - along_x[k][centre] >= 0;
   }
-  const float vertex_x = t.x0_pixels(), vertex_y = t.y0_pixels();
-  const auto test = [&](int s) {
-    const glm::vec2 f = offsets_px_[static_cast<std::size_t>(s)];
-    const float dx = static_cast<float>(x) + f.x - vertex_x;
-    const float dy = static_cast<float>(y) + f.y - vertex_y;
-    const float depth = t.depth.at_vertex0 + t.depth.per_x * dx + t.depth.per_y * dy;
-    const std::size_t sample = slot_sample(slot, s);
-    if (!(depth < depth_[sample]) || depth > kFarDepth) return;
-    if (forms != nullptr) {
-      for (uint32_t planes = t.clip_mask; planes != 0; planes &= planes - 1) {
-        const AffineForm& form = forms[std::countr_zero(planes)];
-        if (form.at_vertex0 + form.per_x * dx + form.per_y * dy < 0.0f) return;
-      }
+  for (; inside != 0; inside &= inside - 1)
+    test_sample(t, forms, x, y, slot, std::countr_zero(inside));
+  if (centre_inside) test_sample(t, forms, x, y, slot, samples_ - 1);
+}
+
+void EdgeSampler::test_sample(const ScreenTriangle& t, const AffineForm* forms, int x, int y,
+                              std::size_t slot, int s) {
+  const glm::vec2 f = offsets_px_[static_cast<std::size_t>(s)];
+  const float dx = static_cast<float>(x) + f.x - t.x0_pixels();
+  const float dy = static_cast<float>(y) + f.y - t.y0_pixels();
+  const float depth = t.depth.at_vertex0 + t.depth.per_x * dx + t.depth.per_y * dy;
+  const std::size_t sample = slot_sample(slot, s);
+  // As TileRasterizer::draw() (one slot past the kept region, not two).
+  const bool tracked = (t.clip_mask & beyond_planes_) != 0;
+  const bool nearer = depth < depth_[sample];
+  const bool nearer_beyond = tracked && depth < beyond_depth_[sample];
+  if (!(nearer || nearer_beyond) || !(depth <= kFarDepth)) return;
+  if (forms != nullptr) {
+    uint32_t failed = 0;
+    for (uint32_t planes = t.clip_mask; planes != 0; planes &= planes - 1) {
+      const int j = std::countr_zero(planes);
+      const AffineForm& form = forms[j];
+      if (form.at_vertex0 + form.per_x * dx + form.per_y * dy < 0.0f) failed |= 1u << j;
     }
-    depth_[sample] = depth;
-    winner_[sample] = &t;
-  };
-  for (; inside != 0; inside &= inside - 1) test(std::countr_zero(inside));
-  if (centre_inside) test(samples_ - 1);
+    if (nearer_beyond && (failed & ~beyond_planes_) == 0) {
+      beyond_depth_[sample] = depth;
+      beyond_winner_[sample] = &t;
+    }
+    if (failed != 0) return;
+  }
+  if (!nearer) return;
+  depth_[sample] = depth;
+  winner_[sample] = &t;
+}
+
+const ScreenTriangle* EdgeSampler::seen(std::size_t slot, int s) const {
+  const std::size_t sample = slot_sample(slot, s);
+  if (winner_[sample] != nullptr || beyond_planes_ == 0) return winner_[sample];
+  const ScreenTriangle* beyond = beyond_winner_[sample];
+  return beyond != nullptr && beyond->back_face ? beyond : nullptr;
 }
 
 int EdgeSampler::group(std::size_t slot, std::array<Surface, EdgePixel::kExtraSurfaces>& extra,
                        EdgePixel& pixel) const {
-  const ScreenTriangle* centre = winner_[slot_sample(slot, samples_ - 1)];
+  const ScreenTriangle* centre = seen(slot, samples_ - 1);
   int extra_count = 0;
   for (int s = 0; s + 1 < samples_; ++s) {
-    const ScreenTriangle* w = winner_[slot_sample(slot, s)];
+    const ScreenTriangle* w = seen(slot, s);
     if (w == centre) {
       ++pixel.centre;
       continue;
@@ -277,13 +303,13 @@ int EdgeSampler::group(std::size_t slot, std::array<Surface, EdgePixel::kExtraSu
 int EdgeSampler::nearest_sample(std::size_t slot, const Surface& surface) const {
   // The middle of the surface's own samples (count may include merged ones; the sums do not).
   int own = 0;
-  for (int s = 0; s + 1 < samples_; ++s) own += winner_[slot_sample(slot, s)] == surface.triangle;
+  for (int s = 0; s + 1 < samples_; ++s) own += seen(slot, s) == surface.triangle;
   const float mx = static_cast<float>(surface.sum_x) / static_cast<float>(own);
   const float my = static_cast<float>(surface.sum_y) / static_cast<float>(own);
   int best = -1;
   float best_distance = std::numeric_limits<float>::infinity();
   for (int s = 0; s + 1 < samples_; ++s) {
-    if (winner_[slot_sample(slot, s)] != surface.triangle) continue;
+    if (seen(slot, s) != surface.triangle) continue;
     const glm::ivec2 o = offsets_[static_cast<std::size_t>(s)];
     const float ddx = static_cast<float>(o.x) - mx, ddy = static_cast<float>(o.y) - my;
     const float distance = ddx * ddx + ddy * ddy;
@@ -331,14 +357,24 @@ void EdgeSampler::resolve(const TileFrame& frame, EdgeSurfaces& out) const {
       const std::size_t i = layer.index(pixel.x - x0_, pixel.y - y0_);
       const ScreenTriangle& t = *surface.triangle;
       const ObjectFrame& object = frame.objects[t.object];
+      // A back face seen past the kept region (seen()) is drawn only as its solid's cap.
+      const bool past = depth_[slot_sample(slot, nearest_sample(slot, surface))] ==
+                        std::numeric_limits<float>::infinity();
       if (frame.caps != nullptr && t.back_face && object.source->closed) {
         cap_rays.begin(pixel.x, pixel.y);  // this pixel's ray and its neighbours', fresh
         CapSample cap;
-        if (frame.caps->trace(pixel.x, pixel.y, object.texture_from_world,
-                              object.source->clip_plane_mask, cap_rays, cap)) {
+        if (past ? frame.caps->trace_through(pixel.x, pixel.y, object.texture_from_world,
+                                             object.source->clip_plane_mask, cap_rays, cap)
+                 : frame.caps->trace(pixel.x, pixel.y, object.texture_from_world,
+                                     object.source->clip_plane_mask, cap_rays, cap)) {
           write_cap_pixel(layer, i, object.source->object_id, cap);
           continue;
         }
+      }
+      if (past) {
+        pixel.background += pixel.extra[static_cast<std::size_t>(j)];
+        pixel.extra[static_cast<std::size_t>(j)] = 0;
+        continue;
       }
       const int s = nearest_sample(slot, surface);
       const glm::ivec2 o = offsets_[static_cast<std::size_t>(s)];

@@ -23,7 +23,10 @@ class EdgeSampler {
 
   // Starts the tile of pixels [x0, x1) x [y0, y1) with its edge pixels (frame positions inside
   // the tile, each once), `grid` x `grid` samples each (1..kMaxGrid).
-  void begin(int x0, int y0, int x1, int y1, std::span<const glm::ivec2> pixels, int grid);
+  // `beyond_planes`: as TileRasterizer::begin()'s, so that a sample past the kept region of a
+  // solid cut by several planes sees the solid's cap as the tile's pixels do.
+  void begin(int x0, int y0, int x1, int y1, std::span<const glm::ivec2> pixels, int grid,
+             uint32_t beyond_planes = 0);
 
   // Draws the triangle's samples at the edge pixels (a triangle binned into this tile).
   void draw(const ScreenTriangle& triangle, std::span<const AffineForm> clip_forms);
@@ -46,6 +49,12 @@ class EdgeSampler {
     return slot * static_cast<std::size_t>(samples_) + static_cast<std::size_t>(s);
   }
   void draw_at(const ScreenTriangle& t, const AffineForm* forms, int x, int y, std::size_t slot);
+  // Depth and clip tests of sample s of the pixel in `slot` (at pixel x, y) for `t`.
+  void test_sample(const ScreenTriangle& t, const AffineForm* forms, int x, int y, std::size_t slot,
+                   int s);
+  // What sample s sees: its kept fragment, else a back face past the kept region (whose
+  // solid's cap it may see), else nothing.
+  const ScreenTriangle* seen(std::size_t slot, int s) const;
   int group(std::size_t slot, std::array<Surface, EdgePixel::kExtraSurfaces>& extra,
             EdgePixel& pixel) const;
   int nearest_sample(std::size_t slot, const Surface& surface) const;
@@ -62,6 +71,9 @@ class EdgeSampler {
   std::vector<glm::vec2> offsets_px_;  // the same in pixels, as float
   std::vector<float> depth_;           // per slot and sample
   std::vector<const ScreenTriangle*> winner_;
+  uint32_t beyond_planes_ = 0;
+  std::vector<float> beyond_depth_;  // per slot and sample, where beyond_planes_ is not 0
+  std::vector<const ScreenTriangle*> beyond_winner_;
 };
 
 }  // namespace soltex::raster_internal

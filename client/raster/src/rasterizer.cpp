@@ -203,6 +203,7 @@ struct Rasterizer::Impl {
   TileGrid grid;
   std::size_t chunk_count = 0;
   int width = 0, height = 0;
+  uint32_t beyond_planes = 0;  // the last frame's ObjectFrame::beyond_planes together
   std::optional<CapTracer> caps;
   std::vector<std::unique_ptr<EdgeSampler>> edge_samplers;  // per thread, each made when asked
 
@@ -329,6 +330,7 @@ RasterStats Rasterizer::draw(const RasterView& view, std::span<const RasterObjec
     beyond_planes |= object.beyond_planes;
   }
   impl.grid = grid;
+  impl.beyond_planes = beyond_planes;
   impl.chunk_count = chunk_count;
   impl.width = view.width;
   impl.height = view.height;
@@ -395,7 +397,7 @@ void Rasterizer::sample_edges(int x0, int y0, std::span<const glm::ivec2> pixels
   auto& sampler = impl.edge_samplers[static_cast<std::size_t>(worker)];
   if (!sampler) sampler = std::make_unique<EdgeSampler>();
   const int x1 = std::min(impl.width, x0 + kTileSize), y1 = std::min(impl.height, y0 + kTileSize);
-  sampler->begin(x0, y0, x1, y1, pixels, grid);
+  sampler->begin(x0, y0, x1, y1, pixels, grid, impl.beyond_planes);
   const auto tile = static_cast<std::size_t>((y0 / kTileSize) * impl.grid.columns + x0 / kTileSize);
   for (std::size_t c = 0; c < impl.chunk_count; ++c) {
     const SetupChunk& chunk = impl.chunks[c];

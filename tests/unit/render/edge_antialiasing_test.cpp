@@ -18,6 +18,7 @@
 #include "soltex/render/frame_renderer.h"
 #include "soltex/render/prepared_scene.h"
 #include "soltex/scene/default_scene.h"
+#include "soltex/scene/scene_loader.h"
 
 namespace soltex::render {
 namespace {
@@ -261,6 +262,39 @@ TEST(EdgeAntialiasing, FrameComesNearerTheSupersampledReference) {
   EXPECT_LE(differing, with.stats.edge_pixels);
   EXPECT_LT(error_with, 0.8 * error_without);  // 0.68 when written
   EXPECT_GT(psnr(with.image, reference), psnr(without.image, reference));
+}
+
+// A sphere cut to a slab and seen from above: the slab's top face is a cap whose solid has no
+// back face left behind it. Edge samples along its rim see that cap as the pixels do; a sample
+// that saw nothing there would blend the background into the rim as a dotted dark line.
+TEST(EdgeAntialiasing, SamplesSeeTheCapOfASlab) {
+  const Scene scene = parse_scene(
+      R"({"camera": {"position": [0, 2.5, 4], "target": [0, 0, 0], "fov_y_degrees": 40},
+          "objects": [{"mesh": {"sphere": {"segments": 128, "rings": 64}},
+                       "material": {"unlit": true, "texture": {"stripes": {"width": 0.2}}}}],
+          "clip_planes": [{"normal": [0, 1, 0], "offset": 0.3},
+                          {"normal": [0, -1, 0], "offset": 0.3}]})",
+      "<slab>");
+  BrickCache cache(64u << 20);
+  net::LocalBrickSource source(cache);
+  const PreparedScene prepared = prepare_scene(scene, TextureResolution{6, 16, {}}, source);
+  FrameRenderer plain(cache, RenderOptions{.threads = 2});
+  FrameRenderer edges(cache, RenderOptions{.threads = 2, .edge_antialias = 4});
+  constexpr int kWidth = 200, kHeight = 200;
+  const Frame without = plain.render(prepared, scene.camera, kWidth, kHeight);
+  const Frame with = edges.render(prepared, scene.camera, kWidth, kHeight);
+  ASSERT_TRUE(without.complete() && with.complete()) << "stripes are evaluated per pixel";
+  const Image reference = plain.render_reference(prepared, scene.camera, kWidth, kHeight, 4);
+  EXPECT_GT(with.stats.edge_pixels, 0u);
+  const auto brightness = [](const Image& image, std::size_t p) {
+    return int{image.rgb[p]} + int{image.rgb[p + 1]} + int{image.rgb[p + 2]};
+  };
+  int darker = 0;
+  for (std::size_t p = 0; p < with.image.rgb.size(); p += 3) {
+    const int b = brightness(with.image, p);
+    darker += b < brightness(without.image, p) - 150 && b < brightness(reference, p) - 150;
+  }
+  EXPECT_LE(darker, 2);
 }
 
 TEST(EdgeAntialiasing, RendererRefusesAGridOutOfRange) {
