@@ -206,16 +206,25 @@ TEST(EdgeAntialiasing, SampleEdgesRefusesAGridOutOfRange) {
   EXPECT_TRUE(refused);
 }
 
+// A scene prepared on an in-process source, and two renderers on its cache: plain, and with
+// edge anti-aliasing at 4 x 4 samples. `scene` must outlive it.
+struct PlainAndEdges {
+  explicit PlainAndEdges(const Scene& scene)
+      : source(cache), prepared(prepare_scene(scene, TextureResolution{6, 16, {}}, source)) {}
+  BrickCache cache{256u << 20};
+  net::LocalBrickSource source;
+  PreparedScene prepared;
+  FrameRenderer plain{cache, RenderOptions{.threads = 2}};
+  FrameRenderer edges{cache, RenderOptions{.threads = 2, .edge_antialias = 4}};
+};
+
 // The default scene (silhouettes, a clip plane's caps, objects over one another), converged:
 // with edge anti-aliasing the frame is nearer the 4 x 4 supersampled reference, and it differs
 // from the plain frame at a few percent of the pixels only, all of them blended ones.
 TEST(EdgeAntialiasing, FrameComesNearerTheSupersampledReference) {
   const Scene scene = default_scene();
-  BrickCache cache(256u << 20);
-  net::LocalBrickSource source(cache);
-  const PreparedScene prepared = prepare_scene(scene, TextureResolution{6, 16, {}}, source);
-  FrameRenderer plain(cache, RenderOptions{.threads = 2});
-  FrameRenderer edges(cache, RenderOptions{.threads = 2, .edge_antialias = 4});
+  PlainAndEdges r(scene);
+  auto& [cache, source, prepared, plain, edges] = r;
   constexpr int kWidth = 320, kHeight = 180;
   const auto converged = [&](FrameRenderer& renderer) {
     Frame frame = renderer.render(prepared, scene.camera, kWidth, kHeight);
@@ -275,11 +284,8 @@ TEST(EdgeAntialiasing, SamplesSeeTheCapOfASlab) {
           "clip_planes": [{"normal": [0, 1, 0], "offset": 0.3},
                           {"normal": [0, -1, 0], "offset": 0.3}]})",
       "<slab>");
-  BrickCache cache(64u << 20);
-  net::LocalBrickSource source(cache);
-  const PreparedScene prepared = prepare_scene(scene, TextureResolution{6, 16, {}}, source);
-  FrameRenderer plain(cache, RenderOptions{.threads = 2});
-  FrameRenderer edges(cache, RenderOptions{.threads = 2, .edge_antialias = 4});
+  PlainAndEdges r(scene);
+  auto& [cache, source, prepared, plain, edges] = r;
   constexpr int kWidth = 200, kHeight = 200;
   const Frame without = plain.render(prepared, scene.camera, kWidth, kHeight);
   const Frame with = edges.render(prepared, scene.camera, kWidth, kHeight);
