@@ -116,13 +116,13 @@ std::vector<RecordedRequest> read_replay(const LoadOptions& options) {
   if (replay.empty()) throw LoadSetupError(options.replay_file + ": no requests to replay");
   // The log keeps keys, not the volume they were cut from: say which finest level the keys
   // need rather than let nearly every one be refused as out of range.
+  // At level l a volume of 2^L cells has 2^(L - l) / B bricks a side: coordinate c needs
+  // L >= l + log2 B + bit_width(c).
+  const int log2_brick = std::countr_zero(static_cast<unsigned>(options.brick_size));
   int needed = 0;
   for (const RecordedRequest& r : replay) {
-    const int64_t widest = std::max({r.x, r.y, r.z, 0});
-    int log2_bricks = 0;
-    while ((int64_t{1} << log2_bricks) <= widest && log2_bricks < 40) ++log2_bricks;
-    needed = std::max(needed, r.level + log2_bricks +
-                                  std::countr_zero(static_cast<unsigned>(options.brick_size)));
+    const auto widest = static_cast<uint32_t>(std::max({r.x, r.y, r.z, 0}));
+    needed = std::max(needed, r.level + log2_brick + static_cast<int>(std::bit_width(widest)));
   }
   if (needed > options.finest_level) {
     throw LoadSetupError(options.replay_file + ": its keys need --finest-level " +

@@ -1,15 +1,13 @@
 #include "load_options.h"
 
 #include <CLI/CLI.hpp>
-#include <array>
-#include <charconv>
 #include <cmath>
 #include <map>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include "soltex/cli/tool_cli.h"
+#include "soltex/common/spec_error.h"
 
 namespace soltex::load {
 
@@ -66,13 +64,6 @@ void require(bool condition, const std::string& message) {
   if (!condition) throw LoadOptionsError(message);
 }
 
-// The shortest text that reads back as `value`: 0.5, 1e+300 (not 300 digits), nan.
-std::string text(double value) {
-  std::array<char, 32> buffer{};
-  const auto [end, error] = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return error == std::errc() ? std::string(buffer.data(), end) : std::to_string(value);
-}
-
 // An enum option spelled by name: help shows "hot|uniform|replay" and the default's name.
 template <typename Enum>
 void add_choice(CLI::App& app, const char* name, Enum& value,
@@ -106,8 +97,8 @@ void resolve(LoadOptions& o) {
                                                              std::to_string(B::kMaxStreams) + "]");
   if (o.duration_seconds) {
     require(*o.duration_seconds > 0.0 && *o.duration_seconds <= B::kMaxSeconds,
-            "--duration-s " + text(*o.duration_seconds) + ": must be in (0, " +
-                text(B::kMaxSeconds) + "] seconds");
+            "--duration-s " + spec_number_text(*o.duration_seconds) + ": must be in (0, " +
+                spec_number_text(B::kMaxSeconds) + "] seconds");
   }
   if (o.count) {
     require(*o.count >= 1 && *o.count <= B::kMaxCount, "--count " + std::to_string(*o.count) +
@@ -117,27 +108,27 @@ void resolve(LoadOptions& o) {
   // Always bounded: a count alone still stops at the time cap.
   if (!o.duration_seconds && !o.count) o.duration_seconds = B::kDefaultDurationSeconds;
   require(o.warmup_seconds >= 0.0 && o.warmup_seconds <= B::kMaxSeconds,
-          "--warmup-s " + text(o.warmup_seconds) + ": must be in [0, " + text(B::kMaxSeconds) +
-              "] seconds");
+          "--warmup-s " + spec_number_text(o.warmup_seconds) + ": must be in [0, " +
+              spec_number_text(B::kMaxSeconds) + "] seconds");
   require(o.drain_timeout_seconds >= 0.0 && o.drain_timeout_seconds <= B::kMaxSeconds,
-          "--drain-timeout-s " + text(o.drain_timeout_seconds) + ": must be in [0, " +
-              text(B::kMaxSeconds) + "] seconds");
+          "--drain-timeout-s " + spec_number_text(o.drain_timeout_seconds) + ": must be in [0, " +
+              spec_number_text(B::kMaxSeconds) + "] seconds");
   require(o.in_flight >= 1 && o.in_flight <= B::kMaxInFlight,
           "--in-flight " + std::to_string(o.in_flight) + ": must be in [1, " +
               std::to_string(B::kMaxInFlight) + "]");
   if (o.rate) {
-    require(*o.rate > 0.0 && *o.rate <= B::kMaxRate, "--rate " + text(*o.rate) +
-                                                         ": must be in (0, " + text(B::kMaxRate) +
-                                                         "] bricks per second");
+    require(*o.rate > 0.0 && *o.rate <= B::kMaxRate,
+            "--rate " + spec_number_text(*o.rate) + ": must be in (0, " +
+                spec_number_text(B::kMaxRate) + "] bricks per second");
     require(o.replay_speed == 0.0, "--rate and --replay-speed both set the send times; give one");
   }
   require(o.hot_set >= 1 && o.hot_set <= B::kMaxHotSet, "--hot-set " + std::to_string(o.hot_set) +
                                                             ": must be in [1, " +
                                                             std::to_string(B::kMaxHotSet) + "]");
   require(o.invalid_fraction >= 0.0 && o.invalid_fraction <= 1.0,
-          "--invalid-fraction " + text(o.invalid_fraction) + ": must be in [0, 1]");
+          "--invalid-fraction " + spec_number_text(o.invalid_fraction) + ": must be in [0, 1]");
   require(o.replay_speed >= 0.0 && std::isfinite(o.replay_speed),
-          "--replay-speed " + text(o.replay_speed) + ": must be >= 0");
+          "--replay-speed " + spec_number_text(o.replay_speed) + ": must be >= 0");
   if (o.mix == MixKind::replay) {
     require(!o.replay_file.empty(), "--mix replay needs --replay-file FILE");
   } else {

@@ -1,8 +1,6 @@
 #include "soltex/capability/capability.h"
 
 #include <algorithm>
-#include <array>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -15,10 +13,10 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include "soltex/common/brick_cache.h"
+#include "soltex/common/spec_error.h"
 #include "soltex/net/local_brick_source.h"
 #include "soltex/render/frame_renderer.h"
 #include "soltex/render/prepared_scene.h"
@@ -38,13 +36,6 @@ std::size_t available_memory_mb() {
   return 1024;  // unknown: assume a modest machine
 }
 
-// The shortest text that reads back as `v` (16777216, not 1.67772e+07).
-std::string shortest(double v) {
-  std::array<char, 32> text{};
-  const auto [end, error] = std::to_chars(text.data(), text.data() + text.size(), v);
-  return error == std::errc() ? std::string(text.data(), end) : std::to_string(v);
-}
-
 double parse_number(const std::string& item, const std::string& value, double lo, double hi) {
   std::size_t used = 0;
   double v = 0.0;
@@ -55,8 +46,8 @@ double parse_number(const std::string& item, const std::string& value, double lo
   }
   if (used != value.size() || !std::isfinite(v) || v < lo || v > hi) {
     std::ostringstream message;
-    message << "--capability " << item << "=" << value << ": must be a number in [" << shortest(lo)
-            << ", " << shortest(hi) << "]";
+    message << "--capability " << item << "=" << value << ": must be a number in ["
+            << spec_number_text(lo) << ", " << spec_number_text(hi) << "]";
     throw std::invalid_argument(message.str());
   }
   return v;

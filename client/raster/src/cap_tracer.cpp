@@ -86,32 +86,52 @@ const CapTracer::Ray& CapTracer::ray_at(int x, int y, CapRayRows& rows) const {
   return ray;
 }
 
-bool CapTracer::trace(int x, int y, const glm::dmat4& texture_from_world, uint32_t plane_mask,
-                      CapRayRows& rows, CapSample& sample) const {
-  const Ray& ray = ray_at(x, y, rows);
-  double entry = 0.0;
-  std::size_t entry_plane = plane_count_;
+std::optional<CapTracer::Crossing> CapTracer::crossing(const Ray& ray, uint32_t plane_mask) const {
+  Crossing c{0.0, plane_count_, kInfinity};
   for (std::size_t j = 0; j < plane_count_; ++j) {
     if (((plane_mask >> j) & 1u) == 0) continue;  // this plane does not cut the object
     const double start = signed_distance(planes_[j], ray.origin);
-    if (start >= 0.0) continue;  // starts on the kept side: no entry through this plane
     const double along = glm::dot(glm::dvec3(planes_[j]), ray.direction);
-    if (!(along > 0.0)) return false;  // never reaches the kept side
+    if (start >= 0.0) {
+      // Starts on the kept side: no entry through this plane, an exit where it heads out.
+      if (along < 0.0) c.exit = std::min(c.exit, -start / along);
+      continue;
+    }
+    if (!(along > 0.0)) return std::nullopt;  // never reaches the kept side
     const double t = -start / along;
-    if (t > entry) {
-      entry = t;
-      entry_plane = j;
+    if (t > c.entry) {
+      c.entry = t;
+      c.entry_plane = j;
     }
   }
-  if (entry_plane == plane_count_ || !std::isfinite(entry)) return false;
+  return c;
+}
 
-  const glm::dvec4& plane = planes_[entry_plane];
-  const glm::dvec3 point = ray.origin + entry * ray.direction;
+bool CapTracer::trace(int x, int y, const glm::dmat4& texture_from_world, uint32_t plane_mask,
+                      CapRayRows& rows, CapSample& sample) const {
+  const Ray& ray = ray_at(x, y, rows);
+  const std::optional<Crossing> c = crossing(ray, plane_mask);
+  return c && cap_at(x, y, ray, *c, texture_from_world, rows, sample);
+}
+
+bool CapTracer::trace_through(int x, int y, const glm::dmat4& texture_from_world,
+                              uint32_t plane_mask, CapRayRows& rows, CapSample& sample) const {
+  const Ray& ray = ray_at(x, y, rows);
+  const std::optional<Crossing> c = crossing(ray, plane_mask);
+  return c && c->entry < c->exit && cap_at(x, y, ray, *c, texture_from_world, rows, sample);
+}
+
+bool CapTracer::cap_at(int x, int y, const Ray& ray, const Crossing& c,
+                       const glm::dmat4& texture_from_world, CapRayRows& rows,
+                       CapSample& sample) const {
+  if (c.entry_plane == plane_count_ || !std::isfinite(c.entry)) return false;
+  const glm::dvec4& plane = planes_[c.entry_plane];
+  const glm::dvec3 point = ray.origin + c.entry * ray.direction;
   const glm::dvec4 clip = clip_from_world_ * glm::dvec4(point, 1.0);
   const glm::dmat3 texture_linear(texture_from_world);
 
   sample.texture_position = glm::dvec3(texture_from_world * glm::dvec4(point, 1.0));
-  sample.normal = cap_normals_[entry_plane];
+  sample.normal = cap_normals_[c.entry_plane];
   sample.depth = to_float_saturated(clip.z / clip.w * 0.5 + 0.5);
   // The same plane seen through the next pixel to the right and the next one down.
   double footprint = 0.0;
@@ -122,26 +142,6 @@ bool CapTracer::trace(int x, int y, const glm::dmat4& texture_from_world, uint32
   }
   sample.footprint = to_footprint(footprint);
   return true;
-}
-
-bool CapTracer::trace_through(int x, int y, const glm::dmat4& texture_from_world,
-                              uint32_t plane_mask, CapRayRows& rows, CapSample& sample) const {
-  const Ray& ray = ray_at(x, y, rows);
-  double entry = 0.0;
-  double exit = kInfinity;
-  for (std::size_t j = 0; j < plane_count_; ++j) {
-    if (((plane_mask >> j) & 1u) == 0) continue;
-    const double start = signed_distance(planes_[j], ray.origin);
-    const double along = glm::dot(glm::dvec3(planes_[j]), ray.direction);
-    if (start < 0.0) {
-      if (!(along > 0.0)) return false;
-      entry = std::max(entry, -start / along);
-    } else if (along < 0.0) {
-      exit = std::min(exit, -start / along);
-    }
-  }
-  if (!(entry < exit)) return false;
-  return trace(x, y, texture_from_world, plane_mask, rows, sample);
 }
 
 void CapTracer::trace_run(int x_begin, int x_end, int y, const glm::dmat4& texture_from_world,

@@ -6,6 +6,7 @@
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
+#include <optional>
 #include <span>
 
 #include "cap_kernels.h"
@@ -99,6 +100,18 @@ class CapTracer {
   Ray ray_through(double pixel_x, double pixel_y) const;
   // The ray through pixel (x, y)'s centre, y the rows' row or the one below.
   const Ray& ray_at(int x, int y, CapRayRows& rows) const;
+  // Where a ray enters the kept region of the planes in a mask (the largest entry parameter,
+  // 0 and no plane when it starts inside) and where it leaves it (the smallest exit).
+  struct Crossing {
+    double entry;
+    std::size_t entry_plane;  // plane_count_ for none
+    double exit;
+  };
+  // Nothing when the ray never reaches the kept side of one of the planes.
+  std::optional<Crossing> crossing(const Ray& ray, uint32_t plane_mask) const;
+  // The cap where `ray` (pixel (x, y)'s) enters the region; false when it does not enter.
+  bool cap_at(int x, int y, const Ray& ray, const Crossing& c, const glm::dmat4& texture_from_world,
+              CapRayRows& rows, CapSample& sample) const;
 
   int width_;
   int height_;

@@ -229,12 +229,7 @@ void EdgeSampler::test_sample(const ScreenTriangle& t, const AffineForm* forms, 
   const bool nearer_beyond = tracked && depth < beyond_depth_[sample];
   if (!(nearer || nearer_beyond) || !(depth <= kFarDepth)) return;
   if (forms != nullptr) {
-    uint32_t failed = 0;
-    for (uint32_t planes = t.clip_mask; planes != 0; planes &= planes - 1) {
-      const int j = std::countr_zero(planes);
-      const AffineForm& form = forms[j];
-      if (form.at_vertex0 + form.per_x * dx + form.per_y * dy < 0.0f) failed |= 1u << j;
-    }
+    const uint32_t failed = failed_planes(t.clip_mask, forms, dx, dy);
     if (nearer_beyond && (failed & ~beyond_planes_) == 0) {
       beyond_depth_[sample] = depth;
       beyond_winner_[sample] = &t;
@@ -357,9 +352,9 @@ void EdgeSampler::resolve(const TileFrame& frame, EdgeSurfaces& out) const {
       const std::size_t i = layer.index(pixel.x - x0_, pixel.y - y0_);
       const ScreenTriangle& t = *surface.triangle;
       const ObjectFrame& object = frame.objects[t.object];
+      const int s = nearest_sample(slot, surface);
       // A back face seen past the kept region (seen()) is drawn only as its solid's cap.
-      const bool past = depth_[slot_sample(slot, nearest_sample(slot, surface))] ==
-                        std::numeric_limits<float>::infinity();
+      const bool past = depth_[slot_sample(slot, s)] == std::numeric_limits<float>::infinity();
       if (frame.caps != nullptr && t.back_face && object.source->closed) {
         cap_rays.begin(pixel.x, pixel.y);  // this pixel's ray and its neighbours', fresh
         CapSample cap;
@@ -376,7 +371,6 @@ void EdgeSampler::resolve(const TileFrame& frame, EdgeSurfaces& out) const {
         pixel.extra[static_cast<std::size_t>(j)] = 0;
         continue;
       }
-      const int s = nearest_sample(slot, surface);
       const glm::ivec2 o = offsets_[static_cast<std::size_t>(s)];
       write_triangle_surface(t, object.source->object_id, int64_t{pixel.x} * kSubpixelScale + o.x,
                              int64_t{pixel.y} * kSubpixelScale + o.y, depth_[slot_sample(slot, s)],

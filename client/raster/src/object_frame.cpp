@@ -20,7 +20,7 @@ uint32_t planes_keeping_the_eye(const RasterView& view) {
 }
 
 ObjectFrame make_object_frame(const RasterObject& object, const RasterView& view,
-                              std::size_t first_vertex) {
+                              std::size_t first_vertex, uint32_t keeping_eye) {
   const glm::dmat4 model(object.model);
   ObjectFrame frame;
   frame.source = &object;
@@ -38,10 +38,8 @@ ObjectFrame make_object_frame(const RasterObject& object, const RasterView& view
   const uint32_t planes_here = (1u << view.clip_planes.size()) - 1u;  // at most kMaxClipPlanes
   frame.cull_back_faces = object.cull_back_faces && (object.clip_plane_mask & planes_here) == 0;
   const uint32_t cutting = object.clip_plane_mask & planes_here;
-  const uint32_t keeping_eye = cutting & planes_keeping_the_eye(view);
-  if (object.closed && keeping_eye != 0 && keeping_eye != cutting) {
-    frame.beyond_planes = keeping_eye;
-  }
+  const uint32_t exits = cutting & keeping_eye;
+  if (object.closed && exits != 0 && exits != cutting) frame.beyond_planes = exits;
   return frame;
 }
 

@@ -36,7 +36,8 @@ struct ObjectFrame {
 // has no eye at a finite point.
 uint32_t planes_keeping_the_eye(const RasterView& view);
 
+// `keeping_eye`: planes_keeping_the_eye(view), made once for the frame's objects.
 ObjectFrame make_object_frame(const RasterObject& object, const RasterView& view,
-                              std::size_t first_vertex);
+                              std::size_t first_vertex, uint32_t keeping_eye);
 
 }  // namespace soltex::raster_internal

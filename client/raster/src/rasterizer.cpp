@@ -260,8 +260,10 @@ void Rasterizer::Impl::transform_vertices(const RasterView& view,
     std::size_t object, begin, end;
   };
   std::vector<VertexBlock> blocks;
+  const uint32_t keeping_eye = raster_internal::planes_keeping_the_eye(view);
   for (std::size_t i = 0; i < sources.size(); ++i) {
-    objects.push_back(raster_internal::make_object_frame(sources[i], view, vertex_count));
+    objects.push_back(
+        raster_internal::make_object_frame(sources[i], view, vertex_count, keeping_eye));
     const std::size_t positions = sources[i].mesh.positions.size();
     for (std::size_t begin = 0; begin < positions; begin += kVerticesPerBlock) {
       blocks.push_back({i, begin, std::min(positions, begin + kVerticesPerBlock)});

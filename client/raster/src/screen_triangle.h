@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>
@@ -39,6 +40,18 @@ struct AffineForm {
   float per_x = 0.0f;
   float per_y = 0.0f;
 };
+
+// The clip planes of `mask` whose form (forms[j] for plane j) is negative at (dx, dy) from
+// the triangle's first vertex: those that discard the fragment there.
+inline uint32_t failed_planes(uint32_t mask, const AffineForm* forms, float dx, float dy) {
+  uint32_t failed = 0;
+  for (; mask != 0; mask &= mask - 1) {
+    const int j = std::countr_zero(mask);
+    const AffineForm& form = forms[j];
+    if (form.at_vertex0 + form.per_x * dx + form.per_y * dy < 0.0f) failed |= 1u << j;
+  }
+  return failed;
+}
 
 // Laid out for the tile pass: what drawing reads (positions, bounds, depth, clip mask) fills
 // the first 64-byte line, so a triangle drawn into a tile and beaten there costs one line;

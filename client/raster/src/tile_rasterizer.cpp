@@ -19,17 +19,6 @@ constexpr float kFarDepth = 1.0f;
 // loop.
 constexpr int kVectorColumns = 8;
 
-// The planes of `mask` whose clip form is negative at (dx, dy) from the triangle's vertex 0.
-uint32_t failed_planes(uint32_t mask, const AffineForm* forms, float dx, float dy) {
-  uint32_t failed = 0;
-  for (; mask != 0; mask &= mask - 1) {
-    const int j = std::countr_zero(mask);
-    const AffineForm& form = forms[j];
-    if (form.at_vertex0 + form.per_x * dx + form.per_y * dy < 0.0f) failed |= 1u << j;
-  }
-  return failed;
-}
-
 // Pixels [i, i + count) of one row: nothing drawn.
 void write_empty(const GBufferPlanes& target, std::size_t i, std::size_t count) {
   std::fill_n(target.depth + i, count, std::numeric_limits<float>::infinity());

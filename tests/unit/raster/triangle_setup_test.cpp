@@ -161,7 +161,7 @@ TEST(TriangleSetup, RangesInLanesSetUpWhatSetupDoes) {
     for (const raster_test::Mesh& mesh : meshes) vertex_count += mesh.positions.size();
     vertices.resize(vertex_count, plane_count);
     for (std::size_t o = 0, first = 0; o < kObjects; first += meshes[o].positions.size(), ++o) {
-      frames[o] = make_object_frame(objects[o], view, first);
+      frames[o] = make_object_frame(objects[o], view, first, planes_keeping_the_eye(view));
       transform_vertices(frames[o], 0, meshes[o].positions.size(), vertices);
       setup.project_vertices(vertices, first, first + meshes[o].positions.size());
       write_plane_distances(frames[o], 0, meshes[o].positions.size(), vertices);

@@ -73,7 +73,7 @@ Case make_case(std::size_t count, bool with_normals, uint64_t seed, std::size_t 
   view.width = kWidth;
   view.height = kHeight;
   view.view_projection = raster_test::perspective_look_at({0, 0, 0}, {0, 0, -1}, kWidth, kHeight);
-  c.frame = make_object_frame(c.object, view, first_vertex);
+  c.frame = make_object_frame(c.object, view, first_vertex, planes_keeping_the_eye(view));
   return c;
 }
 
