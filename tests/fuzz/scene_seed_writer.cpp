@@ -113,7 +113,7 @@ constexpr NamedText kScenes[] = {
                                        "twist": 0.5, "jitter": 0.6, "jitter_scale": 4,
                                        "grain_fraction": 0.2}},
                   "space": "world", "unlit": true}},
-    {"name": "box", "mesh": {"box": {"size": [1.6, 0.2, 1], "subdivisions": 3}},
+    {"name": "box", "mesh": {"box": {"size": [1.6, 0.2, 1], "subdivisions": 3}}, "solid": true,
      "transform": {"translate": {"x": 2.4, "y": 0, "z": 0}, "rotate": [25, 35, 0]},
      "material": {"texture": {"checker": {"size": [0.4, 0.4, 0.4], "offset": 0.5,
                                           "three_d": true},

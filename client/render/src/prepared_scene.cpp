@@ -62,6 +62,7 @@ PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolut
     p.raster.texture_from_object = texture_from_object;
     p.raster.object_id = id++;
     p.raster.cull_back_faces = !object.double_sided;
+    p.raster.closed = object.solid.value_or(true);
     p.raster.clip_plane_mask = 0;
     for (const ClipPlane& plane : object.clip_planes) {
       const glm::dvec4 raster_plane(-plane.normal, plane.offset);

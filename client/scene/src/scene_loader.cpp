@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -14,6 +15,7 @@
 #include "soltex/common/spec_error.h"
 #include "soltex/common/text_file.h"
 #include "soltex/scene/mesh_lod.h"
+#include "soltex/scene/mesh_openings.h"
 #include "soltex/scene/mesh_order.h"
 #include "soltex/scene/obj_loader.h"
 #include "soltex/scene/scene_error.h"
@@ -326,6 +328,23 @@ void read_clip_plane(const JsonValue& value, Scene& scene,
   }
 }
 
+// Whether each object a clip plane cuts is a solid, as its scene says or else by the openings
+// of its mesh, measured once per mesh. Uncut objects draw no caps, so theirs is not measured.
+void decide_solids(Scene& scene, const std::vector<MeshRequest>& meshes,
+                   const std::vector<std::optional<bool>>& solid_given) {
+  std::map<std::string, bool> measured;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    SceneObject& object = scene.objects[i];
+    if (solid_given[i]) {
+      object.solid = solid_given[i];
+    } else if (!object.clip_planes.empty()) {
+      const auto [at, fresh] = measured.try_emplace(meshes[i].cache_key, false);
+      if (fresh) at->second = opening_fraction(*object.mesh) <= kMostOpeningOfASolid;
+      object.solid = at->second;
+    }
+  }
+}
+
 std::shared_ptr<const Mesh> build_mesh(const MeshRequest& request, const std::string& file) {
   if (const auto* shape = std::get_if<BuiltinShape>(&request.source)) {
     return std::make_shared<const Mesh>(make_mesh(*shape));
@@ -406,6 +425,7 @@ Scene parse_scene(std::string_view json_text, const std::string& name_for_errors
   const std::vector<JsonValue> object_values = objects.elements(SceneLimits::kMaxObjects);
   if (object_values.empty()) objects.fail("a scene needs at least one object");
   std::vector<MeshRequest> meshes;
+  std::vector<std::optional<bool>> solid_given;
   std::map<std::string, std::size_t> object_by_name;
   for (const JsonValue& value : object_values) {
     const std::size_t index = scene.objects.size();
@@ -433,6 +453,8 @@ Scene parse_scene(std::string_view json_text, const std::string& name_for_errors
     }
     object.material = read_material(fields.get("material"));
     object.double_sided = fields.boolean("double_sided", true);
+    const auto solid = fields.find("solid");
+    solid_given.push_back(solid ? std::optional(solid->boolean()) : std::nullopt);
     fields.reject_unknown_keys();
     scene.objects.push_back(std::move(object));
   }
@@ -463,6 +485,7 @@ Scene parse_scene(std::string_view json_text, const std::string& name_for_errors
     scene.objects[i].mesh = mesh;
   }
   for (std::size_t i = 0; i < scene.objects.size(); ++i) check_volume(scene.objects[i], i, file);
+  decide_solids(scene, meshes, solid_given);
   // Simplified once all meshes are in: a scene past the triangle bound costs no simplification.
   std::map<std::string, std::shared_ptr<const std::vector<MeshLevel>>> simplified;
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {

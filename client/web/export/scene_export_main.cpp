@@ -14,6 +14,7 @@
 
 #include "soltex/cli/tool_cli.h"
 #include "soltex/scene/default_scene.h"
+#include "soltex/scene/mesh_openings.h"
 #include "soltex/scene/scene_loader.h"
 #include "soltex/scene/texture_spec_json.h"
 #include "soltex/scene/texture_volume.h"
@@ -117,6 +118,9 @@ json export_scene(const soltex::Scene& scene, int finest_level) {
     o["world_to_volume"] = world_to_volume(object, volume);
     o["name"] = object.name;
     o["double_sided"] = object.double_sided || !object.clip_planes.empty();
+    // Measured here for uncut objects too: the page's own cutting plane may cut them.
+    o["solid"] = object.solid.value_or(soltex::opening_fraction(*object.mesh) <=
+                                       soltex::kMostOpeningOfASolid);
     o["registration"] = registration(object, finest_level);
     o["specular"] = object.material.specular;
     o["shininess"] = object.material.shininess;

@@ -44,6 +44,7 @@ uniform float specular;
 uniform float shininess;
 uniform bool unlit;
 uniform int clipCount;
+uniform bool solid;
 uniform vec4 clipPlanes[5];
 uniform bool showLevels;
 uniform mat4 worldToVolume;
@@ -96,7 +97,7 @@ void main() {
   vec3 surface = vWorld;
   vec3 n = normalize(vNormal);
   vec3 texcoord = vTex;
-  if (clipCount > 0 && !gl_FrontFacing) {
+  if (clipCount > 0 && solid && !gl_FrontFacing) {
     vec3 ray = vWorld - cameraPosition;
     float best = 1.0;
     for (int i = 0; i < clipCount; ++i) {
@@ -180,6 +181,7 @@ export interface DrawObject {
   shininess: number;
   unlit: boolean;
   doubleSided: boolean;
+  solid: boolean;
   clipPlanes: number[][];
   worldToVolume: Float32Array;
 }
@@ -239,6 +241,7 @@ export class Renderer {
       gl.uniformMatrix4fv(this.u("worldToVolume"), false, o.worldToVolume);
       const planes = options.extraClip ? [...o.clipPlanes, options.extraClip] : o.clipPlanes;
       gl.uniform1i(this.u("clipCount"), Math.min(5, planes.length));
+      gl.uniform1i(this.u("solid"), o.solid ? 1 : 0);
       planes.slice(0, 5).forEach((p, i) => gl.uniform4fv(this.u(`clipPlanes[${i}]`), p));
       if (o.doubleSided || planes.length > 0) gl.disable(gl.CULL_FACE);
       else gl.enable(gl.CULL_FACE);

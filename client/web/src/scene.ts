@@ -20,6 +20,7 @@ export interface SceneObject {
   shininess: number;
   unlit: boolean;
   double_sided: boolean;
+  solid: boolean; // a clip plane shows its inside (a cap); a sheet shows its other side
   clip_planes: [number, number, number, number][];
   world_to_volume: number[]; // column-major 4x4
 }

@@ -306,5 +306,31 @@ TEST(FrameRenderer, SimplifiedLevelsDrawNearlyTheSamePicture) {
   EXPECT_GT(psnr(simplified.image, whole.image), 40.0);
 }
 
+// A sheet cut by a clip plane and seen from below, through the plane, shows its underside, not
+// a cap: it has no inside. Told it is a solid, the same view is all cap where the underside
+// showed.
+TEST(FrameRenderer, ACutSheetShowsItsUndersideAndNoCap) {
+  RasterStats drawn[2];
+  for (const bool told_solid : {false, true}) {
+    const std::string solid = told_solid ? R"("solid": true,)" : "";
+    const Scene scene = parse_scene(R"({
+      "camera": {"position": [3, -2, 0.2], "target": [-0.3, 0, 0], "up": [0, 0, 1]},
+      "objects": [{"name": "sheet", "mesh": {"plane": {"size": 2, "subdivisions": 4}},)" +
+                                        solid + R"(
+                   "material": {"texture": {"checker": {"size": [0.25, 0.25, 0.25]}}}}],
+      "clip_planes": [{"normal": [1, 0, 0], "offset": 0.5}]
+    })",
+                                    "sheet.json");
+    BrickCache cache(64u << 20);
+    net::LocalBrickSource source(cache);
+    const PreparedScene prepared = prepare_scene(scene, TextureResolution{7, 16, {}}, source);
+    FrameRenderer renderer(cache, RenderOptions{.threads = 1});
+    drawn[told_solid] = renderer.render(prepared, scene.camera, 160, 120).stats.raster;
+  }
+  EXPECT_GT(drawn[false].back_face_pixels, 2000u) << "the underside fills the view";
+  EXPECT_EQ(drawn[false].cap_pixels, 0u);
+  EXPECT_EQ(drawn[true].cap_pixels, drawn[false].back_face_pixels);
+}
+
 }  // namespace
 }  // namespace soltex

@@ -130,6 +130,7 @@ TEST(ParseScene, ReadsEveryField) {
       {"name": "a", "mesh": {"torus": {"major_radius": 2, "minor_radius": 0.5,
                                        "major_segments": 8, "minor_segments": 6}},
        "transform": {"translate": [1, 0, 0], "rotate": [90, 0, 0], "scale": [1, 2, 3]},
+       "solid": false,
        "material": {"texture": {"wood": {"ring_spacing": 0.2}, "channels": ["colour", "specular"],
                                 "specular": {"low": 0.1, "high": 0.9}},
                     "space": "world",
@@ -200,6 +201,11 @@ TEST(ParseScene, ReadsEveryField) {
   EXPECT_EQ(b.clip_planes[1].offset, 1.0) << "offset = dot(normal, point)";
   EXPECT_EQ(std::get<PlaneShape>(std::get<BuiltinShape>(scene.objects[2].source)).size,
             glm::dvec2(3.0));
+  // Caps need a solid: as the scene says for the torus, as the meshes' openings say for the
+  // closed box and the plane, a sheet.
+  EXPECT_EQ(a.solid, false);
+  EXPECT_EQ(b.solid, true);
+  EXPECT_EQ(scene.objects[2].solid, false);
 }
 
 // One bad scene per row: the error must name the file, the field path and the problem.
@@ -245,6 +251,8 @@ INSTANTIATE_TEST_SUITE_P(
                  "objects[0].transform.rotate", "expected 3 numbers"},
         BadScene{"DoubleSidedNotABoolean", [](json& s) { first_object(s)["double_sided"] = "no"; },
                  "objects[0].double_sided", "expected true or false, found a string"},
+        BadScene{"SolidNotABoolean", [](json& s) { first_object(s)["solid"] = 1; },
+                 "objects[0].solid", "expected true or false, found a number"},
         BadScene{"MissingMaterial", [](json& s) { first_object(s).erase("material"); },
                  "objects[0].material", "missing required field"},
         BadScene{"MissingObjects", [](json& s) { s.erase("objects"); }, "objects",

@@ -16,12 +16,12 @@ struct RasterObject {
   // world-space texture pass texture_from_world * model.
   glm::dmat4 texture_from_object{1.0};
   uint32_t object_id = 0;  // copied to every pixel the object wins
-  // The mesh bounds a solid (closed, consistently wound). Only then is a back face seen
-  // through a user clip plane the inside of the solid, drawn as a cap; for an open mesh
-  // (a sheet, a ground plane) it stays a back face.
   // Which of the view's clip planes cut this object: bit j selects RasterView::clip_planes[j].
   // A scene's plane usually cuts one object and leaves the others whole.
   uint32_t clip_plane_mask = ~0u;
+  // The mesh bounds a solid. Only then is a back face seen through a user clip plane the
+  // inside of the solid, drawn as a cap; for a sheet (a ground plane, a terrain) it stays a
+  // back face.
   bool closed = true;
   // Draw front faces only (OpenGL's glCullFace(GL_BACK), glTF's doubleSided: false): back
   // faces are dropped at set-up, before they cost any drawing. For a closed mesh seen from

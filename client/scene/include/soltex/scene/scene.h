@@ -40,6 +40,11 @@ struct SceneObject {
   // closed mesh seen from outside the picture is the same; an open one shows nothing through
   // its holes. Objects cut by a clip plane draw both faces regardless (caps need them).
   bool double_sided = true;
+  // The mesh bounds a solid, so a clip plane shows its inside as a cap where the view passes
+  // through its back faces; a sheet's back faces show as its other side. The scene's "solid",
+  // or for a cut object what its mesh's openings say (mesh_openings.h); unset for an uncut
+  // object the scene says nothing of, which draws no caps.
+  std::optional<bool> solid;
 };
 
 struct ImageSize {
