@@ -174,6 +174,22 @@ class Lowering {
   CanonicalWriter writer_;
 };
 
+// A constant operand's width: its slot's, or for a slot of any type the constant's own shape.
+// Only a slot of the working type takes the working type's (a number broadcast to it).
+int constant_components(Slot slot, ValueType working, const InputValue& constant) {
+  switch (slot) {
+    case Slot::float_:
+      return 1;
+    case Slot::position:
+    case Slot::any_vector:
+      return 3;
+    case Slot::any:
+      return std::holds_alternative<glm::dvec3>(constant) ? 3 : 1;
+    default:
+      return components(working);
+  }
+}
+
 int Lowering::lower_operand(const Node& node, const InputDef& def, ValueType working,
                             Instruction& instr) {
   const InputValue* value = find_input(node, def.name);
@@ -186,8 +202,8 @@ int Lowering::lower_operand(const Node& node, const InputDef& def, ValueType wor
     reg = program_->position;
     writer_.u8(0x50);  // 'P'
   } else {
-    const int comps = def.slot == Slot::float_ ? 1 : components(working);
-    reg = constant_register(value ? *value : InputValue(def.fallback), comps);
+    const InputValue constant = value ? *value : InputValue(def.fallback);
+    reg = constant_register(constant, constant_components(def.slot, working, constant));
   }
   instr.in[static_cast<std::size_t>(instr.operand_count++)] = reg;
   return reg;

@@ -232,6 +232,40 @@ TEST(GraphEvaluation, VectorNodes) {
   EXPECT_FLOAT_EQ(c.b, 0.5f);
 }
 
+// A constant vector given to an input of any type or a position keeps all three components
+// whatever the node's own type, and each component is part of the texture's id.
+TEST(GraphEvaluation, ConstantVectorsKeepEveryComponent) {
+  const glm::dvec3 v(0.2, 0.4, 0.6);
+  const auto colour_of = [](const TextureGraph& g) {
+    return TextureEvaluator(spec_of(g)).sample(glm::dvec3(0.3, -0.1, 0.9)).colour;
+  };
+  const glm::vec3 converted =
+      colour_of({{node("c", "convert", {{"in", v}}, "color3")}, {{Channel::colour, "c"}}});
+  EXPECT_FLOAT_EQ(converted.g, 0.4f);
+  EXPECT_FLOAT_EQ(converted.b, 0.6f);
+  const glm::vec3 extracted = colour_of({{node("z", "extract", {{"in", v}, {"index", 2.0}}),
+                                          node("c", "convert", {{"in", ref("z")}}, "color3")},
+                                         {{Channel::colour, "c"}}});
+  EXPECT_FLOAT_EQ(extracted.r, 0.6f);
+  const glm::vec3 dot = colour_of(
+      {{node("d", "dotproduct", {{"in1", glm::dvec3(1.0)}, {"in2", glm::dvec3(0.5, 0.0, 0.25)}}),
+        node("c", "convert", {{"in", ref("d")}}, "color3")},
+       {{Channel::colour, "c"}}});
+  EXPECT_FLOAT_EQ(dot.r, 0.75f);
+  // Noise at a constant position is one value everywhere.
+  TextureGraph noise{
+      {node("n", "noise3d", {{"position", v}}), node("c", "convert", {{"in", ref("n")}}, "color3")},
+      {{Channel::colour, "c"}}};
+  const TextureEvaluator constant_noise(spec_of(noise));
+  EXPECT_EQ(constant_noise.sample(glm::dvec3(0.0)).colour,
+            constant_noise.sample(glm::dvec3(3.7, -1.2, 8.5)).colour);
+  const Volume volume;
+  TextureGraph other_noise = noise;
+  other_noise.nodes[0].inputs[0].value = glm::dvec3(0.2, 9.0, 0.1);
+  EXPECT_NE(texture_id(spec_of(noise), volume, 16, MipSettings{}),
+            texture_id(spec_of(other_noise), volume, 16, MipSettings{}));
+}
+
 TEST(GraphEvaluation, WorleyFeaturesAreOrdered) {
   const auto at = [](const char* feature, glm::dvec3 p) {
     TextureGraph g{{node("w", "worleynoise3d", {{"feature", std::string(feature)}}),
