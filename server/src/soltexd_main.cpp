@@ -1,10 +1,10 @@
 // soltexd: evaluates procedural texture bricks on request and streams them over gRPC.
-#include <signal.h>
 #include <spdlog/spdlog.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <stdexcept>
 
@@ -73,6 +73,9 @@ int main(int argc, char** argv) {
   soltex::cli::start_logging("soltexd", config.log_level, soltex::cli::LogStyle::timestamped);
   soltex::server::route_grpc_logs_to_spdlog();
   soltex::cli::prepare_for_grpc_streams();
+  // A log reader that goes away (a pipe to a restarted shipper) must not stop the service: its
+  // lines are lost, and a write to the closed pipe fails instead of killing soltexd.
+  std::signal(SIGPIPE, SIG_IGN);
   raise_descriptor_limit();
 
   // A ready file says "serving now": one left by an earlier run that is gone must not say so

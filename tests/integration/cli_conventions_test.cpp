@@ -248,6 +248,21 @@ TEST_F(SoltexdCli, RunsFromTheEnvironmentAndLogsOnStderr) {
   }
 }
 
+// A write to a log pipe whose reader went away raises SIGPIPE: soltexd ignores it and serves on.
+TEST_F(SoltexdCli, ALogPipeClosingDoesNotStopIt) {
+  const std::filesystem::path ready = directory_ / "ready";
+  ToolProcess soltexd(SOLTEXD_BINARY,
+                      {"--listen", "127.0.0.1:0", "--metrics-listen", "127.0.0.1:0", "--ready-file",
+                       ready.string(), "--shutdown-grace-s", "0"},
+                      {}, directory_);
+  ASSERT_TRUE(wait_for_file(ready));
+  soltexd.signal(SIGPIPE);
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  soltexd.signal(SIGTERM);
+  const ToolRun r = soltexd.finish();
+  EXPECT_EQ(r.exit_code, 0) << "ended by a signal (-1) rather than by its SIGTERM: " << r.err;
+}
+
 TEST_F(SoltexdCli, TheOldEnvironmentNameStillWorks) {
   const std::filesystem::path ready = directory_ / "ready";
   ToolProcess soltexd(SOLTEXD_BINARY,

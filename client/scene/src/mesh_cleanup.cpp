@@ -2,9 +2,12 @@
 
 #include <meshoptimizer.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <glm/geometric.hpp>
+#include <utility>
+#include <vector>
 
 namespace soltex {
 namespace {
@@ -68,6 +71,30 @@ std::size_t drop_degenerate_triangles(const std::vector<Position>& positions,
     indices[3 * kept] = a;
     indices[3 * kept + 1] = b;
     indices[3 * kept + 2] = c;
+    ++kept;
+  }
+  indices.resize(3 * kept);
+  return count - kept;
+}
+
+std::size_t drop_duplicate_triangles(std::vector<uint32_t>& indices) {
+  using Corners = std::array<uint32_t, 3>;
+  const std::size_t count = indices.size() / 3;
+  std::vector<std::pair<Corners, uint32_t>> sorted(count);
+  for (std::size_t t = 0; t < count; ++t) {
+    Corners corners{indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
+    std::sort(corners.begin(), corners.end());
+    sorted[t] = {corners, static_cast<uint32_t>(t)};
+  }
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<bool> dropped(count, false);
+  for (std::size_t i = 1; i < count; ++i) {
+    if (sorted[i].first == sorted[i - 1].first) dropped[sorted[i].second] = true;
+  }
+  std::size_t kept = 0;
+  for (std::size_t t = 0; t < count; ++t) {
+    if (dropped[t]) continue;
+    for (int k = 0; k < 3; ++k) indices[3 * kept + k] = indices[3 * t + k];
     ++kept;
   }
   indices.resize(3 * kept);

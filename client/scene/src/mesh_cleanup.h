@@ -23,6 +23,11 @@ template <class Position>
 std::size_t drop_degenerate_triangles(const std::vector<Position>& positions,
                                       std::vector<uint32_t>& indices);
 
+// Drops every triangle but the first over the same three vertices, in either winding: a face
+// written twice, or once each way to make it two-sided, would otherwise cancel its own vertex
+// normals and fight itself for depth. Returns how many it dropped.
+std::size_t drop_duplicate_triangles(std::vector<uint32_t>& indices);
+
 // Removes vertices no triangle uses, so they neither widen the bounds nor waste work.
 template <class Position>
 std::size_t remove_unreferenced_vertices(std::vector<Position>& positions,

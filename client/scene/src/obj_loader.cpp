@@ -9,6 +9,7 @@
 #include <fstream>
 #include <glm/common.hpp>
 #include <limits>
+#include <set>
 #include <span>
 #include <sstream>
 #include <utility>
@@ -31,6 +32,9 @@ struct WideMesh {
 void triangulate_faces(const ObjText& obj, const std::string& name, WideMesh& mesh,
                        ObjLoadStats& stats) {
   const std::size_t vertex_count = obj.positions.size();
+  // Polygons over the same vertices (a face written once each way): kept once, since their
+  // triangulations need not share a diagonal for drop_duplicate_triangles() to find.
+  std::set<std::vector<uint32_t>> polygons_seen;
   std::size_t next = 0;
   for (std::size_t f = 0; f < obj.face_sizes.size(); ++f) {
     ++stats.faces_read;
@@ -54,7 +58,15 @@ void triangulate_faces(const ObjText& obj, const std::string& name, WideMesh& me
                                  obj.bad_vertex_texts[k] + "\"");
       }
     }
-    if (polygon.size() > 3) ++stats.polygons_triangulated;
+    if (polygon.size() > 3) {
+      std::vector<uint32_t> corners(polygon.begin(), polygon.end());
+      std::sort(corners.begin(), corners.end());
+      if (!polygons_seen.insert(std::move(corners)).second) {
+        stats.duplicate_triangles_dropped += polygon.size() - 2;
+        continue;
+      }
+      ++stats.polygons_triangulated;
+    }
     triangulate_polygon(obj.positions, polygon, mesh.indices);
   }
 }
@@ -134,6 +146,7 @@ LoadedObj parse_obj(std::string_view text, const std::string& name_for_errors,
   // Cleaned in double, then again in float: points apart in the file can meet in float.
   stats.duplicate_vertices_merged = merge_duplicate_vertices(wide.positions, wide.indices);
   stats.degenerate_triangles_dropped = drop_degenerate_triangles(wide.positions, wide.indices);
+  stats.duplicate_triangles_dropped += drop_duplicate_triangles(wide.indices);
   stats.unreferenced_vertices_removed = remove_unreferenced_vertices(wide.positions, wide.indices);
   if (wide.indices.empty()) {
     throw ObjError(name_for_errors,
@@ -143,6 +156,7 @@ LoadedObj parse_obj(std::string_view text, const std::string& name_for_errors,
   mesh = to_float_mesh(std::move(wide), name_for_errors, options.normalize);
   stats.duplicate_vertices_merged += merge_duplicate_vertices(mesh.positions, mesh.indices);
   stats.degenerate_triangles_dropped += drop_degenerate_triangles(mesh.positions, mesh.indices);
+  stats.duplicate_triangles_dropped += drop_duplicate_triangles(mesh.indices);
   stats.unreferenced_vertices_removed += remove_unreferenced_vertices(mesh.positions, mesh.indices);
   if (mesh.triangle_count() == 0) {
     throw ObjError(name_for_errors, "all " + std::to_string(stats.faces_read) +

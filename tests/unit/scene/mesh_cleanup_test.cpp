@@ -23,9 +23,9 @@ f 3 5 4
   EXPECT_EQ(obj.stats.duplicate_vertices_merged, 2u);  // vertices 3 and 5
   EXPECT_EQ(obj.stats.degenerate_triangles_dropped, 0u);
   EXPECT_EQ(obj.mesh.vertex_count(), 3u);
-  ASSERT_EQ(obj.mesh.triangle_count(), 2u);
-  // The first of the duplicates keeps its place, so both faces name the same three vertices.
-  for (std::size_t k = 0; k < 3; ++k) EXPECT_EQ(obj.mesh.indices[k], obj.mesh.indices[3 + k]);
+  // Both faces then name the same three vertices: the second is a duplicate.
+  EXPECT_EQ(obj.stats.duplicate_triangles_dropped, 1u);
+  EXPECT_EQ(obj.mesh.triangle_count(), 1u);
 }
 
 TEST(MeshCleanup, PointsApartInTheFileButEqualInFloatAreMerged) {
@@ -44,6 +44,24 @@ f 4 5 3
   EXPECT_EQ(obj.stats.duplicate_vertices_merged, 1u);
   EXPECT_EQ(obj.mesh.vertex_count(), 4u);
   EXPECT_EQ(obj.mesh.triangle_count(), 3u);
+}
+
+// A face written once each way (a common way to export a two-sided sheet) is one face: kept
+// twice its vertex normals would cancel, and the two copies would fight for depth.
+TEST(MeshCleanup, AFaceWrittenInBothWindingsIsKeptOnce) {
+  const LoadedObj obj = parse_obj(R"(
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+f 1 2 3 4
+f 4 3 2 1
+f 1 2 3 4
+)",
+                                  "two-sided.obj");
+  EXPECT_EQ(obj.stats.duplicate_triangles_dropped, 4u);
+  ASSERT_EQ(obj.mesh.triangle_count(), 2u);
+  for (const glm::vec3& n : obj.mesh.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));
 }
 
 }  // namespace

@@ -225,7 +225,8 @@ TEST(ParseObjErrors, NameTheFileAndTheProblem) {
                                   HasSubstr("only 2 vertices")));
 
   EXPECT_THAT(obj_error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 1 2\n").what(),
-              HasSubstr("relative index before the first vertex"));
+              HasSubstr("uses relative index -4, but only 3 vertices are defined before it: at "
+                        "least -3"));
   EXPECT_THAT(obj_error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n").what(),
               AllOf(HasSubstr("bad.obj"), HasSubstr("line 4")));
   EXPECT_THAT(obj_error_of("v 0 0 0\nv 1 0 0\n").what(), HasSubstr("no faces"));

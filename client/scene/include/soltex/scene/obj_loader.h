@@ -46,6 +46,8 @@ struct ObjLoadStats {
   std::size_t faces_read = 0;
   std::size_t polygons_triangulated = 0;  // faces with more than three vertices
   std::size_t degenerate_triangles_dropped = 0;
+  // Over the same vertices, in either winding (a duplicate polygon counts its triangles).
+  std::size_t duplicate_triangles_dropped = 0;
   std::size_t duplicate_vertices_merged = 0;
   std::size_t unreferenced_vertices_removed = 0;
 };
