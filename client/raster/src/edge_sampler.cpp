@@ -358,10 +358,12 @@ void EdgeSampler::resolve(const TileFrame& frame, EdgeSurfaces& out) const {
       if (frame.caps != nullptr && t.back_face && object.source->closed) {
         cap_rays.begin(pixel.x, pixel.y);  // this pixel's ray and its neighbours', fresh
         CapSample cap;
-        if (past ? frame.caps->trace_through(pixel.x, pixel.y, object.texture_from_world,
+        const bool traced =
+            past ? frame.caps->trace_through(pixel.x, pixel.y, object.texture_from_world,
                                              object.source->clip_plane_mask, cap_rays, cap)
                  : frame.caps->trace(pixel.x, pixel.y, object.texture_from_world,
-                                     object.source->clip_plane_mask, cap_rays, cap)) {
+                                     object.source->clip_plane_mask, cap_rays, cap);
+        if (traced && object.may_hold_cap(cap.texture_position)) {
           write_cap_pixel(layer, i, object.source->object_id, cap);
           continue;
         }

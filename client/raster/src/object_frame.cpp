@@ -1,8 +1,11 @@
 #include "object_frame.h"
 
 #include <cmath>
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
+#include <glm/vector_relational.hpp>
+#include <limits>
 
 namespace soltex::raster_internal {
 
@@ -18,6 +21,32 @@ uint32_t planes_keeping_the_eye(const RasterView& view) {
   }
   return mask;
 }
+
+namespace {
+
+// The texture-space box of an object's bounds: its eight corners' box, padded for the float
+// rounding of the mesh's vertices and the transform.
+void set_texture_box(const RasterObject& object, ObjectFrame& frame) {
+  const glm::dvec3 low(object.bounds_min), high(object.bounds_max);
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!std::isfinite(low[axis]) || !std::isfinite(high[axis])) return;  // unbounded
+  }
+  frame.texture_min = glm::dvec3(std::numeric_limits<double>::infinity());
+  frame.texture_max = -frame.texture_min;
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::dvec3 p((corner & 1) ? high.x : low.x, (corner & 2) ? high.y : low.y,
+                       (corner & 4) ? high.z : low.z);
+    const glm::dvec3 t(object.texture_from_object * glm::dvec4(p, 1.0));
+    frame.texture_min = glm::min(frame.texture_min, t);
+    frame.texture_max = glm::max(frame.texture_max, t);
+  }
+  const glm::dvec3 pad = 1e-5 * (frame.texture_max - frame.texture_min) +
+                         1e-6 * glm::max(glm::abs(frame.texture_min), glm::abs(frame.texture_max));
+  frame.texture_min -= pad;
+  frame.texture_max += pad;
+}
+
+}  // namespace
 
 ObjectFrame make_object_frame(const RasterObject& object, const RasterView& view,
                               std::size_t first_vertex, uint32_t keeping_eye) {
@@ -40,6 +69,7 @@ ObjectFrame make_object_frame(const RasterObject& object, const RasterView& view
   const uint32_t cutting = object.clip_plane_mask & planes_here;
   const uint32_t exits = cutting & keeping_eye;
   if (object.closed && exits != 0 && exits != cutting) frame.beyond_planes = exits;
+  if (cutting != 0) set_texture_box(object, frame);
   return frame;
 }
 

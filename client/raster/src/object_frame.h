@@ -5,6 +5,8 @@
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec4.hpp>
+#include <glm/vector_relational.hpp>
+#include <limits>
 #include <span>
 
 #include "soltex/raster/raster_object.h"
@@ -30,6 +32,15 @@ struct ObjectFrame {
   // is told by the surface beyond (TileRasterizer's "beyond" fragments). Triangles wholly on
   // the cut side of these planes are drawn for that test alone. 0 for most objects.
   uint32_t beyond_planes = 0;
+  // RasterObject's bounds in texture space (their corners' box, padded by float rounding):
+  // where a cap of the object can lie.
+  glm::dvec3 texture_min{-std::numeric_limits<double>::infinity()};
+  glm::dvec3 texture_max{std::numeric_limits<double>::infinity()};
+
+  bool may_hold_cap(const glm::dvec3& texture_position) const {
+    return glm::all(glm::greaterThanEqual(texture_position, texture_min)) &&
+           glm::all(glm::lessThanEqual(texture_position, texture_max));
+  }
 };
 
 // The frame's clip planes whose kept side holds the eye (bit j for plane j); 0 when the view

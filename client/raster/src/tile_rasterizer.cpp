@@ -253,7 +253,8 @@ class TileResolve {
     cap_rays_ += static_cast<uint64_t>(end - x);
     const CapPixelLanes& cap = cap_lanes_;
     for (std::size_t k = 0; x < end; ++x, ++k) {
-      if (cap.hit[k] == 0) {
+      if (cap.hit[k] == 0 ||
+          !object.may_hold_cap(glm::dvec3(cap.texture_x[k], cap.texture_y[k], cap.texture_z[k]))) {
         add_pixel(row, x);
         continue;
       }
@@ -307,7 +308,7 @@ class TileResolve {
       ++cap_rays_;
       if (frame_.caps->trace_through(x, row.y, solid->texture_from_world,
                                      solid->source->clip_plane_mask, rays_, candidate) &&
-          candidate.depth < limit) {
+          candidate.depth < limit && solid->may_hold_cap(candidate.texture_position)) {
         limit = candidate.depth;
         cap = candidate;
         nearest = solid;
@@ -330,7 +331,8 @@ class TileResolve {
       if (own_cap) {
         ++cap_rays_;
         own_hit = frame_.caps->trace(x, row.y, object.texture_from_world,
-                                     object.source->clip_plane_mask, rays_, own);
+                                     object.source->clip_plane_mask, rays_, own) &&
+                  object.may_hold_cap(own.texture_position);
       }
       CapSample cap;
       const float depth = own_hit ? own.depth : row.depth[x - x0_];

@@ -63,6 +63,8 @@ PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolut
     p.raster.object_id = id++;
     p.raster.cull_back_faces = !object.double_sided;
     p.raster.closed = object.solid.value_or(true);
+    p.raster.bounds_min = mesh.bounds.min;
+    p.raster.bounds_max = mesh.bounds.max;
     p.raster.clip_plane_mask = 0;
     for (const ClipPlane& plane : object.clip_planes) {
       const glm::dvec4 raster_plane(-plane.normal, plane.offset);

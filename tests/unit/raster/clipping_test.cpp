@@ -288,6 +288,37 @@ TEST(ClipPlanes, SphereCutThroughItsCentreShowsTheCutFace) {
   EXPECT_TRUE(raster_test::all_values_sane(g));
 }
 
+// A box missing its +x face, cut at z = 0 and seen through the hole: the view meets the
+// inside of the far walls, which a closed solid would show as a cap where the ray crossed the
+// plane; here that crossing lies outside the box. Given the mesh's bounds, no cap is drawn
+// outside them: those pixels show the back faces instead.
+TEST(ClipPlanes, NoCapOutsideTheMeshsBounds) {
+  raster_test::Mesh open_box = raster_test::box({1.0f, 1.0f, 1.0f});
+  open_box.indices.erase(open_box.indices.begin() + 6, open_box.indices.begin() + 12);  // +x
+  const std::vector<glm::dvec4> planes = {{0.0, 0.0, -1.0, 0.0}};
+  const glm::mat4 view_projection =
+      raster_test::perspective_look_at({3.0f, 0.6f, 2.5f}, {0, 0, 0}, kWidth, kHeight);
+  Rasterizer rasterizer({.threads = 2});
+  const auto outside_caps = [&](const RasterObject& object, uint64_t& caps) {
+    GBuffer g;
+    caps = render_one(rasterizer, {kWidth, kHeight, view_projection, planes}, object, g).cap_pixels;
+    int outside = 0;
+    for (std::size_t i = 0; i < g.pixel_count(); ++i) {
+      const glm::dvec3 t = g.texture_position[i];
+      outside += g.is_cap(i) && glm::any(glm::greaterThan(glm::abs(t), glm::dvec3(1.0 + 1e-4)));
+    }
+    return outside;
+  };
+  RasterObject unbounded{open_box.view()};
+  uint64_t caps = 0;
+  EXPECT_GT(outside_caps(unbounded, caps), 500) << "the view does not pass through the hole";
+  RasterObject bounded = unbounded;
+  bounded.bounds_min = glm::vec3(-1.0f);
+  bounded.bounds_max = glm::vec3(1.0f);
+  EXPECT_EQ(outside_caps(bounded, caps), 0);
+  EXPECT_GT(caps, 500u) << "the caps inside the box stay";
+}
+
 // Seen from above, the cut sphere shows both the cap and the outside of what is left.
 TEST(ClipPlanes, ObliqueViewShowsCapAndRemainingSurface) {
   RasterObject object{unit_sphere().view()};

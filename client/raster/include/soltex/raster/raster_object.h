@@ -2,6 +2,8 @@
 
 #include <cstdint>
 #include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <limits>
 
 #include "soltex/raster/raster_mesh.h"
 
@@ -23,6 +25,10 @@ struct RasterObject {
   // inside of the solid, drawn as a cap; for a sheet (a ground plane, a terrain) it stays a
   // back face.
   bool closed = true;
+  // The mesh's object-space bounds, or unbounded. A cap lies inside its solid, so one traced
+  // outside them (through a hole, or a face wound the wrong way) is no cap.
+  glm::vec3 bounds_min{-std::numeric_limits<float>::infinity()};
+  glm::vec3 bounds_max{std::numeric_limits<float>::infinity()};
   // Draw front faces only (OpenGL's glCullFace(GL_BACK), glTF's doubleSided: false): back
   // faces are dropped at set-up, before they cost any drawing. For a closed mesh seen from
   // outside they are hidden anyway; an open mesh then shows nothing through its holes. Ignored
