@@ -297,6 +297,7 @@ void Daemon::shut_down() {
   spdlog::info("shutting down: health NOT_SERVING, open streams get {} s to send what they owe",
                config_.shutdown_grace_seconds);
   server_->GetHealthCheckService()->SetServingStatus(false);
+  if (http_) http_->stop_accepting();  // as gRPC takes no new calls during the grace
   finish_calls_within_grace();
   scheduler_.stop();
   if (http_) http_->stop();

@@ -312,13 +312,17 @@ void HttpBrickServer::reload_tls() {
   if (tls_) tls_->reload();
 }
 
-void HttpBrickServer::stop() {
-  if (threads_.empty()) return;
+void HttpBrickServer::stop_accepting() {
   net::post(acceptor_.get_executor(), [this] {
     beast::error_code ignored;
     acceptor_.close(ignored);
     retry_.cancel();
   });
+}
+
+void HttpBrickServer::stop() {
+  if (threads_.empty()) return;
+  stop_accepting();
   io_.stop();
   for (std::thread& thread : threads_) thread.join();
   threads_.clear();

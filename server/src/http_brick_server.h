@@ -42,6 +42,8 @@ class HttpBrickServer {
   ~HttpBrickServer();
 
   uint16_t port() const { return port_; }
+  // Shutdown's first step: new connections are refused from now on; open ones are served on.
+  void stop_accepting();
   void stop();
   // SIGHUP: the TLS files read again for later connections; throws, keeping the old, on error.
   void reload_tls();

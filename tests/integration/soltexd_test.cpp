@@ -1,7 +1,11 @@
 // soltexd over loopback: a real daemon process on port 0, real gRPC clients.
+#include <arpa/inet.h>
 #include <grpcpp/generic/generic_stub.h>
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <functional>
@@ -568,6 +572,46 @@ TEST(Soltexd, AHalfClosedStreamGetsEveryBrickItAskedForOnShutdown) {
   const grpc::Status status = stream->Finish();
   EXPECT_TRUE(status.ok()) << status.error_message();
   EXPECT_EQ(received, keys.size());
+  EXPECT_EQ(server.wait_for_exit(), 0) << server.log();
+}
+
+// Whether a TCP connection to 127.0.0.1:port is accepted.
+bool accepts_connections(int port) {
+  const int fd = socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in address{};
+  address.sin_family = AF_INET;
+  address.sin_port = htons(static_cast<uint16_t>(port));
+  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  const bool accepted = connect(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0;
+  close(fd);
+  return accepted;
+}
+
+// From SIGTERM on, the HTTP port takes no new connections either, while a gRPC stream still
+// gets its grace.
+TEST(Soltexd, HttpTakesNoNewConnectionsOnceShutdownBegins) {
+  SoltexdProcess server(
+      {"--threads", "1", "--shutdown-grace-s", "20", "--http-listen", "127.0.0.1:0"});
+  ASSERT_TRUE(accepts_connections(server.http_port()));
+  auto stub = connect(server);
+  const std::vector<v1::BrickKey> keys = slow_keys(*stub, 2, 200);
+  grpc::ClientContext context;
+  auto stream = stub->StreamBricks(&context);
+  ASSERT_TRUE(stream->Write(want(keys)));
+  ASSERT_TRUE(stream->WritesDone());
+  v1::BrickBatch batch;
+  ASSERT_TRUE(stream->Read(&batch));
+
+  server.send_signal(SIGTERM);
+  bool refused = false;
+  for (int i = 0; i < 200 && !refused; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    refused = !accepts_connections(server.http_port());
+  }
+  EXPECT_TRUE(refused) << "HTTP still accepted connections 2 s into the shutdown";
+  while (stream->Read(&batch)) {
+  }
+  EXPECT_TRUE(stream->Finish().ok()) << "the stream did not get its grace";
   EXPECT_EQ(server.wait_for_exit(), 0) << server.log();
 }
 
