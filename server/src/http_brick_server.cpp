@@ -100,6 +100,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
     }
   }
 
+  // The next request. A keep-alive connection may idle up to the timeout before its first
+  // byte; the request then gets the whole timeout to arrive, from that byte on.
   void read() {
     parser_.emplace();
     parser_->header_limit(static_cast<std::uint32_t>(limits_.max_header_bytes));
@@ -107,6 +109,27 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
     // Our own deadline, not the stream's: the stream's closes the socket when it expires, and
     // a client whose request is cut short should hear a 408 first.
     beast::get_lowest_layer(stream_).expires_never();
+    if (buffer_.size() > 0) return read_request();  // pipelined: it has begun already
+    arm_read_deadline();
+    stream_.async_read_some(buffer_.prepare(kFirstRead),
+                            [self = shared_from_this()](beast::error_code ec, std::size_t n) {
+                              self->read_deadline_.cancel();
+                              // Idle past the timeout, closed by the client, or broken: nothing to
+                              // answer.
+                              if (ec || self->read_timed_out_) return self->close();
+                              self->buffer_.commit(n);
+                              self->read_request();
+                            });
+  }
+
+  void read_request() {
+    arm_read_deadline();
+    http::async_read_header(
+        stream_, buffer_, *parser_,
+        [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_header(ec); });
+  }
+
+  void arm_read_deadline() {
     read_timed_out_ = false;
     read_deadline_.expires_after(limits_.timeout);
     read_deadline_.async_wait([self = shared_from_this()](beast::error_code ec) {
@@ -115,9 +138,6 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
       beast::error_code ignored;
       self->socket().cancel(ignored);
     });
-    http::async_read_header(
-        stream_, buffer_, *parser_,
-        [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_header(ec); });
   }
 
   // A client that sent "Expect: 100-continue" waits for a word before sending its body.
@@ -147,8 +167,6 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
     }
     if (ec == beast::error::timeout) {
       metrics_.http.timeouts.fetch_add(1, std::memory_order_relaxed);
-      // An idle keep-alive connection just closes; a request cut short hears why.
-      if (!parser_->got_some()) return close();
       return refuse_request(408, "the request did not arrive whole within " +
                                      std::to_string(limits_.timeout.count()) + " ms");
     }
@@ -212,6 +230,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
 
   std::shared_ptr<net::ssl::context> context_;  // TLS only; outlives stream_
   Stream stream_;
+  static constexpr std::size_t kFirstRead = 4096;  // a request's first bytes, or all of it
   net::steady_timer read_deadline_;
   bool read_timed_out_ = false;
   const HttpLimits& limits_;

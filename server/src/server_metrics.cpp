@@ -108,7 +108,8 @@ namespace {
   X(http_connections, "soltex_http_connections_total", counter, "HTTP connections accepted.")     \
   X(http_connections_open, "soltex_http_connections_open", gauge, "HTTP connections open.")       \
   X(http_refused, "soltex_http_connections_refused_total", counter,                               \
-    "HTTP connections answered 503 and closed: --http-max-connections were open.")                \
+    "HTTP connections answered 503 and closed (over TLS, closed): --http-max-connections were "   \
+    "open, or --http-max-connections-per-client from its client.")                                \
   X(http_timeouts, "soltex_http_timeouts_total", counter,                                         \
     "HTTP connections closed because a request or response took longer than --http-timeout-s.")   \
   X(http_bricks, "soltex_http_bricks_served_total", counter, "Bricks sent over HTTP (200s).")     \
