@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <pugixml.hpp>
@@ -75,6 +76,50 @@ std::vector<double> numbers(const std::string& text) {
   return values;
 }
 
+// The colour space a color3 value is written in: its own `colorspace`, else the nearest
+// enclosing element's (node, nodegraph, document); empty when none says.
+std::string colour_space_of(const pugi::xml_node& input) {
+  for (pugi::xml_node at = input; at; at = at.parent()) {
+    if (const auto space = at.attribute("colorspace")) return space.value();
+  }
+  return {};
+}
+
+// sRGB's transfer function undone (IEC 61966-2-1), per component.
+glm::dvec3 linear_from_srgb(const glm::dvec3& c) {
+  glm::dvec3 linear;
+  for (int i = 0; i < 3; ++i) {
+    linear[i] = c[i] <= 0.04045 ? c[i] / 12.92 : std::pow((c[i] + 0.055) / 1.055, 2.4);
+  }
+  return linear;
+}
+
+// A color3 value in the working space (linear Rec. 709): as written there, or from sRGB.
+glm::dvec3 working_colour(const Document& doc, const pugi::xml_node& input,
+                          const std::string& where, const glm::dvec3& value) {
+  const std::string space = colour_space_of(input);
+  if (space.empty() || space == "lin_rec709") return value;
+  if (space == "srgb_texture") return linear_from_srgb(value);
+  doc.fail(input.offset_debug(), where + ": colorspace " + quoted_text(space) +
+                                     " is not supported (lin_rec709, the working space, or "
+                                     "srgb_texture)");
+}
+
+// A connection whose input declares a type must name a node of that type.
+void check_connected_type(const Document& doc, const pugi::xml_node& node,
+                          const pugi::xml_node& input, const std::string& where) {
+  const std::string declared = input.attribute("type").value();
+  if (declared.empty()) return;
+  const pugi::xml_node source =
+      node.parent().find_child_by_attribute("name", input.attribute("nodename").value());
+  const std::string actual = source.attribute("type").value();
+  if (source && !actual.empty() && actual != declared) {
+    doc.fail(input.offset_debug(), where + " is declared " + quoted_text(declared) + ", but node " +
+                                       quoted_text(input.attribute("nodename").value()) + " is " +
+                                       quoted_text(actual));
+  }
+}
+
 graph::InputValue input_value(const Document& doc, const pugi::xml_node& node,
                               const pugi::xml_node& input) {
   const std::string where =
@@ -86,9 +131,15 @@ graph::InputValue input_value(const Document& doc, const pugi::xml_node& node,
   if (input.attribute("output")) {
     doc.fail(offset, where + ": outputs of multi-output nodes are not supported");
   }
+  if (input.attribute("channels")) {
+    doc.fail(offset, where + ": channel swizzles (channels=\"" +
+                         escaped_text(input.attribute("channels").value()) +
+                         "\") are not supported; use extract and combine3");
+  }
   const auto value = input.attribute("value");
   if (const auto ref = input.attribute("nodename")) {
     if (value) doc.fail(offset, where + ": give a value or a nodename, not both");
+    check_connected_type(doc, node, input, where);
     return graph::NodeRef{ref.value()};
   }
   if (!value) doc.fail(offset, where + ": needs a value or a nodename");
@@ -105,9 +156,10 @@ graph::InputValue input_value(const Document& doc, const pugi::xml_node& node,
   if (type == "string") return text;
   const std::vector<double> v = numbers(text);
   if (v.size() == 1 && (type == "float" || type == "integer" || type.empty())) return v[0];
-  if (v.size() == 3 && (type == "vector3" || type == "color3" || type.empty())) {
-    return glm::dvec3(v[0], v[1], v[2]);
+  if (v.size() == 3 && type == "color3") {
+    return working_colour(doc, input, where, glm::dvec3(v[0], v[1], v[2]));
   }
+  if (v.size() == 3 && (type == "vector3" || type.empty())) return glm::dvec3(v[0], v[1], v[2]);
   doc.fail(offset, where + ": value " + quoted_text(text) + " is not a " +
                        (type.empty() ? std::string("number") : type));
 }
@@ -170,11 +222,20 @@ pugi::xml_node element_of_field(const pugi::xml_node& nodegraph, const std::stri
   }
   const std::size_t open = field.find('['), close = field.find(']');
   if (!field.starts_with("graph.nodes[") || close == std::string::npos) return nodegraph;
-  const std::string key = field.substr(open + 1, close - open - 1);
+  // The field shows the name as escaped_text() does; a name may hold ']' itself, so the
+  // longest name the field starts with is the node's.
+  pugi::xml_node named;
+  std::size_t longest = 0;
   for (const pugi::xml_node& child : nodegraph.children()) {
-    // The field shows the name as escaped_text() does.
-    if (is_graph_node(child) && key == escaped_text(child.attribute("name").value())) return child;
+    if (!is_graph_node(child)) continue;
+    const std::string prefix = "graph.nodes[" + escaped_text(child.attribute("name").value()) + "]";
+    if (field.starts_with(prefix) && prefix.size() > longest) {
+      named = child;
+      longest = prefix.size();
+    }
   }
+  if (named) return named;
+  const std::string key = field.substr(open + 1, close - open - 1);
   std::size_t index = 0;
   for (const pugi::xml_node& child : nodegraph.children()) {
     if (!is_graph_node(child)) continue;

@@ -76,7 +76,8 @@ TEST(MaterialxReader, RefusesUnsupportedNodesWithNameCategoryAndLine) {
 
 TEST(MaterialxReader, GraphErrorsPointAtTheNodesLine) {
   std::string text = kNoise;
-  text.replace(text.find("value=\"4.0\""), 11, "nodename=\"c\"");  // p4 <- c <- n <- p4
+  // p4 <- c <- n <- p4 (the input's type left out: it is not what is wrong here)
+  text.replace(text.find("type=\"float\" value=\"4.0\""), 24, "nodename=\"c\"");
   const std::string e = error_of(source(text));
   EXPECT_THAT(e, HasSubstr("cycle"));
   EXPECT_THAT(e, HasSubstr("hand.mtlx:"));
@@ -127,6 +128,49 @@ TEST(MaterialxReader, AnInputIsAValueOrANodeOfItsOwnType) {
   constant_output.replace(constant_output.find(R"(nodename="c" />)"), 15, R"(value="1, 0, 0" />)");
   EXPECT_THAT(error_of(source(constant_output)),
               AllOf(HasSubstr("hand.mtlx:"), HasSubstr("\"out\" needs a nodename")));
+}
+
+// Attributes that change what an input means are honoured or refused, never ignored.
+TEST(MaterialxReader, ColourSpacesSwizzlesAndDeclaredTypes) {
+  std::string srgb = kNoise;
+  srgb.replace(srgb.find(R"(value="1, 1, 1" />)"), 18,
+               R"(value="0.5, 0.04, 1" colorspace="srgb_texture" />)");
+  const graph::TextureGraph g = read_nodegraph(source(srgb));
+  const glm::dvec3 fg = std::get<glm::dvec3>(g.nodes[3].inputs[0].value);
+  EXPECT_NEAR(fg.x, 0.21404, 1e-5);  // sRGB 0.5 is linear 0.214
+  EXPECT_DOUBLE_EQ(fg.y, 0.04 / 12.92);
+  EXPECT_DOUBLE_EQ(fg.z, 1.0);
+  std::string whole_document = kNoise;  // the document's space holds for its colours
+  whole_document.replace(whole_document.find(R"(version="1.38")"), 14,
+                         R"(version="1.38" colorspace="srgb_texture")");
+  EXPECT_NEAR(
+      std::get<glm::dvec3>(read_nodegraph(source(whole_document)).nodes[3].inputs[1].value).x,
+      0.01002, 1e-5);
+  std::string acescg = kNoise;
+  acescg.replace(acescg.find(R"(value="1, 1, 1" />)"), 18,
+                 R"(value="1, 1, 1" colorspace="acescg" />)");
+  EXPECT_THAT(error_of(source(acescg)), AllOf(HasSubstr("hand.mtlx:15:"),
+                                              HasSubstr("colorspace \"acescg\" is not supported")));
+  std::string swizzle = kNoise;
+  swizzle.replace(swizzle.find(R"(nodename="p" />)"), 15, R"(nodename="p" channels="zyx" />)");
+  EXPECT_THAT(error_of(source(swizzle)),
+              AllOf(HasSubstr("hand.mtlx:6:"), HasSubstr("channels=\"zyx\") are not supported")));
+  std::string declared = kNoise;
+  declared.replace(declared.find(R"(type="vector3" nodename="p4")"), 28,
+                   R"(type="color3" nodename="p4")");
+  EXPECT_THAT(error_of(source(declared)),
+              AllOf(HasSubstr("hand.mtlx:10:"),
+                    HasSubstr("is declared \"color3\", but node \"p4\" is \"vector3\"")));
+}
+
+// A name holding ']' still finds its node's line.
+TEST(MaterialxReader, ANameWithABracketFindsItsLine) {
+  std::string text = kNoise;
+  text.replace(text.find(R"(name="n")"), 8, R"(name="a]b")");
+  text.replace(text.find(R"(nodename="n")"), 12, R"(nodename="a]b")");
+  text.replace(text.find(R"(name="amplitude" type="float" value="0.5")"), 42,
+               R"(name="amplitude" type="float" value="1e300")");
+  EXPECT_THAT(error_of(source(text)), HasSubstr("hand.mtlx:9:"));
 }
 
 TEST(MaterialxReader, DocumentProblems) {
