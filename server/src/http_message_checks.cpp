@@ -58,6 +58,10 @@ std::optional<std::string> framing_problem(const HttpRequest& request) {
     return "Transfer-Encoding must end with chunked in a request (RFC 9112 6.3): its body's "
            "length is otherwise unknown";
   }
+  // One credential: with two, which one a proxy or this server would act on is a guess.
+  if (const std::size_t tokens = request.count(http::field::authorization); tokens > 1) {
+    return "Authorization is given " + std::to_string(tokens) + " times; once";
+  }
   const std::size_t hosts = request.count(http::field::host);
   if (hosts > 1) return "Host is given " + std::to_string(hosts) + " times; once (RFC 9112 3.2)";
   if (hosts == 0) {

@@ -11,7 +11,7 @@ namespace soltex::server {
 // What Beast's parser accepts but HTTP/1.1 does not (RFC 9112): a Transfer-Encoding whose
 // last coding is not chunked (the body's end is then unknown, and reading on would take the
 // rest as another request: answered 400 and the connection closed), and a missing, repeated or
-// malformed Host. Returns the problem, named, or nothing.
+// malformed Host, and more than one Authorization. Returns the problem, named, or nothing.
 std::optional<std::string> framing_problem(const HttpRequest& request);
 
 // `text` without the optional whitespace (spaces and tabs) around a field value or list item.

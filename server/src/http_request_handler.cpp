@@ -267,12 +267,12 @@ TexturePin HttpRequestHandler::find_or_register(const Route& route, Call& call) 
   } catch (const RegistrationError& e) {
     throw HttpError{status_of(e.code()), std::string("spec, decoded: ") + e.what()};
   }
-  pin = register_texture(context_.registry, registration, call.client);
-  if (pin.texture()->id != route.texture_id) {
-    throw HttpError{400, "spec registers texture " + texture_id_hex(pin.texture()->id) +
-                             ", not the texture " + id + " the path names"};
+  // Checked before registering: a spec for another texture must not take a registry place.
+  if (const uint64_t named = registration_id(registration); named != route.texture_id) {
+    throw HttpError{400, "spec registers texture " + texture_id_hex(named) + ", not the texture " +
+                             id + " the path names"};
   }
-  return pin;
+  return register_texture(context_.registry, registration, call.client);
 }
 
 void HttpRequestHandler::answer_texture(const Route& route, Call& call) {
@@ -283,12 +283,15 @@ void HttpRequestHandler::answer_texture(const Route& route, Call& call) {
                     "If-Match names an entity tag; a texture's JSON has none (only * "
                     "matches it)"};
   }
-  nlohmann::json body = registration_to_json(*pin.texture());
-  body["id"] = texture_id_hex(route.texture_id);
-  HttpResponse response{http::status::ok, call.version};
-  response.set(http::field::content_type, "application/json");
+  // It exists, so "*" matches it (RFC 9110 13.1.2): the client's copy is current.
+  const bool fresh = tag_list_names(call.if_none_match, "*", true);
+  HttpResponse response{fresh ? http::status::not_modified : http::status::ok, call.version};
   response.set(http::field::cache_control,
                context_.access.token_required() ? kImmutablePrivate : kImmutable);
+  if (fresh) return finish(call, std::move(response));
+  nlohmann::json body = registration_to_json(*pin.texture());
+  body["id"] = texture_id_hex(route.texture_id);
+  response.set(http::field::content_type, "application/json");
   response.body() = body.dump() + "\n";
   finish(call, std::move(response));
 }

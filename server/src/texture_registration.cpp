@@ -6,6 +6,7 @@
 
 #include "soltex/common/brick_layout.h"
 #include "soltex/common/spec_error.h"
+#include "soltex/common/texture_id.h"
 #include "soltex/spec_proto/brick_proto.h"
 #include "soltex/spec_proto/spec_from_proto.h"
 
@@ -61,6 +62,15 @@ TexturePin register_texture(TextureRegistry& registry, const v1::RegisterTexture
     throw RegistrationError(grpc::StatusCode::INVALID_ARGUMENT, e.what());
   } catch (const RegistryFull& e) {
     throw RegistrationError(grpc::StatusCode::RESOURCE_EXHAUSTED, e.what());
+  }
+}
+
+uint64_t registration_id(const v1::RegisterTextureRequest& request) {
+  try {
+    return texture_id(from_proto(request.spec()), from_proto(request.volume()),
+                      brick_size_from(request.brick_size()), mip_from(request));
+  } catch (const SpecError& e) {
+    throw RegistrationError(grpc::StatusCode::INVALID_ARGUMENT, e.what());
   }
 }
 

@@ -27,6 +27,10 @@ class RegistrationError : public std::runtime_error {
 TexturePin register_texture(TextureRegistry& registry, const v1::RegisterTextureRequest& request,
                             const std::string& client);
 
+// The id register_texture() would give the texture, without registering it (or checking more
+// than the id needs). Throws RegistrationError.
+uint64_t registration_id(const v1::RegisterTextureRequest& request);
+
 // What the client learns about a registered texture.
 v1::TextureHandle texture_handle(const RegisteredTexture& texture);
 

@@ -245,6 +245,8 @@ TEST(HttpBricks, UrlsCarryTheirTextureToAnyReplica) {
   const HttpReply mismatch = http_request(third.http_port(), "GET", other);
   EXPECT_EQ(mismatch.status, 400);
   EXPECT_NE(mismatch.body.find("not the texture 0123456789abcdef"), std::string::npos);
+  // ... and registers nothing: the texture it would have made is still unknown there.
+  EXPECT_EQ(http_request(third.http_port(), "GET", "/v1/textures/" + id).status, 404);
 }
 
 TEST(HttpBricks, BodiesOverTheLimitAreRefused) {

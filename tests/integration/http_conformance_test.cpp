@@ -117,6 +117,21 @@ TEST_F(HttpConformance, PreconditionsReadEveryLineAndIfMatchIsStrong) {
   EXPECT_NE(other.body.find(etag), std::string::npos) << other.body;
   EXPECT_EQ(connection.send("GET", brick(), {{"If-Match", "W/" + etag}}).status, 412);
   EXPECT_EQ(connection.send("GET", texture(), {{"If-Match", "\"zzz\""}}).status, 412);
+  // A texture's JSON has no tag, but it exists: "*" matches it (RFC 9110 13.1.2).
+  const HttpReply current = connection.send("GET", texture(), {{"If-None-Match", "*"}});
+  EXPECT_EQ(current.status, 304);
+  EXPECT_EQ(current.body, "");
+  EXPECT_EQ(connection.send("GET", texture(), {{"If-None-Match", "\"zzz\""}}).status, 200);
+}
+
+TEST_F(HttpConformance, OneCredentialPerRequest) {
+  HttpConnection connection(port());
+  connection.write_raw("GET " + texture() +
+                       " HTTP/1.1\r\nHost: a\r\nAuthorization: Bearer a\r\n"
+                       "Authorization: Bearer b\r\n\r\n");
+  const HttpReply twice = connection.read();
+  EXPECT_EQ(twice.status, 400);
+  EXPECT_NE(twice.body.find("Authorization is given 2 times"), std::string::npos) << twice.body;
 }
 
 TEST_F(HttpConformance, AClientExpectingContinueHearsItBeforeSendingItsBody) {

@@ -21,7 +21,8 @@ HttpReply HttpConnection::send(const std::string& method, const std::string& tar
   http::request<http::string_body> request{http::string_to_verb(method), target, 11};
   if (request.method() == http::verb::unknown) request.method_string(method);
   request.set(http::field::host, "127.0.0.1");
-  for (const auto& [name, value] : headers) request.set(name, value);
+  // Inserted, not set: a header given twice is sent twice, as two lines.
+  for (const auto& [name, value] : headers) request.insert(name, value);
   request.body() = body;
   request.prepare_payload();
   http::write(socket_, request);
