@@ -178,7 +178,8 @@ Daemon::Daemon(const ServerConfig& config)
     const HostPort http_address = parse_host_port(config.http_listen);
     http_ = std::make_unique<HttpBrickServer>(
         http_address.host, http_address.port, http_limits(config),
-        HttpRequestHandler::Context{registry_, scheduler_, producer_, metrics_state_, access_},
+        HttpRequestHandler::Context{registry_, scheduler_, producer_, metrics_state_, access_,
+                                    refusals_},
         http_tls);
   }
   // Health answers for the service by name as well as for the server ("").

@@ -66,12 +66,15 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
   // Too many connections, over TLS: no answer is possible before a handshake, so closed.
   void close_now() {
     metrics_.http.connections_refused.fetch_add(1, std::memory_order_relaxed);
+    handler_.log_refusal(peer_host_,
+                         "too many HTTPS connections open; closed before its handshake");
     net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->close(); });
   }
 
   // Too many connections (the server's, or this peer's: `why`): one 503, then closed.
   void refuse(const std::string& why) {
     metrics_.http.connections_refused.fetch_add(1, std::memory_order_relaxed);
+    handler_.log_refusal(peer_host_, why);
     metrics_.http.count(HttpMetrics::Route::other, 503);
     HttpResponse response = handler_.error(11, 503, why + "; try again later");
     net::dispatch(stream_.get_executor(),

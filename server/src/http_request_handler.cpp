@@ -213,6 +213,7 @@ void HttpRequestHandler::handle(const HttpRequest& request, const std::string& p
     const grpc::Status identified = context_.access.check_token(
         authorization == request.end() ? nullptr : &token, call->client);
     if (!identified.ok()) {
+      log_refusal(call->client, identified.error_message());
       HttpResponse response = error(call->version, 401, identified.error_message());
       response.set(http::field::www_authenticate, "Bearer");
       return finish(*call, std::move(response));
@@ -232,10 +233,15 @@ void HttpRequestHandler::handle(const HttpRequest& request, const std::string& p
         return handle_brick(route, call);
     }
   } catch (const HttpError& e) {
+    if (e.status == 429) log_refusal(call->client, e.message);
     finish(*call, error(call->version, e.status, e.message));
   } catch (const RegistrationError& e) {
     finish(*call, error(call->version, status_of(e.code()), e.what()));
   }
+}
+
+void HttpRequestHandler::log_refusal(const std::string& client, const std::string& why) const {
+  context_.refusals.refused(client, "HTTP request from " + client + " refused: " + why);
 }
 
 void HttpRequestHandler::answer_registration(Call& call, const std::string& body) {

@@ -11,6 +11,7 @@
 #include "client_access.h"
 #include "http_brick_queue.h"
 #include "http_router.h"
+#include "refusal_log.h"
 #include "server_metrics.h"
 #include "texture_registry.h"
 
@@ -30,6 +31,7 @@ class HttpRequestHandler {
     BrickProducer& producer;
     ServerMetrics& metrics;
     ClientAccess& access;
+    RefusalLog& refusals;  // a client refused is logged as gRPC's refusals are
   };
   // Called once with the response, on the calling thread or a worker's.
   using Respond = std::function<void(HttpResponse)>;
@@ -41,6 +43,9 @@ class HttpRequestHandler {
   // A complete error response (text/plain, CORS, no-store), for the transport's own refusals
   // (malformed requests, bodies over the limit, timeouts, too many connections).
   HttpResponse error(unsigned version, unsigned status, const std::string& message) const;
+
+  // Logs a refusal of `client` (at most a line a second for each client).
+  void log_refusal(const std::string& client, const std::string& why) const;
 
  private:
   struct Call;

@@ -362,6 +362,10 @@ TEST(HttpBricks, OneClientCannotHoldEveryConnection) {
   EXPECT_EQ(refused.status, 503);
   EXPECT_NE(refused.body.find("--http-max-connections-per-client"), std::string::npos)
       << refused.body;
+  // Logged as gRPC's refusals are, naming the client and the bound.
+  EXPECT_NE(server.log().find("HTTP request from 127.0.0.1 refused: this client (127.0.0.1) has 2"),
+            std::string::npos)
+      << server.log();
   held.pop_back();
   EXPECT_EQ(status_when_a_slot_frees(server.http_port(), id), 200);
 
@@ -379,6 +383,8 @@ TEST(HttpBricks, TokensAreCheckedAsForGrpc) {
   EXPECT_EQ(none.status, 401);
   EXPECT_EQ(none.header("www-authenticate"), "Bearer");
   EXPECT_NE(none.body.find("requires a bearer token"), std::string::npos);
+  EXPECT_NE(server.log().find("HTTP request from 127.0.0.1 refused:"), std::string::npos)
+      << server.log();
   EXPECT_EQ(
       http_request(port, "POST", "/v1/textures", {{"Authorization", "Bearer nope"}}, kMarbleJson)
           .status,
