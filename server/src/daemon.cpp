@@ -6,6 +6,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
@@ -21,6 +23,29 @@ namespace soltex::server {
 
 using namespace std::chrono_literals;
 namespace {
+
+// Why gRPC could not listen on `address`, in the system's words: gRPC reports only that it
+// failed, so the same bind is tried once more here (for host:port; a unix socket's path is
+// named as it is).
+std::string why_not_listening(const std::string& address) {
+  if (is_unix_socket_address(address)) return "the socket path cannot be bound";
+  try {
+    const HostPort at = parse_host_port(address);
+    boost::asio::io_context io;
+    boost::system::error_code ec;
+    boost::asio::ip::tcp::resolver resolver(io);
+    const auto found = resolver.resolve(at.host, std::to_string(at.port), ec);
+    if (ec || found.empty()) return "cannot resolve " + at.host + " (" + ec.message() + ")";
+    boost::asio::ip::tcp::acceptor acceptor(io);
+    const boost::asio::ip::tcp::endpoint endpoint = found.begin()->endpoint();
+    acceptor.open(endpoint.protocol(), ec);
+    if (!ec) acceptor.bind(endpoint, ec);
+    if (ec) return ec.message();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "address in use or not a local address";
+}
 
 int worker_count(int configured) {
   if (configured > 0) return configured;
@@ -164,8 +189,8 @@ Daemon::Daemon(const ServerConfig& config)
   builder.experimental().SetInterceptorCreators(std::move(interceptors));
   server_ = builder.BuildAndStart();
   if (!server_ || grpc_port_ == 0) {
-    throw std::runtime_error("cannot listen for gRPC on " + config.listen +
-                             " (address in use or not a local address?)");
+    throw std::runtime_error("cannot listen for gRPC on " + config.listen + ": " +
+                             why_not_listening(config.listen));
   }
   const HostPort metrics_address = parse_host_port(config.metrics_listen);
   metrics_ = std::make_unique<MetricsHttpServer>(metrics_address.host, metrics_address.port,

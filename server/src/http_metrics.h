@@ -12,8 +12,8 @@ struct HttpMetrics {
   enum class Route : std::size_t { register_texture, texture, brick, preflight, other, count };
   // The statuses the endpoint answers with; anything else counts as "other".
   static constexpr std::array<unsigned, 16> kStatuses = {200, 204, 304, 400, 401, 404, 405, 408,
-                                                         413, 414, 429, 431, 500, 503, 0,   0};
-  static constexpr std::size_t kKnownStatuses = 14;
+                                                         412, 413, 414, 429, 431, 500, 501, 503};
+  static constexpr std::size_t kKnownStatuses = kStatuses.size();
 
   std::array<std::array<std::atomic<uint64_t>, kKnownStatuses + 1>,
              static_cast<std::size_t>(Route::count)>

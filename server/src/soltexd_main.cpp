@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
                grpc == config.listen ? grpc : bound_address(config.listen, daemon->grpc_port()),
                bound_address(config.metrics_listen, daemon->metrics_port()));
   if (daemon->http_port() != 0) {
-    spdlog::info("HTTP bricks on http://{}",
+    spdlog::info("HTTP bricks on {}://{}", config.tls_cert_file.empty() ? "http" : "https",
                  bound_address(config.http_listen, daemon->http_port()));
   }
   if (!config.ready_file.empty()) {
