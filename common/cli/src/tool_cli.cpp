@@ -129,6 +129,38 @@ bool on_command_line(const CLI::Option& option, int argc, char** argv) {
   return false;
 }
 
+namespace {
+
+// Whether `app` or one of its subcommands (at any depth) has the option `name` ("--x", "-x").
+bool knows_option(const CLI::App& app, const std::string& name) {
+  if (app.get_option_no_throw(name) != nullptr) return true;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    if (knows_option(*sub, name)) return true;
+  }
+  return false;
+}
+
+// The first argument no part of `app` knows: an option none has, or a word where a
+// subcommand is expected and none is named so. CLI11 reports a missing required option or
+// subcommand before an unknown one, which names the wrong mistake.
+std::optional<std::string> unknown_argument(const CLI::App& app, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--") break;
+    if (arg.size() > 1 && arg[0] == '-') {
+      const std::string name = arg.substr(0, arg.find('='));
+      if (!knows_option(app, name)) return name;
+    } else if (i == 1 && app.get_require_subcommand_min() > 0) {
+      const auto named = app.get_subcommands(
+          [&arg](const CLI::App* sub) { return const_cast<CLI::App*>(sub)->check_name(arg); });
+      if (named.empty()) return arg;
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 std::optional<int> parse(CLI::App& app, const std::string& tool, int argc, char** argv,
                          std::initializer_list<DeprecatedEnvironmentName> deprecated) {
   name_environment(app);
@@ -139,6 +171,14 @@ std::optional<int> parse(CLI::App& app, const std::string& tool, int argc, char*
     // Help and version: app.exit prints them on stdout.
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
       return app.exit(e) == 0 ? kExitOk : kExitUsage;
+    }
+    if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr) {
+      if (const auto unknown = unknown_argument(app, argc, argv)) {
+        std::fprintf(stderr, "%s: unknown %s %s\nRun with --help for more information.\n",
+                     tool.c_str(), (*unknown)[0] == '-' ? "option" : "subcommand",
+                     unknown->c_str());
+        return kExitUsage;
+      }
     }
     std::fprintf(stderr, "%s\nRun with --help for more information.\n",
                  with_source(app, e, argc, argv).c_str());
