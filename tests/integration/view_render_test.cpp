@@ -84,6 +84,53 @@ TEST(ViewRender, ASceneOfTheMostObjectsConvergesAgainstADefaultServer) {
   EXPECT_GE(rendered.stats.received, static_cast<uint64_t>(SceneLimits::kMaxObjects));
 }
 
+// A graph of 200 nodes, whose registration is over 6,000 bytes.
+std::string large_graph_texture() {
+  std::string nodes = R"({"name": "p", "category": "position"})";
+  for (int i = 0; i < 200; ++i) {
+    nodes += R"(, {"name": "n)" + std::to_string(i) +
+             R"(", "category": "extract", "inputs": {"in": {"node": "p"}, "index": )" +
+             std::to_string(i % 3) + "}}";
+  }
+  nodes += R"(, {"name": "c", "category": "combine3", "type": "color3",
+                 "inputs": {"in1": {"node": "n0"}, "in2": {"node": "n1"}, "in3": {"node": "n2"}}})";
+  return R"({"graph": {"nodes": [)" + nodes + R"(], "outputs": {"colour": "c"}}})";
+}
+
+// A server that refuses one texture (here, its registration over the server's message bound)
+// still serves the rest of the scene: the refused object's texture is evaluated per pixel by
+// the client, and the picture converges to what a server taking both would give.
+TEST(ViewRender, ATextureTheServerRefusesIsEvaluatedHere) {
+  const Scene scene = parse_scene(R"({
+    "camera": {"position": [0, 1, 4], "target": [0, 0, 0]},
+    "objects": [
+      {"name": "served", "mesh": {"sphere": {}}, "transform": {"translate": [-1.2, 0, 0]},
+       "material": {"texture": {"marble": {}}}},
+      {"name": "refused", "mesh": {"sphere": {}}, "transform": {"translate": [1.2, 0, 0]},
+       "material": {"texture": )" + large_graph_texture() +
+                                      R"(}}]})",
+                                  "<two textures>");
+  SoltexdProcess server({"--max-message-bytes", "6000"});
+  BrickCache cache(64u << 20);
+  net::BrickFetcher fetcher(server.grpc_address(), cache);
+  const PreparedScene prepared = prepare_scene(scene, TextureResolution{7, 16, {}}, fetcher);
+  ASSERT_EQ(prepared.objects.size(), 2u);
+  EXPECT_FALSE(prepared.objects[0].evaluated_here);
+  EXPECT_TRUE(prepared.objects[1].evaluated_here);
+  const Rendered rendered = render_with(fetcher, cache, scene, 7);
+  EXPECT_TRUE(rendered.converged);
+  EXPECT_GT(rendered.stats.received, 0u) << "the served object's bricks came from the server";
+
+  SoltexdProcess roomy;
+  BrickCache roomy_cache(64u << 20);
+  net::BrickFetcher both(roomy.grpc_address(), roomy_cache);
+  const Rendered served = render_with(both, roomy_cache, scene, 7);
+  ASSERT_TRUE(served.converged);
+  // The served sphere the same; the other differs only as evaluating a texture differs from
+  // looking it up.
+  EXPECT_GT(psnr(rendered.image, served.image), 35.0);
+}
+
 // Smooth textures (marble, turbulence): their cached, trilinearly filtered image approaches
 // the per-pixel evaluation. Two-colour patterns (checker, wood) differ along every colour edge,
 // where interpolation ramps what point evaluation keeps sharp; docs/PERFORMANCE.md measures it.

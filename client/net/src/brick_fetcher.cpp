@@ -36,6 +36,13 @@ void throttled_warning(WarningThrottle& throttle, fmt::format_string<Args...> li
   }
 }
 
+// The codes a server answers about a texture itself: another texture may still register.
+bool refuses_the_texture_alone(grpc::StatusCode code) {
+  return code == grpc::StatusCode::INVALID_ARGUMENT ||
+         code == grpc::StatusCode::RESOURCE_EXHAUSTED ||
+         code == grpc::StatusCode::FAILED_PRECONDITION || code == grpc::StatusCode::OUT_OF_RANGE;
+}
+
 }  // namespace
 
 struct BrickFetcher::Warnings {
@@ -107,8 +114,10 @@ uint64_t BrickFetcher::register_texture(const TextureSpec& spec, const Volume& v
   v1::TextureHandle handle;
   const grpc::Status status = channel_->stub->RegisterTexture(&context, request, &handle);
   if (!status.ok()) {
-    throw std::runtime_error("registering the texture with " + address_ +
-                             " failed: " + status.error_message());
+    const std::string why =
+        "registering the texture with " + address_ + " failed: " + status.error_message();
+    if (refuses_the_texture_alone(status.error_code())) throw TextureRefused(why);
+    throw std::runtime_error(why);
   }
   std::lock_guard lock(mutex_);
   if (registrations_.emplace(handle.id(), request.SerializeAsString()).second && stream_) {

@@ -212,7 +212,9 @@ render::FrameShading FrameRenderer::frame_shading(const PreparedScene& scene,
     render::ObjectShading object;
     object.material = render::material_inputs(o);
     object.surface = render::TextureSurface(o);
-    if (evaluated_per_pixel(o.texture, options.access)) object.evaluator = evaluators_[i].get();
+    if (o.evaluated_here || evaluated_per_pixel(o.texture, options.access)) {
+      object.evaluator = evaluators_[i].get();
+    }
     if (shading.by_table()) object.level_table = NearestLevelTable(o.layout, options.level_bias);
     object.level0_spacing = o.layout.filter_width(0);
     object.cached_inset = render::has_planar_edges(o.texture) ? render::kCachedInset : 0.0;

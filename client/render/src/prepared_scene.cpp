@@ -1,5 +1,7 @@
 #include "soltex/render/prepared_scene.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/type_ptr.hpp>
@@ -72,8 +74,15 @@ PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolut
           std::find(prepared.clip_planes.begin(), prepared.clip_planes.end(), raster_plane);
       p.raster.clip_plane_mask |= 1u << static_cast<uint32_t>(at - prepared.clip_planes.begin());
     }
-    p.texture_id =
-        source.register_texture(p.texture, volume, resolution.brick_size, resolution.mip);
+    try {
+      p.texture_id =
+          source.register_texture(p.texture, volume, resolution.brick_size, resolution.mip);
+    } catch (const net::TextureRefused& e) {
+      // The rest of the scene still draws from the server; this object costs more per pixel.
+      spdlog::warn("objects[{}] \"{}\": {}; its texture is evaluated per pixel here instead",
+                   id - 1, object.name, e.what());
+      p.evaluated_here = true;
+    }
     prepared.objects.push_back(std::move(p));
   }
   return prepared;

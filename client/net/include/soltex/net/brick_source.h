@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "soltex/common/brick_codec.h"
@@ -41,14 +42,22 @@ struct SourceStats {
   bool connected = false;
 };
 
+// A server that answered and would not register one texture (its quota full, the message over
+// its bound, a spec it reads otherwise): that texture alone cannot come from it. Not thrown
+// for a server that cannot be reached or refuses the client itself.
+class TextureRefused : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // Where a client's bricks come from: soltexd over gRPC (BrickFetcher) or an in-process
 // evaluator (LocalBrickSource). Either fills the client's BrickCache in the background.
 class BrickSource {
  public:
   virtual ~BrickSource() = default;
 
-  // Registers a texture and returns its content-addressed id; throws std::runtime_error (or
-  // SpecError) with a message naming what was refused.
+  // Registers a texture and returns its content-addressed id; throws TextureRefused, another
+  // std::runtime_error or SpecError with a message naming what was refused.
   virtual uint64_t register_texture(const TextureSpec& spec, const Volume& volume, int brick_size,
                                     const MipSettings& mip) = 0;
   // This frame's misses; replaces the previous frame's wants (stale ones are cancelled).
