@@ -8,11 +8,27 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=${SOLTEX_BUILD_DIR:-$root/build}
 out=${SOLTEX_OUT_DIR:-$root/out}
 web=$out/web
+# Whether every folder from / down to $1 lets others in.
+others_may_enter() {
+  local dir=$1
+  while [ "$dir" != / ]; do
+    [[ $(stat -c %A "$dir") == d????????[xt] ]] || return 1
+    dir=$(dirname "$dir")
+  done
+}
+# nginx started as root runs its workers as nobody, who must reach the page and the cache: a
+# clone under a private folder (/root) keeps them under one everybody may enter instead.
+mkdir -p "$out"
+if [ "$(id -u)" = 0 ] && ! others_may_enter "$out"; then
+  web=$(mktemp -d "${TMPDIR:-/tmp}/soltex-web.XXXXXX")
+  echo "run: $out is private; the page and nginx's cache go to $web"
+fi
 cmake --build "$build" --target soltexd soltex-scene-export -j "${SOLTEX_JOBS:-2}"
 (cd "$root/client/web" && npm ci --no-audit --no-fund --loglevel=error && npx vite build --logLevel warn)
 
 rm -rf "$web" && mkdir -p "$web/site/scenes" "$web/nginx"
-chmod 755 "$out" "$web" "$web/site"  # nginx workers run as nobody
+chmod 755 "$web" "$web/site"  # nginx workers run as nobody
+[[ $web != "$out"/* ]] || chmod 755 "$out"
 cp -r "$root/client/web/dist/." "$web/site/"
 export_scene() { "$build/client/web/soltex-scene-export" --out "$web/site/scenes/$1.json" "${@:2}"; }
 export_scene default

@@ -26,8 +26,12 @@ nginx_prefix_dirs() {
 nginx_fill_template() {
   local template=$1 header=1 line u upstreams=""
   for u in "${upstream_args[@]}"; do
-    # A replica that fails is skipped for fail_timeout.
-    upstreams+="        server $u max_fails=${NGINX_MAX_FAILS:-1} fail_timeout=${NGINX_FAIL_TIMEOUT:-5s};"$'\n'
+    # A replica that fails is skipped for fail_timeout; parameters the upstream names itself
+    # win over these defaults (nginx would take the last of two).
+    local defaults=""
+    [[ " $u " == *" max_fails="* ]] || defaults+=" max_fails=${NGINX_MAX_FAILS:-1}"
+    [[ " $u " == *" fail_timeout="* ]] || defaults+=" fail_timeout=${NGINX_FAIL_TIMEOUT:-5s}"
+    upstreams+="        server $u$defaults;"$'\n'
   done
   upstreams=${upstreams%$'\n'}
   while IFS= read -r line || [ -n "$line" ]; do
