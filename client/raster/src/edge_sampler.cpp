@@ -363,7 +363,9 @@ void EdgeSampler::resolve(const TileFrame& frame, EdgeSurfaces& out) const {
                                              object.source->clip_plane_mask, cap_rays, cap)
                  : frame.caps->trace(pixel.x, pixel.y, object.texture_from_world,
                                      object.source->clip_plane_mask, cap_rays, cap);
-        if (traced && object.may_hold_cap(cap.texture_position)) {
+        // Two of the cap's footprints (its neighbours' distance) of slack: a pixel's width.
+        const double slack = std::isfinite(cap.footprint) ? 2.0 * cap.footprint : 0.0;
+        if (traced && object.may_hold_cap(cap.texture_position, slack)) {
           write_cap_pixel(layer, i, object.source->object_id, cap);
           continue;
         }

@@ -4,7 +4,6 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
-#include <glm/vector_relational.hpp>
 #include <limits>
 
 namespace soltex::raster_internal {

@@ -37,9 +37,12 @@ struct ObjectFrame {
   glm::dvec3 texture_min{-std::numeric_limits<double>::infinity()};
   glm::dvec3 texture_max{std::numeric_limits<double>::infinity()};
 
-  bool may_hold_cap(const glm::dvec3& texture_position) const {
-    return glm::all(glm::greaterThanEqual(texture_position, texture_min)) &&
-           glm::all(glm::lessThanEqual(texture_position, texture_max));
+  // Whether a cap point can be the object's: within its bounds, or for an edge sample within
+  // `slack` of them (an edge sample's ray passes up to about a pixel beside the face it
+  // samples, so the cap point of a face on the bounds, a cut box's, may lie that far outside).
+  bool may_hold_cap(const glm::dvec3& texture_position, double slack = 0.0) const {
+    return glm::all(glm::greaterThanEqual(texture_position, texture_min - slack)) &&
+           glm::all(glm::lessThanEqual(texture_position, texture_max + slack));
   }
 };
 

@@ -23,6 +23,9 @@ export interface DecodedBrick extends BrickHeader {
 }
 
 export class BrickDecodeError extends Error {}
+// Samples that decoded but do not match the header's checksum: the bytes were damaged on the
+// way (docs/PROTOCOL.md section 7), so asking again, past any cache, may get them whole.
+export class BrickChecksumError extends BrickDecodeError {}
 
 function fail(message: string): never {
   throw new BrickDecodeError(message);
@@ -144,7 +147,9 @@ export function decodeBrick(bytes: Uint8Array, options: { verify?: boolean } = {
   if (options.verify !== false) {
     const sum = xxh64(samples);
     if (sum !== header.checksum) {
-      fail(`checksum ${sum.toString(16)} differs from the header's ${header.checksum.toString(16)}: corrupt brick`);
+      throw new BrickChecksumError(
+        `checksum ${sum.toString(16)} differs from the header's ${header.checksum.toString(16)}: corrupt brick`,
+      );
     }
   }
   return { ...header, samples };

@@ -5,8 +5,10 @@
 // waits a backoff that doubles up to 4 s (or the Retry-After asked for) and starts over with
 // the next brick that arrives: the page recovers by itself when the server comes back, and a
 // server that is down gets a few requests per backoff rather than every queued brick's. Any
-// other answer (a 4xx) fails the brick for good.
-import { decodeBrick, type DecodedBrick } from "./brick_decoder";
+// other answer (a 4xx) fails the brick for good. A brick whose samples do not match their
+// checksum is asked for again past the browser's cache, up to kMaxRefetches times, as
+// soltex-view refetches a corrupt brick.
+import { BrickChecksumError, decodeBrick, type DecodedBrick } from "./brick_decoder";
 import { keyString, type BrickKey } from "./brick_pool";
 
 export interface Want {
@@ -22,12 +24,14 @@ export interface LoaderStats {
   cancelled: number;
   errors: number; // failed fetches, retried or not
   failed: number; // bricks given up on: an answer that asking again would not change
+  corrupt: number; // answers whose samples failed their checksum (asked for again)
   decodeMs: number; // main-thread time decoding bricks
   uploadMs: number; // and handing them to the GPU
 }
 
 export const kInitialBackoffMs = 100;
 export const kMaxBackoffMs = 4000;
+export const kMaxRefetches = 3;
 
 // A fetch that failed with an answer: whether asking again may get the brick (a 5xx, 408, 429)
 // or not (any other 4xx, bytes that do not decode), and the wait the server asked for. A
@@ -51,12 +55,13 @@ function transient(status: number): boolean {
 export class BrickLoader {
   readonly stats: LoaderStats = {
     requested: 0, received: 0, bytes: 0, cacheHits: 0, cancelled: 0, errors: 0, failed: 0,
-    decodeMs: 0, uploadMs: 0,
+    corrupt: 0, decodeMs: 0, uploadMs: 0,
   };
   private queue: Want[] = [];
   private readonly inFlight = new Map<string, AbortController>();
   private wanted = new Map<string, Want>(); // the view's latest wants
   private readonly failedForGood = new Set<string>();
+  private readonly refetches = new Map<string, number>(); // corrupt answers so far, per brick
   private backoffMs = kInitialBackoffMs;
   private pausedUntil = 0; // performance.now() before which no fetch starts
   private resumeTimer: ReturnType<typeof setTimeout> | undefined;
@@ -118,7 +123,9 @@ export class BrickLoader {
 
   private async fetchOne(key: BrickKey, id: string, controller: AbortController): Promise<void> {
     try {
-      const response = await fetch(this.urlOf(key), { signal: controller.signal });
+      // After a corrupt answer, not from the browser's cache: it would give the same bytes.
+      const cache: RequestCache = this.refetches.has(id) ? "reload" : "default";
+      const response = await fetch(this.urlOf(key), { signal: controller.signal, cache });
       if (!response.ok) {
         const message = `HTTP ${response.status}: ${await response.text()}`;
         throw new FetchError(message, transient(response.status), retryAfterMs(response));
@@ -127,7 +134,7 @@ export class BrickLoader {
       if (response.headers.get("x-cache-status") === "HIT") ++this.stats.cacheHits;
       this.stats.bytes += bytes.length;
       ++this.stats.received;
-      if (this.inFlight.get(id) === controller) this.accept(key, bytes);
+      if (this.inFlight.get(id) === controller) this.accept(key, id, bytes);
       this.backoffMs = kInitialBackoffMs;
     } catch (e) {
       if (!controller.signal.aborted) this.failed(id, e as Error);
@@ -137,16 +144,24 @@ export class BrickLoader {
     }
   }
 
-  // A whole answer, decoded and handed on. One that does not decode is refused for good: the
-  // same URL gives the same bytes, so asking again would fail again.
-  private accept(key: BrickKey, bytes: Uint8Array): void {
+  // A whole answer, decoded, checked and handed on. One that does not decode is refused for
+  // good: the same URL gives the same bytes, so asking again would fail again. One that fails
+  // its checksum was damaged on the way and is asked for again, a few times.
+  private accept(key: BrickKey, id: string, bytes: Uint8Array): void {
     const t0 = performance.now();
     let brick: DecodedBrick;
     try {
-      brick = decodeBrick(bytes, { verify: false });
+      brick = decodeBrick(bytes);
     } catch (e) {
+      if (e instanceof BrickChecksumError) {
+        ++this.stats.corrupt;
+        const refetches = (this.refetches.get(id) ?? 0) + 1;
+        this.refetches.set(id, refetches);
+        throw new FetchError(e.message, refetches <= kMaxRefetches);
+      }
       throw new FetchError(`undecodable brick: ${(e as Error).message}`, false);
     }
+    this.refetches.delete(id);
     const t1 = performance.now();
     this.onBrick(key, brick);
     this.stats.decodeMs += t1 - t0;

@@ -88,7 +88,7 @@ async function main(): Promise<void> {
         shininess: o.shininess,
         unlit: o.unlit,
         doubleSided: o.double_sided,
-        solid: o.solid,
+        solid: o.solid ?? true, // scenes exported before the field: every mesh a solid
         clipPlanes: o.clip_planes,
         worldToVolume: new Float32Array(o.world_to_volume),
       },

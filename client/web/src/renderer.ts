@@ -106,8 +106,15 @@ void main() {
       float s = (clipPlanes[i].w - dot(clipPlanes[i].xyz, cameraPosition)) / along;
       if (s > 0.0 && s < best) { best = s; n = clipPlanes[i].xyz; }
     }
-    surface = cameraPosition + best * ray;
-    texcoord = (worldToVolume * vec4(surface, 1.0)).xyz;
+    vec3 capTexcoord = (worldToVolume * vec4(cameraPosition + best * ray, 1.0)).xyz;
+    // A cap lies inside its solid, so within its volume (the object's padded bounds): one
+    // traced outside, through a hole or a face wound the wrong way, is no cap.
+    if (all(greaterThanEqual(capTexcoord, vec3(0.0))) && all(lessThanEqual(capTexcoord, vec3(1.0)))) {
+      surface = cameraPosition + best * ray;
+      texcoord = capTexcoord;
+    } else {
+      n = -normalize(vNormal);
+    }
   } else if (!gl_FrontFacing) {
     n = -n;
   }

@@ -6,7 +6,7 @@ import type { AddressInfo } from "node:net";
 import { afterAll, beforeAll, describe, expect, inject, it } from "vitest";
 
 import type { DecodedBrick } from "../src/brick_decoder";
-import { BrickLoader, type Want } from "../src/brick_loader";
+import { BrickLoader, kMaxRefetches, type Want } from "../src/brick_loader";
 import type { BrickKey } from "../src/brick_pool";
 
 const base = inject("soltexdHttp");
@@ -96,6 +96,43 @@ describe("BrickLoader", () => {
     expect(loader.stats.failed).toBe(1);
     expect(asked).toBe(1);
   });
+
+  it("asks again, past the cache, for a brick whose samples fail their checksum", async () => {
+    // A real brick, served with one sample byte flipped until `corruptFor` answers have gone.
+    const real = new Uint8Array(
+      await (await fetch(`${base}${bricks.replace("{level}/{x}/{y}/{z}", "0/0/0/0")}&codec=raw`)).arrayBuffer(),
+    );
+    const serve = (corruptFor: number) => {
+      let answers = 0;
+      const server = createServer((request, reply) => {
+        const bytes = real.slice();
+        if (answers++ < corruptFor) bytes[bytes.length - 7] ^= 0x40;
+        reply.writeHead(200, { "content-type": "application/vnd.soltex.brick" }).end(bytes);
+      });
+      return { server, answers: () => answers };
+    };
+    const run = async (corruptFor: number) => {
+      const { server, answers } = serve(corruptFor);
+      await new Promise<void>((resolve) => server.listen(0, "127.0.0.1", resolve));
+      const port = (server.address() as AddressInfo).port;
+      const arrived: DecodedBrick[] = [];
+      const loader = new BrickLoader(() => `http://127.0.0.1:${port}/brick`, 4, (_k, b) => arrived.push(b));
+      loader.want([{ key: { texture: 0, level: 0, x: 0, y: 0, z: 0 }, distance: 0 }], () => false);
+      await settled(loader);
+      server.close();
+      return { loader, arrived: arrived.length, answers: answers() };
+    };
+    const once = await run(1);
+    expect(once.arrived).toBe(1);
+    expect(once.loader.stats.corrupt).toBe(1);
+    expect(once.loader.stats.failed).toBe(0);
+    expect(once.answers).toBe(2);
+    // Corrupt every time: asked for 1 + kMaxRefetches times, then given up on.
+    const always = await run(1000);
+    expect(always.arrived).toBe(0);
+    expect(always.loader.stats.failed).toBe(1);
+    expect(always.answers).toBe(1 + kMaxRefetches);
+  }, 40000);
 
   it("does not ask again for a brick the server refuses", async () => {
     const loader = new BrickLoader(urlOf, 4, () => {});

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <glm/vec3.hpp>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -217,6 +218,29 @@ struct PlainAndEdges {
   FrameRenderer plain{cache, RenderOptions{.threads = 2}};
   FrameRenderer edges{cache, RenderOptions{.threads = 2, .edge_antialias = 4}};
 };
+
+// A closed box cut at an angle: its cut face reaches the box's bounds, and an edge sample's
+// ray passes beside the face it samples, so its cap point may lie a little outside them. The
+// bounds that reject caps traced through holes must keep every one of these: the frame is the
+// same with the object unbounded.
+TEST(EdgeAntialiasing, TheBoundsKeepEveryCapOfAClosedBox) {
+  const Scene scene = parse_scene(R"({
+    "camera": {"position": [2.5, 2, 3], "target": [0, 0, 0]},
+    "objects": [{"name": "box", "mesh": {"box": {"size": 1.5}},
+                 "material": {"texture": {"checker": {"size": [0.2, 0.2, 0.2], "three_d": true}}}}],
+    "clip_planes": [{"normal": [0.3, 1, 0.5], "offset": 0.1}]})",
+                                  "cut-box.json");
+  PlainAndEdges r(scene);
+  constexpr int kWidth = 320, kHeight = 240;
+  const Frame bounded = r.edges.render(r.prepared, scene.camera, kWidth, kHeight);
+  EXPECT_GT(bounded.stats.raster.cap_pixels, 5000u);
+  PreparedScene unbounded = r.prepared;
+  unbounded.objects[0].raster.bounds_min = glm::vec3(-std::numeric_limits<float>::infinity());
+  unbounded.objects[0].raster.bounds_max = glm::vec3(std::numeric_limits<float>::infinity());
+  const Frame anywhere = r.edges.render(unbounded, scene.camera, kWidth, kHeight);
+  EXPECT_GT(anywhere.stats.edge_pixels, 500u);
+  EXPECT_TRUE(bounded.image == anywhere.image);
+}
 
 // The default scene (silhouettes, a clip plane's caps, objects over one another), converged:
 // with edge anti-aliasing the frame is nearer the 4 x 4 supersampled reference, and it differs
