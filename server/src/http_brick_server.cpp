@@ -135,12 +135,15 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
   void arm_read_deadline() {
     read_timed_out_ = false;
     read_deadline_.expires_after(limits_.timeout);
-    read_deadline_.async_wait([self = shared_from_this()](beast::error_code ec) {
-      if (ec) return;  // cancelled: the read finished first
-      self->read_timed_out_ = true;
-      beast::error_code ignored;
-      self->socket().cancel(ignored);
-    });
+    // A wait that expired just as its read finished may run after the next one is armed:
+    // cancel() cannot take back a handler already queued, so each wait knows its read.
+    read_deadline_.async_wait(
+        [self = shared_from_this(), armed = ++deadlines_armed_](beast::error_code ec) {
+          if (ec || armed != self->deadlines_armed_) return;  // cancelled, or an earlier read's
+          self->read_timed_out_ = true;
+          beast::error_code ignored;
+          self->socket().cancel(ignored);
+        });
   }
 
   // A client that sent "Expect: 100-continue" waits for a word before sending its body.
@@ -235,6 +238,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
   Stream stream_;
   static constexpr std::size_t kFirstRead = 4096;  // a request's first bytes, or all of it
   net::steady_timer read_deadline_;
+  uint64_t deadlines_armed_ = 0;  // read_deadline_'s waits so far
   bool read_timed_out_ = false;
   const HttpLimits& limits_;
   HttpRequestHandler& handler_;
@@ -287,8 +291,14 @@ HttpBrickServer::~HttpBrickServer() {
 
 void HttpBrickServer::accept() {
   acceptor_.async_accept(net::make_strand(io_), [this](beast::error_code ec, tcp::socket socket) {
-    if (ec == net::error::operation_aborted) return;  // closed: stopping
-    if (ec) return retry_.failed(ec, [this] { accept(); });
+    // Closed (stopping, or no longer accepting): a connection accepted just before the close
+    // is closed with it, and no further accept is started on a closed acceptor.
+    if (ec == net::error::operation_aborted || !acceptor_.is_open()) return;
+    if (ec) {
+      return retry_.failed(ec, [this] {
+        if (acceptor_.is_open()) accept();
+      });
+    }
     retry_.succeeded();
     serve(std::move(socket));
     accept();
