@@ -63,7 +63,7 @@ PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolut
     p.raster.model = glm::mat4(model);
     p.raster.texture_from_object = texture_from_object;
     p.raster.object_id = id++;
-    p.raster.cull_back_faces = !object.double_sided;
+    p.raster.cull_back_faces = !object.double_sided && !mesh.two_sided;
     p.raster.closed = object.solid.value_or(true);
     p.raster.bounds_min = mesh.bounds.min;
     p.raster.bounds_max = mesh.bounds.max;

@@ -12,6 +12,27 @@
 namespace soltex {
 namespace {
 
+// A hash of a face's corners as a set (FNV-1a over them sorted): the same for every order.
+uint64_t corner_set_hash(std::span<const uint32_t> face) {
+  std::vector<uint32_t> sorted(face.begin(), face.end());
+  std::sort(sorted.begin(), sorted.end());
+  uint64_t hash = 1469598103934665603ull;
+  for (uint32_t corner : sorted) hash = (hash ^ corner) * 1099511628211ull;
+  return hash;
+}
+
+bool same_corner_set(std::span<const uint32_t> a, std::span<const uint32_t> b) {
+  return a.size() == b.size() && std::is_permutation(a.begin(), a.end(), b.begin());
+}
+
+// Whether two faces over the same corners run the same way round: b continues from a's first
+// corner to a's second.
+bool same_winding(std::span<const uint32_t> a, std::span<const uint32_t> b) {
+  const std::size_t n = a.size();
+  const std::size_t at = static_cast<std::size_t>(std::find(b.begin(), b.end(), a[0]) - b.begin());
+  return b[(at + 1) % n] == a[1];
+}
+
 // A position's coordinates as integers of the same width: float -> uint32, double -> uint64.
 template <class Position>
 using Bits =
@@ -77,28 +98,48 @@ std::size_t drop_degenerate_triangles(const std::vector<Position>& positions,
   return count - kept;
 }
 
-std::size_t drop_duplicate_triangles(std::vector<uint32_t>& indices) {
-  using Corners = std::array<uint32_t, 3>;
-  const std::size_t count = indices.size() / 3;
-  std::vector<std::pair<Corners, uint32_t>> sorted(count);
-  for (std::size_t t = 0; t < count; ++t) {
-    Corners corners{indices[3 * t], indices[3 * t + 1], indices[3 * t + 2]};
-    std::sort(corners.begin(), corners.end());
-    sorted[t] = {corners, static_cast<uint32_t>(t)};
+RepeatedFaces find_repeated_polygons(std::span<const uint32_t> corners,
+                                     std::span<const uint32_t> sizes) {
+  std::vector<std::size_t> starts(sizes.size());
+  for (std::size_t f = 0, at = 0; f < sizes.size(); at += sizes[f], ++f) starts[f] = at;
+  const auto face = [&](std::size_t f) { return corners.subspan(starts[f], sizes[f]); };
+  // Faces ordered by a hash of their sorted corners, so that repeats lie side by side; equal
+  // hashes are compared in full.
+  std::vector<std::pair<uint64_t, uint32_t>> keyed(sizes.size());
+  for (std::size_t f = 0; f < sizes.size(); ++f) {
+    keyed[f] = {corner_set_hash(face(f)), static_cast<uint32_t>(f)};
   }
-  std::sort(sorted.begin(), sorted.end());
-  std::vector<bool> dropped(count, false);
-  for (std::size_t i = 1; i < count; ++i) {
-    if (sorted[i].first == sorted[i - 1].first) dropped[sorted[i].second] = true;
+  std::sort(keyed.begin(), keyed.end());
+  RepeatedFaces found;
+  found.repeated.assign(sizes.size(), false);
+  std::vector<uint32_t> kept;  // the distinct faces of one run of equal hashes, first first
+  for (std::size_t i = 0; i < keyed.size(); ++i) {
+    if (i == 0 || keyed[i].first != keyed[i - 1].first) kept.clear();
+    const auto later = face(keyed[i].second);
+    const auto same = std::find_if(kept.begin(), kept.end(),
+                                   [&](uint32_t f) { return same_corner_set(face(f), later); });
+    if (same == kept.end()) {
+      kept.push_back(keyed[i].second);
+      continue;
+    }
+    found.repeated[keyed[i].second] = true;
+    ++found.count;
+    found.reversed += same_winding(face(*same), later) ? 0 : 1;
   }
+  return found;
+}
+
+RepeatedFaces drop_duplicate_triangles(std::vector<uint32_t>& indices) {
+  const std::vector<uint32_t> sizes(indices.size() / 3, 3);
+  RepeatedFaces found = find_repeated_polygons(indices, sizes);
   std::size_t kept = 0;
-  for (std::size_t t = 0; t < count; ++t) {
-    if (dropped[t]) continue;
+  for (std::size_t t = 0; t < sizes.size(); ++t) {
+    if (found.repeated[t]) continue;
     for (int k = 0; k < 3; ++k) indices[3 * kept + k] = indices[3 * t + k];
     ++kept;
   }
   indices.resize(3 * kept);
-  return count - kept;
+  return found;
 }
 
 template <class Position>

@@ -9,7 +9,6 @@
 #include <fstream>
 #include <glm/common.hpp>
 #include <limits>
-#include <set>
 #include <span>
 #include <sstream>
 #include <utility>
@@ -27,14 +26,21 @@ struct WideMesh {
   std::vector<uint32_t> indices;
 };
 
+void count_repeats(const RepeatedFaces& repeats, ObjLoadStats& stats) {
+  stats.duplicate_faces_dropped += repeats.count;
+  stats.reversed_faces_dropped += repeats.reversed;
+}
+
 // Checks every face's indices against the final vertex count and the vertices it uses for
 // finite coordinates, and triangulates it.
 void triangulate_faces(const ObjText& obj, const std::string& name, WideMesh& mesh,
                        ObjLoadStats& stats) {
   const std::size_t vertex_count = obj.positions.size();
-  // Polygons over the same vertices (a face written once each way): kept once, since their
-  // triangulations need not share a diagonal for drop_duplicate_triangles() to find.
-  std::set<std::vector<uint32_t>> polygons_seen;
+  // Polygons over the same vertices (a face written once each way): kept once, here, since
+  // their triangulations need not share a diagonal for drop_duplicate_triangles() to find.
+  const RepeatedFaces repeats = find_repeated_polygons(obj.corners, obj.face_sizes);
+  stats.duplicate_faces_dropped = repeats.count;
+  stats.reversed_faces_dropped = repeats.reversed;
   std::size_t next = 0;
   for (std::size_t f = 0; f < obj.face_sizes.size(); ++f) {
     ++stats.faces_read;
@@ -58,15 +64,8 @@ void triangulate_faces(const ObjText& obj, const std::string& name, WideMesh& me
                                  obj.bad_vertex_texts[k] + "\"");
       }
     }
-    if (polygon.size() > 3) {
-      std::vector<uint32_t> corners(polygon.begin(), polygon.end());
-      std::sort(corners.begin(), corners.end());
-      if (!polygons_seen.insert(std::move(corners)).second) {
-        stats.duplicate_triangles_dropped += polygon.size() - 2;
-        continue;
-      }
-      ++stats.polygons_triangulated;
-    }
+    if (repeats.repeated[f]) continue;
+    if (polygon.size() > 3) ++stats.polygons_triangulated;
     triangulate_polygon(obj.positions, polygon, mesh.indices);
   }
 }
@@ -146,7 +145,7 @@ LoadedObj parse_obj(std::string_view text, const std::string& name_for_errors,
   // Cleaned in double, then again in float: points apart in the file can meet in float.
   stats.duplicate_vertices_merged = merge_duplicate_vertices(wide.positions, wide.indices);
   stats.degenerate_triangles_dropped = drop_degenerate_triangles(wide.positions, wide.indices);
-  stats.duplicate_triangles_dropped += drop_duplicate_triangles(wide.indices);
+  count_repeats(drop_duplicate_triangles(wide.indices), stats);
   stats.unreferenced_vertices_removed = remove_unreferenced_vertices(wide.positions, wide.indices);
   if (wide.indices.empty()) {
     throw ObjError(name_for_errors,
@@ -156,12 +155,13 @@ LoadedObj parse_obj(std::string_view text, const std::string& name_for_errors,
   mesh = to_float_mesh(std::move(wide), name_for_errors, options.normalize);
   stats.duplicate_vertices_merged += merge_duplicate_vertices(mesh.positions, mesh.indices);
   stats.degenerate_triangles_dropped += drop_degenerate_triangles(mesh.positions, mesh.indices);
-  stats.duplicate_triangles_dropped += drop_duplicate_triangles(mesh.indices);
+  count_repeats(drop_duplicate_triangles(mesh.indices), stats);
   stats.unreferenced_vertices_removed += remove_unreferenced_vertices(mesh.positions, mesh.indices);
   if (mesh.triangle_count() == 0) {
     throw ObjError(name_for_errors, "all " + std::to_string(stats.faces_read) +
                                         " faces are degenerate (zero area) in float precision");
   }
+  mesh.two_sided = stats.reversed_faces_dropped > 0;
   compute_vertex_normals(mesh);
   mesh.update_bounds();
   return result;

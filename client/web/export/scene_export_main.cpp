@@ -117,7 +117,8 @@ json export_scene(const soltex::Scene& scene, int finest_level) {
     json o = geometry(object, volume);
     o["world_to_volume"] = world_to_volume(object, volume);
     o["name"] = object.name;
-    o["double_sided"] = object.double_sided || !object.clip_planes.empty();
+    o["double_sided"] =
+        object.double_sided || object.mesh->two_sided || !object.clip_planes.empty();
     // Measured here for uncut objects too: the page's own cutting plane may cut them.
     o["solid"] = object.solid
                      ? *object.solid

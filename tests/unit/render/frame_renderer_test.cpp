@@ -69,6 +69,23 @@ TEST(PrepareScene, AVolumeTheBricksCannotMakeNamesItsObject) {
   EXPECT_NO_THROW((void)prepare_scene(scene, TextureResolution{8, 8, {}}, source));
 }
 
+// A mesh its file wrote two-sided (each face once each way, kept once) is drawn from both
+// sides even where its object asks for back faces to be culled.
+TEST(PrepareScene, ATwoSidedMeshIsNotCulled) {
+  Scene scene = default_scene();
+  SceneObject& torus = scene.objects[1];
+  ASSERT_FALSE(torus.double_sided);
+  BrickCache cache(16u << 20);
+  net::LocalBrickSource source(cache);
+  EXPECT_TRUE(
+      prepare_scene(scene, TextureResolution{8, 16, {}}, source).objects[1].raster.cull_back_faces);
+  auto two_sided = std::make_shared<Mesh>(*torus.mesh);
+  two_sided->two_sided = true;
+  torus.mesh = two_sided;
+  EXPECT_FALSE(
+      prepare_scene(scene, TextureResolution{8, 16, {}}, source).objects[1].raster.cull_back_faces);
+}
+
 TEST(FrameRenderer, TileGBuffersDrawWhatTheFrameGBufferDraws) {
   const Drawn kept = draw_default_scene(true);
   const Drawn tiled = draw_default_scene(false);

@@ -24,7 +24,9 @@ f 3 5 4
   EXPECT_EQ(obj.stats.degenerate_triangles_dropped, 0u);
   EXPECT_EQ(obj.mesh.vertex_count(), 3u);
   // Both faces then name the same three vertices: the second is a duplicate.
-  EXPECT_EQ(obj.stats.duplicate_triangles_dropped, 1u);
+  EXPECT_EQ(obj.stats.duplicate_faces_dropped, 1u);
+  EXPECT_EQ(obj.stats.reversed_faces_dropped, 0u);
+  EXPECT_FALSE(obj.mesh.two_sided);
   EXPECT_EQ(obj.mesh.triangle_count(), 1u);
 }
 
@@ -47,7 +49,8 @@ f 4 5 3
 }
 
 // A face written once each way (a common way to export a two-sided sheet) is one face: kept
-// twice its vertex normals would cancel, and the two copies would fight for depth.
+// twice its vertex normals would cancel, and the two copies would fight for depth. The mesh
+// is then two-sided, so back-face culling does not hide what the file showed from behind.
 TEST(MeshCleanup, AFaceWrittenInBothWindingsIsKeptOnce) {
   const LoadedObj obj = parse_obj(R"(
 v 0 0 0
@@ -59,7 +62,9 @@ f 4 3 2 1
 f 1 2 3 4
 )",
                                   "two-sided.obj");
-  EXPECT_EQ(obj.stats.duplicate_triangles_dropped, 4u);
+  EXPECT_EQ(obj.stats.duplicate_faces_dropped, 2u);  // the quad again, each way
+  EXPECT_EQ(obj.stats.reversed_faces_dropped, 1u);
+  EXPECT_TRUE(obj.mesh.two_sided) << "seen from both sides, as the file meant";
   ASSERT_EQ(obj.mesh.triangle_count(), 2u);
   for (const glm::vec3& n : obj.mesh.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));
 }

@@ -19,6 +19,9 @@ struct Mesh {
   std::vector<glm::vec3> normals;
   std::vector<uint32_t> indices;  // three per triangle
   BoundingBox bounds;
+  // Its file wrote faces once in each winding, to be seen from both sides: one copy of each
+  // is kept, so its objects draw back faces whatever their double_sided says.
+  bool two_sided = false;
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return indices.size() / 3; }

@@ -46,8 +46,10 @@ struct ObjLoadStats {
   std::size_t faces_read = 0;
   std::size_t polygons_triangulated = 0;  // faces with more than three vertices
   std::size_t degenerate_triangles_dropped = 0;
-  // Over the same vertices, in either winding (a duplicate polygon counts its triangles).
-  std::size_t duplicate_triangles_dropped = 0;
+  // Faces over the same vertices as an earlier one, and of those the ones wound the other way
+  // (a two-sided face written once each way).
+  std::size_t duplicate_faces_dropped = 0;
+  std::size_t reversed_faces_dropped = 0;
   std::size_t duplicate_vertices_merged = 0;
   std::size_t unreferenced_vertices_removed = 0;
 };
