@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <glm/geometric.hpp>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -47,25 +46,40 @@ std::vector<DirectedEdge> open_edges(const std::vector<uint32_t>& indices) {
 
 // Follows the open edges head to tail into loops and sums the area each spans. An edge chain
 // that does not come back to its start (a non-manifold boundary) is closed by a straight
-// segment.
-double loops_area(const std::vector<glm::vec3>& positions, const std::vector<DirectedEdge>& open) {
-  std::unordered_map<uint32_t, std::vector<uint32_t>> next;
-  for (const DirectedEdge& e : open) next[e.from].push_back(e.to);
+// segment. The edges are sorted by their start, so a vertex's unwalked ones are a range.
+double loops_area(const std::vector<glm::vec3>& positions, std::vector<DirectedEdge> open) {
+  std::sort(open.begin(), open.end(),
+            [](const DirectedEdge& a, const DirectedEdge& b) { return a.from < b.from; });
+  const auto first_from = [&](uint32_t vertex) {
+    return static_cast<std::size_t>(
+        std::lower_bound(open.begin(), open.end(), vertex,
+                         [](const DirectedEdge& e, uint32_t v) { return e.from < v; }) -
+        open.begin());
+  };
+  // A vertex's edges are walked from the front of its range: `taken`, kept at the range's
+  // first edge, counts those gone.
+  std::vector<bool> walked(open.size(), false);
+  std::vector<uint32_t> taken(open.size(), 0);
+  const auto next_from = [&](uint32_t vertex) -> std::size_t {
+    const std::size_t range = first_from(vertex);
+    const std::size_t at = range + (range < open.size() ? taken[range] : 0);
+    if (at >= open.size() || open[at].from != vertex) return open.size();
+    ++taken[range];
+    return at;
+  };
   double area = 0.0;
-  for (const DirectedEdge& first : open) {
-    std::vector<uint32_t>& out = next[first.from];
-    if (out.empty()) continue;  // this edge was walked as part of an earlier loop
-    const glm::dvec3 origin(positions[first.from]);
+  for (std::size_t start = 0; start < open.size(); ++start) {
+    if (walked[start]) continue;
+    ++taken[first_from(open[start].from)];  // all before it in its range are walked
+    const uint32_t first = open[start].from;
+    const glm::dvec3 origin(positions[first]);
     glm::dvec3 twice_area(0.0);
-    uint32_t at = first.from;
-    do {
-      std::vector<uint32_t>& ways = next[at];
-      const uint32_t to = ways.back();
-      ways.pop_back();
-      twice_area +=
-          glm::cross(glm::dvec3(positions[at]) - origin, glm::dvec3(positions[to]) - origin);
-      at = to;
-    } while (at != first.from && !next[at].empty());
+    for (std::size_t e = start; e < open.size(); e = next_from(open[e].to)) {
+      walked[e] = true;
+      twice_area += glm::cross(glm::dvec3(positions[open[e].from]) - origin,
+                               glm::dvec3(positions[open[e].to]) - origin);
+      if (open[e].to == first) break;
+    }
     area += 0.5 * glm::length(twice_area);
   }
   return area;
@@ -83,10 +97,10 @@ double opening_fraction(const Mesh& mesh) {
     surface += 0.5 * glm::length(glm::cross(glm::dvec3(positions[indices[t + 1]]) - a,
                                             glm::dvec3(positions[indices[t + 2]]) - a));
   }
-  const std::vector<DirectedEdge> open = open_edges(indices);
+  std::vector<DirectedEdge> open = open_edges(indices);
   if (open.empty()) return 0.0;
   if (!(surface > 0.0)) return 1.0;
-  const double fraction = loops_area(positions, open) / surface;
+  const double fraction = loops_area(positions, std::move(open)) / surface;
   SOLTEX_DCHECK(fraction >= 0.0);
   return fraction;
 }
