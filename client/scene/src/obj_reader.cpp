@@ -96,10 +96,12 @@ void read_face(std::string_view rest, std::size_t line_number, const std::string
     // Negative indices count back from the last vertex defined so far.
     const int64_t absolute = index > 0 ? index - 1 : defined + index;
     if (absolute < 0) {
-      throw ObjError(name, where() + " uses relative index " + std::to_string(index) +
-                               ", but only " + std::to_string(defined) +
-                               " vertices are defined before it: at least -" +
-                               std::to_string(defined));
+      const std::string bound = defined == 0 ? "no vertex is defined before it"
+                                             : "only " + std::to_string(defined) +
+                                                   " vertices are defined before it: at least -" +
+                                                   std::to_string(defined);
+      throw ObjError(name,
+                     where() + " uses relative index " + std::to_string(index) + ", but " + bound);
     }
     if (absolute > std::numeric_limits<uint32_t>::max()) {
       throw ObjError(name, where() + ": vertex index " + std::to_string(index) +

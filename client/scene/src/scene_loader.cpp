@@ -402,6 +402,41 @@ void check_volume(const SceneObject& object, std::size_t index, const std::strin
   }
 }
 
+// Builds each distinct mesh once and gives it to its objects, refusing a scene whose distinct
+// meshes pass the triangle bound as soon as they do, so at most one mesh past it is made.
+void build_meshes(Scene& scene, const std::vector<MeshRequest>& meshes, const std::string& file) {
+  std::map<std::string, std::shared_ptr<const Mesh>> built;
+  std::size_t total_triangles = 0;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    std::shared_ptr<const Mesh>& mesh = built[meshes[i].cache_key];
+    if (!mesh) {
+      mesh = build_mesh(meshes[i], file);
+      total_triangles += mesh->triangle_count();
+      if (total_triangles > SceneLimits::kMaxTotalTriangles) {
+        throw SceneError(file, "objects[" + std::to_string(i) + "].mesh",
+                         "the scene's distinct meshes reach " + std::to_string(total_triangles) +
+                             " triangles; at most " +
+                             std::to_string(SceneLimits::kMaxTotalTriangles) + " in all");
+      }
+    }
+    scene.objects[i].mesh = mesh;
+  }
+}
+
+// Each distinct mesh simplified once, after all are built: a scene past the triangle bound
+// costs no simplification.
+void simplify_meshes(Scene& scene, const std::vector<MeshRequest>& meshes) {
+  std::map<std::string, std::shared_ptr<const std::vector<MeshLevel>>> simplified;
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+    auto& levels = simplified[meshes[i].cache_key];
+    if (!levels) {
+      levels =
+          std::make_shared<const std::vector<MeshLevel>>(simplified_levels(*scene.objects[i].mesh));
+    }
+    scene.objects[i].levels = levels;
+  }
+}
+
 }  // namespace
 
 Scene parse_scene(std::string_view json_text, const std::string& name_for_errors,
@@ -467,35 +502,10 @@ Scene parse_scene(std::string_view json_text, const std::string& name_for_errors
   root.reject_unknown_keys();
 
   // Everything is checked before the first mesh is built: a typo costs no OBJ load.
-  std::map<std::string, std::shared_ptr<const Mesh>> built;
-  std::size_t total_triangles = 0;
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    std::shared_ptr<const Mesh>& mesh = built[meshes[i].cache_key];
-    if (!mesh) {
-      mesh = build_mesh(meshes[i], file);
-      // Checked as meshes are built, so at most one mesh past the bound is ever made.
-      total_triangles += mesh->triangle_count();
-      if (total_triangles > SceneLimits::kMaxTotalTriangles) {
-        throw SceneError(file, "objects[" + std::to_string(i) + "].mesh",
-                         "the scene's distinct meshes reach " + std::to_string(total_triangles) +
-                             " triangles; at most " +
-                             std::to_string(SceneLimits::kMaxTotalTriangles) + " in all");
-      }
-    }
-    scene.objects[i].mesh = mesh;
-  }
+  build_meshes(scene, meshes, file);
   for (std::size_t i = 0; i < scene.objects.size(); ++i) check_volume(scene.objects[i], i, file);
   decide_solids(scene, meshes, solid_given);
-  // Simplified once all meshes are in: a scene past the triangle bound costs no simplification.
-  std::map<std::string, std::shared_ptr<const std::vector<MeshLevel>>> simplified;
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-    auto& levels = simplified[meshes[i].cache_key];
-    if (!levels) {
-      levels =
-          std::make_shared<const std::vector<MeshLevel>>(simplified_levels(*scene.objects[i].mesh));
-    }
-    scene.objects[i].levels = levels;
-  }
+  simplify_meshes(scene, meshes);
   return scene;
 }
 

@@ -147,8 +147,11 @@ std::optional<std::string> unknown_argument(const CLI::App& app, int argc, char*
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--") break;
-    if (arg.size() > 1 && arg[0] == '-') {
-      const std::string name = arg.substr(0, arg.find('='));
+    const bool number = arg.size() > 1 && (std::isdigit(static_cast<unsigned char>(arg[1])) ||
+                                           arg[1] == '.');  // -5, -.5: a value, not an option
+    if (arg.size() > 1 && arg[0] == '-' && !number) {
+      // --name=value, or -x with its value run on (-j4).
+      const std::string name = arg[1] == '-' ? arg.substr(0, arg.find('=')) : arg.substr(0, 2);
       if (!knows_option(app, name)) return name;
     } else if (i == 1 && app.get_require_subcommand_min() > 0) {
       const auto named = app.get_subcommands(

@@ -227,6 +227,8 @@ TEST(ParseObjErrors, NameTheFileAndTheProblem) {
   EXPECT_THAT(obj_error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 1 2\n").what(),
               HasSubstr("uses relative index -4, but only 3 vertices are defined before it: at "
                         "least -3"));
+  EXPECT_THAT(obj_error_of("f -1 -2 -3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n").what(),
+              HasSubstr("uses relative index -1, but no vertex is defined before it"));
   EXPECT_THAT(obj_error_of("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n").what(),
               AllOf(HasSubstr("bad.obj"), HasSubstr("line 4")));
   EXPECT_THAT(obj_error_of("v 0 0 0\nv 1 0 0\n").what(), HasSubstr("no faces"));
