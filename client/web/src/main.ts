@@ -33,6 +33,7 @@ interface ViewerStatus {
   resident: number;
   error: string | null;
   stats?: unknown;
+  textures?: number; // textures registered so far (one per distinct id)
 }
 declare global {
   interface Window {
@@ -69,10 +70,16 @@ async function main(): Promise<void> {
   const textures: ViewerTexture[] = [];
   const objects: ViewerObject[] = [];
 
+  // One entry per texture id: switching back to a texture finds its indirection and the bricks
+  // it left in the pool, and switching back and forth allocates nothing more on the GPU.
+  const textureById = new Map<string, number>();
   const addTexture = async (registration: Registration): Promise<number> => {
     const handle = await registerTexture(server, registration);
+    const known = textureById.get(handle.id);
+    if (known !== undefined) return known;
     const indirection = new Indirection(gl, handle.levels, 1 << (handle.finest_level_log2 - Math.log2(BRICK)));
     textures.push({ handle, indirection });
+    textureById.set(handle.id, textures.length - 1);
     return textures.length - 1;
   };
   for (const o of scene.objects) {
@@ -242,6 +249,7 @@ async function main(): Promise<void> {
     status.wanted = lastWants.length;
     status.resident = resident;
     status.stats = loader.stats;
+    status.textures = textures.length;
     // Not while the last bricks wait for their frame: what is on screen must be the picture.
     status.converged = !dirty && loader.pending === 0 && (resident === lastWants.length || pool.residentCount === pool.capacity);
     if (now - lastOverlay < 500 && status.converged === shownConverged) return;

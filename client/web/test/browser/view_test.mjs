@@ -100,6 +100,23 @@ try {
     writeFileSync(kept, readFileSync(web));
     throw new Error(`PSNR ${psnr} dB is below the floor of ${PSNR_FLOOR} dB (the page's picture: ${kept})`);
   }
+  // Switching to a preset texture and back, twice: the second round registers nothing new
+  // (each texture id keeps its indirection and its bricks).
+  const settle = () => page.waitForFunction(() => window.soltex.converged || window.soltex.error, null,
+    { timeout: 90000, polling: 250 });
+  const texturesBefore = status.textures;
+  for (const key of ["1", "0", "1", "0"]) {
+    await page.keyboard.press(key);
+    await page.waitForTimeout(300);
+    await settle();
+  }
+  const switched = await page.evaluate(() => window.soltex);
+  if (switched.error) throw new Error(`the page failed switching textures: ${switched.error}`);
+  console.log(`textures after switching twice: ${switched.textures} (${texturesBefore} before)`);
+  if (!(switched.textures > texturesBefore && switched.textures <= 2 * texturesBefore)) {
+    throw new Error(`switching to a preset and back twice made ${switched.textures} textures from ` +
+      `${texturesBefore}: each switch registers anew`);
+  }
   site.close();
 } finally {
   await context?.close();
