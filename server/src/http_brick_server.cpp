@@ -210,8 +210,18 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
   void refuse_request(unsigned status, const std::string& message) {
     metrics_.http.count(HttpMetrics::Route::other, status);
     HttpResponse response = handler_.error(11, status, message);
-    if (parser_ && parser_->get().method() == http::verb::head) without_content(response);
+    if (is_head_request()) without_content(response);
     send(std::move(response), /*close=*/true);
+  }
+
+  // Whether the request being refused is a HEAD: its parsed method, or where the request
+  // line was not read whole (414), the word it starts with.
+  bool is_head_request() const {
+    if (parser_ && parser_->get().method() == http::verb::head) return true;
+    if (parser_ && !parser_->get().method_string().empty()) return false;
+    const std::string_view unread(static_cast<const char*>(buffer_.data().data()),
+                                  buffer_.data().size());
+    return unread.starts_with("HEAD ");
   }
 
   void send(HttpResponse response, bool close) {

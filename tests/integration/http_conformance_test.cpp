@@ -42,6 +42,14 @@ TEST_F(HttpConformance, AHeadIsAnsweredWithoutContentWhateverItsStatus) {
     EXPECT_EQ(next.status, 200) << "after HEAD " << target;
     EXPECT_EQ(next.body, full) << "after HEAD " << target;
   }
+  // A request line too long to read whole is known for a HEAD by its first word: the 414 has
+  // no content either.
+  HttpConnection long_line(port());
+  long_line.write_raw("HEAD /v1/textures/" + std::string(32768, 'a') + " HTTP/1.1\r\n");
+  const std::string answer = long_line.read_until_closed();
+  EXPECT_EQ(answer.rfind("HTTP/1.1 414", 0), 0u) << answer.substr(0, 200);
+  ASSERT_NE(answer.find("\r\n\r\n"), std::string::npos);
+  EXPECT_EQ(answer.substr(answer.find("\r\n\r\n") + 4), "") << "content after a HEAD's headers";
   // A 304 to HEAD has no Content-Length (RFC 9110 8.6: only the 200's length would be right).
   const HttpReply not_modified = connection.send("HEAD", brick(), {{"If-None-Match", "*"}});
   EXPECT_EQ(not_modified.status, 304);

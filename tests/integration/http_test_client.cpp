@@ -60,6 +60,18 @@ bool HttpConnection::closed_by_server() {
   return ec == boost::asio::error::eof || ec == boost::asio::error::connection_reset;
 }
 
+std::string HttpConnection::read_until_closed() {
+  std::string bytes(static_cast<const char*>(buffer_.data().data()), buffer_.data().size());
+  buffer_.consume(buffer_.size());
+  char chunk[4096];
+  beast::error_code ec;
+  while (!ec) {
+    const std::size_t n = socket_.read_some(boost::asio::buffer(chunk), ec);
+    bytes.append(chunk, n);
+  }
+  return bytes;
+}
+
 HttpReply http_request(int port, const std::string& method, const std::string& target,
                        const HttpHeaders& headers, const std::string& body) {
   HttpConnection connection(port);

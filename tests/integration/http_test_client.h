@@ -37,6 +37,8 @@ class HttpConnection {
   HttpReply read(bool head = false);
   // Whether the server has closed its side (a read returns end of stream).
   bool closed_by_server();
+  // Every byte the server sends until it closes the connection, unparsed.
+  std::string read_until_closed();
 
  private:
   boost::asio::io_context io_;

@@ -95,8 +95,14 @@ std::string with_source(const CLI::App& app, const CLI::ParseError& error, int a
       config != nullptr && config->count() > 0 ? config->as<std::string>() : std::string();
   constexpr std::string_view kUnknownKey = "INI was not able to parse ";
   if (message.rfind(kUnknownKey, 0) == 0) {
-    return "config file " + config_file + ": no option is named " +
-           message.substr(kUnknownKey.size());
+    const std::string key = message.substr(kUnknownKey.size());
+    // CLI11 names the start of a [section] "section.++", and a key in it "section.key".
+    if (key.size() > 3 && key.ends_with(".++")) {
+      return "config file " + config_file + ": sections are not read ([" +
+             key.substr(0, key.size() - 3) +
+             "]): write every option as a top-level key, before any [section] line";
+    }
+    return "config file " + config_file + ": no option is named " + key;
   }
   std::vector<const CLI::Option*> options;
   collect_options(app, options);
