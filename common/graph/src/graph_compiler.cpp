@@ -244,8 +244,10 @@ void Lowering::set_parameters(const Node& node, const NodeDef& def, Instruction&
     if (connectable(input.slot)) continue;
     const InputValue* value = find_input(node, input.name);
     if (input.slot == Slot::keys) {
-      writer_.u32(static_cast<uint32_t>(instr.ramp.keys.size()));
-      for (const RampKey& key : std::get<RampKeys>(*value)) {
+      // The count first, so that where the keys end is part of what the id hashes.
+      const RampKeys& keys = std::get<RampKeys>(*value);
+      writer_.u32(static_cast<uint32_t>(keys.size()));
+      for (const RampKey& key : keys) {
         for (float f : {key.position, key.colour.r, key.colour.g, key.colour.b}) writer_.f64(f);
       }
     } else if (input.slot == Slot::choice) {
