@@ -27,7 +27,8 @@ void check_unit_bounds(const soltex::Mesh& mesh, const char* what) {
 
 void check_stats(const soltex::LoadedObj& loaded, const char* what) {
   const soltex::ObjLoadStats& stats = loaded.stats;
-  if (stats.vertices_read - stats.duplicate_vertices_merged - stats.unreferenced_vertices_removed !=
+  if (stats.vertices_read - stats.duplicate_vertices_merged - stats.unreferenced_vertices_removed +
+          stats.vertices_split_at_creases !=
       loaded.mesh.vertex_count()) {
     fail(std::string(what) + ": the load statistics do not add up to the vertices kept");
   }

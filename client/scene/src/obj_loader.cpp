@@ -162,7 +162,7 @@ LoadedObj parse_obj(std::string_view text, const std::string& name_for_errors,
                                         " faces are degenerate (zero area) in float precision");
   }
   mesh.two_sided = stats.reversed_faces_dropped > 0;
-  compute_vertex_normals(mesh);
+  stats.vertices_split_at_creases = compute_creased_normals(mesh, options.crease_degrees);
   mesh.update_bounds();
   return result;
 }

@@ -231,8 +231,11 @@ MeshRequest read_mesh(const JsonValue& value, const std::filesystem::path& obj_d
   if (named.empty()) path.fail("must not be empty");
   file.path = named.is_absolute() ? named : obj_directory / named;
   file.normalize = obj.boolean("normalize", true);
+  if (const auto crease = obj.find("crease_angle"))
+    file.crease_degrees = crease->number(0.0, 180.0);
   obj.reject_unknown_keys();
-  request.cache_key = "obj " + std::string(file.normalize ? "normalized " : "") +
+  request.cache_key = "obj " + std::string(file.normalize ? "normalized " : "") + "crease " +
+                      std::to_string(file.crease_degrees) + " " +
                       std::filesystem::absolute(file.path).lexically_normal().string();
   request.field = path.path();
   request.source = file;
@@ -351,7 +354,8 @@ std::shared_ptr<const Mesh> build_mesh(const MeshRequest& request, const std::st
   }
   const ObjFile& obj = std::get<ObjFile>(request.source);
   try {
-    Mesh mesh = load_obj(obj.path, {.normalize = obj.normalize}).mesh;
+    Mesh mesh =
+        load_obj(obj.path, {.normalize = obj.normalize, .crease_degrees = obj.crease_degrees}).mesh;
     order_for_locality(mesh);
     return std::make_shared<const Mesh>(std::move(mesh));
   } catch (const ObjError& error) {

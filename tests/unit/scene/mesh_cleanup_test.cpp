@@ -2,7 +2,11 @@
 // by meshoptimizer's vertex remap over the positions' bits, with -0 folded into +0.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
+#include <numbers>
+#include <string>
 
 #include "soltex/scene/obj_loader.h"
 
@@ -42,7 +46,7 @@ f 1 2 3
 f 1 3 5
 f 4 5 3
 )",
-                                  "close.obj");
+                                  "close.obj", {.crease_degrees = 180.0});  // smooth: no splits
   EXPECT_EQ(obj.stats.duplicate_vertices_merged, 1u);
   EXPECT_EQ(obj.mesh.vertex_count(), 4u);
   EXPECT_EQ(obj.mesh.triangle_count(), 3u);
@@ -67,6 +71,60 @@ f 1 2 3 4
   EXPECT_TRUE(obj.mesh.two_sided) << "seen from both sides, as the file meant";
   ASSERT_EQ(obj.mesh.triangle_count(), 2u);
   for (const glm::vec3& n : obj.mesh.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));
+}
+
+// A cube's faces meet at 90 degrees: past the default crease, so each corner of each face has
+// its face's own normal (the cube is split into 24 vertices, three per corner), where smooth
+// normals would shade each face with a diagonal gradient. At 180 degrees it stays smooth.
+TEST(MeshCleanup, ACubeKeepsItsEdgesSharp) {
+  const char* cube = R"(
+v -1 -1 -1
+v 1 -1 -1
+v 1 1 -1
+v -1 1 -1
+v -1 -1 1
+v 1 -1 1
+v 1 1 1
+v -1 1 1
+f 1 4 3 2
+f 5 6 7 8
+f 1 2 6 5
+f 3 4 8 7
+f 2 3 7 6
+f 1 5 8 4
+)";
+  const LoadedObj sharp = parse_obj(cube, "cube.obj");
+  EXPECT_EQ(sharp.mesh.vertex_count(), 24u);
+  EXPECT_EQ(sharp.stats.vertices_split_at_creases, 16u);
+  for (std::size_t t = 0; t < sharp.mesh.triangle_count(); ++t) {
+    const glm::vec3 a = sharp.mesh.positions[sharp.mesh.indices[3 * t]];
+    const glm::vec3 b = sharp.mesh.positions[sharp.mesh.indices[3 * t + 1]];
+    const glm::vec3 c = sharp.mesh.positions[sharp.mesh.indices[3 * t + 2]];
+    const glm::vec3 face = glm::normalize(glm::cross(b - a, c - a));
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(sharp.mesh.normals[sharp.mesh.indices[3 * t + k]], face) << "triangle " << t;
+    }
+  }
+  const LoadedObj smooth = parse_obj(cube, "cube.obj", {.crease_degrees = 180.0});
+  EXPECT_EQ(smooth.mesh.vertex_count(), 8u);
+  EXPECT_NEAR(std::abs(smooth.mesh.normals[0].x), 1.0f / std::sqrt(3.0f), 1e-6f);
+}
+
+// A finely tessellated curve (a 32-sided cylinder's side: 11.25 degrees between faces) stays
+// smooth: no vertex is split.
+TEST(MeshCleanup, AGentleCurveStaysSmooth) {
+  std::string tube;
+  for (int i = 0; i < 32; ++i) {
+    const double a = 2.0 * std::numbers::pi * i / 32;
+    tube += "v " + std::to_string(std::cos(a)) + " 0 " + std::to_string(std::sin(a)) + "\n";
+    tube += "v " + std::to_string(std::cos(a)) + " 1 " + std::to_string(std::sin(a)) + "\n";
+  }
+  for (int i = 0; i < 32; ++i) {
+    const int j = (i + 1) % 32;
+    tube += "f " + std::to_string(2 * i + 1) + " " + std::to_string(2 * i + 2) + " " +
+            std::to_string(2 * j + 2) + " " + std::to_string(2 * j + 1) + "\n";
+  }
+  EXPECT_EQ(parse_obj(tube, "tube.obj").stats.vertices_split_at_creases, 0u);
 }
 
 }  // namespace

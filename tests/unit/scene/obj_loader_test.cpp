@@ -519,7 +519,8 @@ TEST_P(SharedModels, LoadWithNormalsAndNormalizeToTheUnitBox) {
   EXPECT_EQ(stats.duplicate_vertices_merged, GetParam().duplicate_vertices);
   EXPECT_EQ(stats.unreferenced_vertices_removed, GetParam().unreferenced_vertices);
   EXPECT_EQ(obj.mesh.vertex_count(), stats.vertices_read - stats.duplicate_vertices_merged -
-                                         stats.unreferenced_vertices_removed);
+                                         stats.unreferenced_vertices_removed +
+                                         stats.vertices_split_at_creases);
   expect_unit_normals(obj.mesh);
   const glm::vec3 size = obj.mesh.bounds.size();
   EXPECT_FLOAT_EQ(std::max({size.x, size.y, size.z}), 2.0f);

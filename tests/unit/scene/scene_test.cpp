@@ -310,6 +310,11 @@ INSTANTIATE_TEST_SUITE_P(
                    first_object(s)["mesh"] = {{"sphere", {{"segments", 3.5}}}};
                  },
                  "objects[0].mesh.sphere.segments", "3.5 is not an integer"},
+        BadScene{"CreaseAngleOverAHalfTurn",
+                 [](json& s) {
+                   first_object(s)["mesh"] = {{"obj", {{"path", "a.obj"}, {"crease_angle", 181}}}};
+                 },
+                 "objects[0].mesh.obj.crease_angle", "181 is out of range: must be in [0, 180]"},
         BadScene{"TorusTubeTooThick",
                  [](json& s) {
                    first_object(s)["mesh"] = {{"torus", {{"minor_radius", 1}}}};

@@ -33,6 +33,14 @@ struct Mesh {
 // sum cancels takes the normal of one of its triangles; an isolated vertex gets +z.
 void compute_vertex_normals(Mesh& mesh);
 
+// Vertex normals that keep hard edges: at each corner, the area-weighted normals of the
+// triangles around its vertex that turn from the corner's own triangle by at most
+// `crease_degrees` (a cube's faces meet at 90 degrees: sharp at 60; a 32-sided cylinder's at
+// 11.25: smooth). Where a vertex's corners get different normals it is split into one vertex
+// per normal, at the same position. 180 gives compute_vertex_normals()'s smooth normals.
+// Returns how many vertices it added.
+std::size_t compute_creased_normals(Mesh& mesh, double crease_degrees);
+
 // Moves and uniformly scales the mesh so that its bounding box is centred at the origin and
 // its longest side spans [-1, 1], the box of the unit sphere: a model then replaces a
 // built-in sphere without changing the look of a texture. Normals are unchanged (uniform

@@ -36,8 +36,15 @@ class ObjError : public std::runtime_error {
 // near this large.
 inline constexpr std::size_t kMaxFaceVertices = 16384;
 
+// A cube's or a machined part's edges (90 degrees) stay sharp; a scan's or a tessellated
+// curve's gentle bends (a 32-sided cylinder: 11.25) stay smooth.
+inline constexpr double kDefaultCreaseDegrees = 60.0;
+
 struct ObjLoadOptions {
   bool normalize = false;  // see normalize_to_unit_box()
+  // Faces meeting at more than this keep a hard edge (compute_creased_normals()); 180: every
+  // vertex smooth.
+  double crease_degrees = kDefaultCreaseDegrees;
 };
 
 // What loading did to the file's contents, for logs and tests.
@@ -52,6 +59,7 @@ struct ObjLoadStats {
   std::size_t reversed_faces_dropped = 0;
   std::size_t duplicate_vertices_merged = 0;
   std::size_t unreferenced_vertices_removed = 0;
+  std::size_t vertices_split_at_creases = 0;  // one copy per extra normal at a hard edge
 };
 
 struct LoadedObj {

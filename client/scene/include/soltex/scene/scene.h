@@ -14,6 +14,7 @@
 #include "soltex/scene/material.h"
 #include "soltex/scene/mesh.h"
 #include "soltex/scene/mesh_lod.h"
+#include "soltex/scene/obj_loader.h"
 #include "soltex/scene/transform.h"
 
 namespace soltex {
@@ -22,6 +23,7 @@ namespace soltex {
 struct ObjFile {
   std::filesystem::path path;
   bool normalize = true;
+  double crease_degrees = kDefaultCreaseDegrees;  // ObjLoadOptions::crease_degrees
 };
 
 using MeshSource = std::variant<BuiltinShape, ObjFile>;
