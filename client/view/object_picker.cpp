@@ -1,8 +1,6 @@
 #include "object_picker.h"
 
-#include <vector>
-
-#include "soltex/render/frame_renderer.h"
+#include "soltex/render/eye_relative_view.h"
 
 namespace soltex::view {
 
@@ -23,15 +21,15 @@ std::optional<std::size_t> ObjectPicker::pick(const PreparedScene& scene, const 
   pick_matrix[1][1] = height;
   pick_matrix[3][1] = -centre_y * height;
 
+  // The scene as the frame draws it (relative to the eye, its near plane, its mesh levels),
+  // so the pick sees the depth order the picture shows.
+  const EyeRelativeView frame = eye_relative_view(scene, camera, width, height, true);
   RasterView view;
   view.width = 1;
   view.height = 1;
-  view.view_projection = glm::mat4(pick_matrix * view_projection(camera, width, height));
-  view.clip_planes = scene.clip_planes;
-  std::vector<RasterObject> objects;
-  objects.reserve(scene.objects.size());
-  for (const PreparedObject& object : scene.objects) objects.push_back(object.raster);
-  rasterizer_.render(view, objects, gbuffer_);
+  view.view_projection = glm::mat4(pick_matrix * frame.view_projection);
+  view.clip_planes = frame.clip_planes;
+  rasterizer_.render(view, frame.objects, gbuffer_);
 
   const uint32_t id = gbuffer_.object_id[0];
   if (id == GBuffer::kNoObject) return std::nullopt;
