@@ -555,16 +555,26 @@ TEST(Soltexd, HealthAndGracefulShutdownWithOpenStreams) {
 
 // A stream that half-closed before SIGTERM gets every brick it asked for within the grace and
 // ends OK.
+// A stream that has asked for 200 slow bricks and half-closed, its first batch read.
+struct HalfClosedStream {
+  explicit HalfClosedStream(const SoltexdProcess& server) : stub(connect(server)) {
+    keys = slow_keys(*stub, 2, 200);
+    stream = stub->StreamBricks(&context);
+    started = stream->Write(want(keys)) && stream->WritesDone() && stream->Read(&batch);
+  }
+  std::unique_ptr<v1::BrickService::Stub> stub;
+  std::vector<v1::BrickKey> keys;
+  grpc::ClientContext context;
+  std::unique_ptr<grpc::ClientReaderWriter<v1::BrickRequest, v1::BrickBatch>> stream;
+  v1::BrickBatch batch;
+  bool started = false;
+};
+
 TEST(Soltexd, AHalfClosedStreamGetsEveryBrickItAskedForOnShutdown) {
   SoltexdProcess server({"--threads", "1", "--shutdown-grace-s", "20"});
-  auto stub = connect(server);
-  const std::vector<v1::BrickKey> keys = slow_keys(*stub, 2, 200);
-  grpc::ClientContext context;
-  auto stream = stub->StreamBricks(&context);
-  ASSERT_TRUE(stream->Write(want(keys)));
-  ASSERT_TRUE(stream->WritesDone());
-  v1::BrickBatch batch;
-  ASSERT_TRUE(stream->Read(&batch));
+  HalfClosedStream open(server);
+  ASSERT_TRUE(open.started);
+  auto& [stub, keys, context, stream, batch, started] = open;
   std::size_t received = static_cast<std::size_t>(batch.bricks_size());
 
   server.send_signal(SIGTERM);
@@ -593,14 +603,9 @@ TEST(Soltexd, HttpTakesNoNewConnectionsOnceShutdownBegins) {
   SoltexdProcess server(
       {"--threads", "1", "--shutdown-grace-s", "20", "--http-listen", "127.0.0.1:0"});
   ASSERT_TRUE(accepts_connections(server.http_port()));
-  auto stub = connect(server);
-  const std::vector<v1::BrickKey> keys = slow_keys(*stub, 2, 200);
-  grpc::ClientContext context;
-  auto stream = stub->StreamBricks(&context);
-  ASSERT_TRUE(stream->Write(want(keys)));
-  ASSERT_TRUE(stream->WritesDone());
-  v1::BrickBatch batch;
-  ASSERT_TRUE(stream->Read(&batch));
+  HalfClosedStream open(server);
+  ASSERT_TRUE(open.started);
+  auto& [stub, keys, context, stream, batch, started] = open;
 
   server.send_signal(SIGTERM);
   bool refused = false;
