@@ -113,6 +113,7 @@ int run_headless(const ViewOptions& options, const Scene& scene, ViewSetup& setu
   mark_on(timeline, "cache and brick source ready");
   const PreparedScene prepared = prepare_scene(
       scene, options.texture_resolution(setup.choice.finest_level_log2), *setup.source);
+  warn_of_refused_textures(prepared);
   mark_on(timeline, "scene prepared, textures registered");
   FrameRenderer renderer(*setup.cache, options.render_options());
 

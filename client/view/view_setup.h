@@ -5,6 +5,7 @@
 #include "soltex/capability/capability.h"
 #include "soltex/common/brick_cache.h"
 #include "soltex/net/brick_fetcher.h"
+#include "soltex/render/prepared_scene.h"
 #include "soltex/scene/scene.h"
 #include "startup_timeline.h"
 #include "view_options.h"
@@ -27,5 +28,9 @@ struct ViewSetup {
 // and the brick source; each step logged with why, and marked on `timeline` where not null.
 ViewSetup set_up_view(const ViewOptions& options, const Scene& scene,
                       net::FetcherOptions fetcher_options, StartupTimeline* timeline);
+
+// A warning for each object whose texture the server refused, naming it and why: its texture
+// is evaluated per pixel here instead.
+void warn_of_refused_textures(const PreparedScene& prepared);
 
 }  // namespace soltex::view

@@ -20,6 +20,7 @@
 #include "object_picker.h"
 #include "orbit_controller.h"
 #include "turntable.h"
+#include "view_setup.h"
 #include "window_title.h"
 
 namespace soltex::view {
@@ -213,6 +214,7 @@ ViewerWindow::Impl::Impl(Scene scene_to_show, const TextureResolution& texture_r
 
 void ViewerWindow::Impl::prepare() {
   prepared = prepare_scene(scene, resolution, source);
+  warn_of_refused_textures(prepared);
   LevelCap fresh(prepared);
   fresh.set_cap_log2(cap.cap_log2());
   cap = std::move(fresh);

@@ -1,7 +1,5 @@
 #include "soltex/render/prepared_scene.h"
 
-#include <spdlog/spdlog.h>
-
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/type_ptr.hpp>
@@ -79,9 +77,8 @@ PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolut
           source.register_texture(p.texture, volume, resolution.brick_size, resolution.mip);
     } catch (const net::TextureRefused& e) {
       // The rest of the scene still draws from the server; this object costs more per pixel.
-      spdlog::warn("objects[{}] \"{}\": {}; its texture is evaluated per pixel here instead",
-                   id - 1, object.name, e.what());
       p.evaluated_here = true;
+      p.refusal = e.what();
     }
     prepared.objects.push_back(std::move(p));
   }

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "soltex/common/brick_evaluator.h"
@@ -29,8 +30,9 @@ struct PreparedObject {
   uint64_t texture_id = 0;
   int channels = 0;
   // The source would not register the texture (net::TextureRefused): it is evaluated per
-  // pixel here instead, and no brick of it is asked for.
+  // pixel here instead, and no brick of it is asked for. `refusal` says why.
   bool evaluated_here = false;
+  std::string refusal;
 };
 
 struct PreparedScene {
@@ -41,8 +43,8 @@ struct PreparedScene {
 
 // Builds the raster objects and registers every material's texture with `source`, over the
 // volume scene::texture_volume() gives (the material's, or a padded cube around the object in
-// its texture space). A texture the source refuses alone is logged and evaluated here; any other
-// failure throws. `scene` must outlive the result.
+// its texture space). A texture the source refuses alone is evaluated here (the caller says so:
+// PreparedObject::refusal); any other failure throws. `scene` must outlive the result.
 PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolution,
                             net::BrickSource& source);
 
