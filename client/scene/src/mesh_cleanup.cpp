@@ -14,7 +14,17 @@ namespace {
 
 // A hash of a face's corners as a set (FNV-1a over them sorted): the same for every order.
 uint64_t corner_set_hash(std::span<const uint32_t> face) {
-  std::vector<uint32_t> sorted(face.begin(), face.end());
+  // Most faces are triangles and quads: sorted on the stack, no allocation per face.
+  std::array<uint32_t, 8> small;
+  std::vector<uint32_t> large;
+  std::span<uint32_t> sorted;
+  if (face.size() <= small.size()) {
+    sorted = std::span(small).first(face.size());
+  } else {
+    large.resize(face.size());
+    sorted = large;
+  }
+  std::copy(face.begin(), face.end(), sorted.begin());
   std::sort(sorted.begin(), sorted.end());
   uint64_t hash = 1469598103934665603ull;
   for (uint32_t corner : sorted) hash = (hash ^ corner) * 1099511628211ull;
@@ -98,20 +108,20 @@ std::size_t drop_degenerate_triangles(const std::vector<Position>& positions,
   return count - kept;
 }
 
-RepeatedFaces find_repeated_polygons(std::span<const uint32_t> corners,
-                                     std::span<const uint32_t> sizes) {
-  std::vector<std::size_t> starts(sizes.size());
-  for (std::size_t f = 0, at = 0; f < sizes.size(); at += sizes[f], ++f) starts[f] = at;
-  const auto face = [&](std::size_t f) { return corners.subspan(starts[f], sizes[f]); };
+namespace {
+
+// The repeats among `count` faces, `face(f)` giving face f's corners.
+template <class Face>
+RepeatedFaces find_repeats(std::size_t count, const Face& face) {
   // Faces ordered by a hash of their sorted corners, so that repeats lie side by side; equal
   // hashes are compared in full.
-  std::vector<std::pair<uint64_t, uint32_t>> keyed(sizes.size());
-  for (std::size_t f = 0; f < sizes.size(); ++f) {
+  std::vector<std::pair<uint64_t, uint32_t>> keyed(count);
+  for (std::size_t f = 0; f < count; ++f) {
     keyed[f] = {corner_set_hash(face(f)), static_cast<uint32_t>(f)};
   }
   std::sort(keyed.begin(), keyed.end());
   RepeatedFaces found;
-  found.repeated.assign(sizes.size(), false);
+  found.repeated.assign(count, false);
   std::vector<uint32_t> kept;  // the distinct faces of one run of equal hashes, first first
   for (std::size_t i = 0; i < keyed.size(); ++i) {
     if (i == 0 || keyed[i].first != keyed[i - 1].first) kept.clear();
@@ -129,11 +139,22 @@ RepeatedFaces find_repeated_polygons(std::span<const uint32_t> corners,
   return found;
 }
 
+}  // namespace
+
+RepeatedFaces find_repeated_polygons(std::span<const uint32_t> corners,
+                                     std::span<const uint32_t> sizes) {
+  std::vector<std::size_t> starts(sizes.size());
+  for (std::size_t f = 0, at = 0; f < sizes.size(); at += sizes[f], ++f) starts[f] = at;
+  return find_repeats(sizes.size(),
+                      [&](std::size_t f) { return corners.subspan(starts[f], sizes[f]); });
+}
+
 RepeatedFaces drop_duplicate_triangles(std::vector<uint32_t>& indices) {
-  const std::vector<uint32_t> sizes(indices.size() / 3, 3);
-  RepeatedFaces found = find_repeated_polygons(indices, sizes);
+  const std::span<const uint32_t> all(indices);
+  const std::size_t count = indices.size() / 3;
+  RepeatedFaces found = find_repeats(count, [&](std::size_t t) { return all.subspan(3 * t, 3); });
   std::size_t kept = 0;
-  for (std::size_t t = 0; t < sizes.size(); ++t) {
+  for (std::size_t t = 0; t < count; ++t) {
     if (found.repeated[t]) continue;
     for (int k = 0; k < 3; ++k) indices[3 * kept + k] = indices[3 * t + k];
     ++kept;

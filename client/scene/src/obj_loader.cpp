@@ -145,7 +145,6 @@ LoadedObj parse_obj(std::string_view text, const std::string& name_for_errors,
   // Cleaned in double, then again in float: points apart in the file can meet in float.
   stats.duplicate_vertices_merged = merge_duplicate_vertices(wide.positions, wide.indices);
   stats.degenerate_triangles_dropped = drop_degenerate_triangles(wide.positions, wide.indices);
-  count_repeats(drop_duplicate_triangles(wide.indices), stats);
   stats.unreferenced_vertices_removed = remove_unreferenced_vertices(wide.positions, wide.indices);
   if (wide.indices.empty()) {
     throw ObjError(name_for_errors,
@@ -155,6 +154,8 @@ LoadedObj parse_obj(std::string_view text, const std::string& name_for_errors,
   mesh = to_float_mesh(std::move(wide), name_for_errors, options.normalize);
   stats.duplicate_vertices_merged += merge_duplicate_vertices(mesh.positions, mesh.indices);
   stats.degenerate_triangles_dropped += drop_degenerate_triangles(mesh.positions, mesh.indices);
+  // Once, after both merges: a triangle repeated over vertices merged in double is repeated
+  // over those in float too.
   count_repeats(drop_duplicate_triangles(mesh.indices), stats);
   stats.unreferenced_vertices_removed += remove_unreferenced_vertices(mesh.positions, mesh.indices);
   if (mesh.triangle_count() == 0) {
