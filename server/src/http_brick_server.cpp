@@ -185,8 +185,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
       // The request line not read whole: it alone is too long, which is the target's doing
       // (RFC 9112 3: 414). The parser sets the method once it has read the line, but may also
       // wait for the whole header block first, leaving it all in the buffer.
-      const std::string_view unread(static_cast<const char*>(buffer_.data().data()),
-                                    buffer_.data().size());
+      const std::string_view unread = unread_bytes();
       if (parser_->get().method_string().empty() &&
           unread.substr(0, limits_.max_header_bytes).find('\n') == std::string_view::npos) {
         return refuse_request(
@@ -214,13 +213,17 @@ class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
     send(std::move(response), /*close=*/true);
   }
 
+  // What has arrived and is not parsed yet.
+  std::string_view unread_bytes() const {
+    return {static_cast<const char*>(buffer_.data().data()), buffer_.data().size()};
+  }
+
   // Whether the request being refused is a HEAD: its parsed method, or where the request
   // line was not read whole (414), the word it starts with.
   bool is_head_request() const {
     if (parser_ && parser_->get().method() == http::verb::head) return true;
     if (parser_ && !parser_->get().method_string().empty()) return false;
-    const std::string_view unread(static_cast<const char*>(buffer_.data().data()),
-                                  buffer_.data().size());
+    const std::string_view unread = unread_bytes();
     return unread.starts_with("HEAD ");
   }
 

@@ -70,6 +70,35 @@ void compact_vertices(std::vector<Position>& positions, std::vector<uint32_t>& i
   positions = std::move(kept);
 }
 
+// The repeats among `count` faces, `face(f)` giving face f's corners.
+template <class Face>
+RepeatedFaces find_repeats(std::size_t count, const Face& face) {
+  // Faces ordered by a hash of their sorted corners, so that repeats lie side by side; equal
+  // hashes are compared in full.
+  std::vector<std::pair<uint64_t, uint32_t>> keyed(count);
+  for (std::size_t f = 0; f < count; ++f) {
+    keyed[f] = {corner_set_hash(face(f)), static_cast<uint32_t>(f)};
+  }
+  std::sort(keyed.begin(), keyed.end());
+  RepeatedFaces found;
+  found.repeated.assign(count, false);
+  std::vector<uint32_t> kept;  // the distinct faces of one run of equal hashes, first first
+  for (std::size_t i = 0; i < keyed.size(); ++i) {
+    if (i == 0 || keyed[i].first != keyed[i - 1].first) kept.clear();
+    const auto later = face(keyed[i].second);
+    const auto same = std::find_if(kept.begin(), kept.end(),
+                                   [&](uint32_t f) { return same_corner_set(face(f), later); });
+    if (same == kept.end()) {
+      kept.push_back(keyed[i].second);
+      continue;
+    }
+    found.repeated[keyed[i].second] = true;
+    ++found.count;
+    found.reversed += same_winding(face(*same), later) ? 0 : 1;
+  }
+  return found;
+}
+
 }  // namespace
 
 template <class Position>
@@ -107,39 +136,6 @@ std::size_t drop_degenerate_triangles(const std::vector<Position>& positions,
   indices.resize(3 * kept);
   return count - kept;
 }
-
-namespace {
-
-// The repeats among `count` faces, `face(f)` giving face f's corners.
-template <class Face>
-RepeatedFaces find_repeats(std::size_t count, const Face& face) {
-  // Faces ordered by a hash of their sorted corners, so that repeats lie side by side; equal
-  // hashes are compared in full.
-  std::vector<std::pair<uint64_t, uint32_t>> keyed(count);
-  for (std::size_t f = 0; f < count; ++f) {
-    keyed[f] = {corner_set_hash(face(f)), static_cast<uint32_t>(f)};
-  }
-  std::sort(keyed.begin(), keyed.end());
-  RepeatedFaces found;
-  found.repeated.assign(count, false);
-  std::vector<uint32_t> kept;  // the distinct faces of one run of equal hashes, first first
-  for (std::size_t i = 0; i < keyed.size(); ++i) {
-    if (i == 0 || keyed[i].first != keyed[i - 1].first) kept.clear();
-    const auto later = face(keyed[i].second);
-    const auto same = std::find_if(kept.begin(), kept.end(),
-                                   [&](uint32_t f) { return same_corner_set(face(f), later); });
-    if (same == kept.end()) {
-      kept.push_back(keyed[i].second);
-      continue;
-    }
-    found.repeated[keyed[i].second] = true;
-    ++found.count;
-    found.reversed += same_winding(face(*same), later) ? 0 : 1;
-  }
-  return found;
-}
-
-}  // namespace
 
 RepeatedFaces find_repeated_polygons(std::span<const uint32_t> corners,
                                      std::span<const uint32_t> sizes) {

@@ -342,7 +342,7 @@ void decide_solids(Scene& scene, const std::vector<MeshRequest>& meshes,
       object.solid = solid_given[i];
     } else if (!object.clip_planes.empty()) {
       const auto [at, fresh] = measured.try_emplace(meshes[i].cache_key, false);
-      if (fresh) at->second = opening_fraction(*object.mesh) <= kMostOpeningOfASolid;
+      if (fresh) at->second = openings_leave_a_solid(*object.mesh);
       object.solid = at->second;
     }
   }

@@ -120,9 +120,7 @@ json export_scene(const soltex::Scene& scene, int finest_level) {
     o["double_sided"] =
         object.double_sided || object.mesh->two_sided || !object.clip_planes.empty();
     // Measured here for uncut objects too: the page's own cutting plane may cut them.
-    o["solid"] = object.solid
-                     ? *object.solid
-                     : soltex::opening_fraction(*object.mesh) <= soltex::kMostOpeningOfASolid;
+    o["solid"] = object.solid ? *object.solid : soltex::openings_leave_a_solid(*object.mesh);
     o["registration"] = registration(object, finest_level);
     o["specular"] = object.material.specular;
     o["shininess"] = object.material.shininess;

@@ -20,4 +20,9 @@ double opening_fraction(const Mesh& mesh);
 // while a hemisphere's opening is 0.5 of its area and a sheet's 1.
 inline constexpr double kMostOpeningOfASolid = 1.0 / 3.0;
 
+// Whether a mesh's openings leave it a solid (opening_fraction() at most kMostOpeningOfASolid).
+inline bool openings_leave_a_solid(const Mesh& mesh) {
+  return opening_fraction(mesh) <= kMostOpeningOfASolid;
+}
+
 }  // namespace soltex
