@@ -2,11 +2,20 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
 
 namespace soltex::server {
 
-BrickScheduler::BrickScheduler(int threads, double direct_request_share)
-    : threads_(threads), direct_requests_(direct_request_share, std::chrono::milliseconds(5)) {
+int64_t BrickScheduler::steady_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
+BrickScheduler::BrickScheduler(int threads, double direct_request_share, Clock now_ns)
+    : threads_(threads),
+      now_ns_(std::move(now_ns)),
+      direct_requests_(direct_request_share, std::chrono::milliseconds(5)) {
   workers_.reserve(static_cast<std::size_t>(threads));
   for (int i = 0; i < threads; ++i) workers_.emplace_back([this] { work(); });
 }
@@ -81,13 +90,12 @@ void BrickScheduler::work() {
     Turn turn = next_turn();
     if (turn.task) {
       lock.unlock();
-      const auto start = std::chrono::steady_clock::now();
+      const int64_t start_ns = now_ns_();
       turn.task();
       turn.task = nullptr;
-      const auto used = std::chrono::steady_clock::now() - start;
+      const int64_t used_ns = now_ns_() - start_ns;
       lock.lock();
-      turn.source->share_->used_ns +=
-          std::chrono::duration_cast<std::chrono::nanoseconds>(used).count();
+      turn.source->share_->used_ns += used_ns;
       turn.source.reset();  // as next_turn() lets go of a source without work: under the lock
       continue;
     }

@@ -58,8 +58,14 @@ class WorkSource {
 // notify() wakes no more sleeping workers than there are new items.
 class BrickScheduler {
  public:
+  // What a turn's worker time is read from, in nanoseconds: the steady clock, or in a test
+  // a clock its tasks advance, so that fairness is checked without timing real work.
+  using Clock = std::function<int64_t()>;
+  static int64_t steady_now_ns();
+
   // direct_request_share: the threads' worth of time of direct_requests().
-  explicit BrickScheduler(int threads, double direct_request_share = 1.0);
+  explicit BrickScheduler(int threads, double direct_request_share = 1.0,
+                          Clock now_ns = &BrickScheduler::steady_now_ns);
   ~BrickScheduler();
 
   // `source` gained `items` new items of work.
@@ -94,6 +100,7 @@ class BrickScheduler {
   Turn next_turn();
 
   const int threads_;
+  const Clock now_ns_;
   boost::asio::thread_pool timers_{1};
   TimeBudget direct_requests_;
   std::mutex mutex_;

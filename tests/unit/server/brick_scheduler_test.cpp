@@ -6,9 +6,9 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <future>
 #include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace soltex::server {
@@ -31,66 +31,104 @@ class CountedSource final : public WorkSource {
   std::function<void()> task_;
 };
 
+// Worker time as the tasks say it passed: each task advances this clock by what it claims
+// to cost, so turns are shared by those costs whatever the machine's load does to real time.
+class TaskClock {
+ public:
+  BrickScheduler::Clock clock() {
+    return [this] { return now_ns_.load(); };
+  }
+  void spend(std::chrono::nanoseconds cost) { now_ns_ += cost.count(); }
+
+ private:
+  std::atomic<int64_t> now_ns_{0};
+};
+
+// Holds the first task back until every source of the test is queued, so the one worker
+// cannot start before the test has set up what it compares.
+class StartGate {
+ public:
+  void open() { opened_.set_value(); }
+  void wait() const { opened_future_.wait(); }
+
+ private:
+  std::promise<void> opened_;
+  std::shared_future<void> opened_future_ = opened_.get_future().share();
+};
+
+std::string as_text(const std::vector<char>& order) {
+  return {order.begin(), order.end()};
+}
+
 TEST(BrickScheduler, TurnsAreSharedInWorkerTimeNotInTasks) {
-  // One worker, a source of slow tasks (20 ms) and one of instant ones: counted in tasks,
-  // turns would alternate; counted in time, the instant source's 400 tasks (well under 20 ms
-  // in all) all run before the slow source's second turn.
-  BrickScheduler scheduler(1);
-  std::atomic<int> instant_done{0};
-  std::vector<int> instant_done_at_slow_starts;  // one worker: no lock needed
+  // One worker, a source of slow tasks (20 ms) and one of instant ones (1 us): counted in
+  // tasks, turns would alternate; counted in time, the instant source's 400 tasks (0.4 ms in
+  // all) all run before the slow source's second turn.
+  TaskClock time;
+  StartGate gate;
+  BrickScheduler scheduler(1, 1.0, time.clock());
+  int instant_done = 0;  // one worker: no lock needed
+  std::vector<int> instant_done_at_slow_starts;
   auto slow = std::make_shared<CountedSource>(3, [&] {
-    instant_done_at_slow_starts.push_back(instant_done.load());
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    gate.wait();
+    instant_done_at_slow_starts.push_back(instant_done);
+    time.spend(std::chrono::milliseconds(20));
   });
-  auto instant = std::make_shared<CountedSource>(400, [&] { ++instant_done; });
+  auto instant = std::make_shared<CountedSource>(400, [&] {
+    ++instant_done;
+    time.spend(std::chrono::microseconds(1));
+  });
   scheduler.notify(slow, 3);
   scheduler.notify(instant, 400);
+  gate.open();
   scheduler.stop();  // lets the workers finish what is queued
   ASSERT_EQ(instant_done_at_slow_starts.size(), 3u);
-  EXPECT_LE(instant_done_at_slow_starts[0], 1);
+  EXPECT_EQ(instant_done_at_slow_starts[0], 0);
   EXPECT_EQ(instant_done_at_slow_starts[1], 400);
-  EXPECT_EQ(instant_done.load(), 400);
+  EXPECT_EQ(instant_done, 400);
 }
 
 TEST(BrickScheduler, AnIdleSourceBanksNoCredit) {
   // A source that waited idle while another used the worker starts level with it: the two
   // then alternate instead of the newcomer taking every turn until it caught up.
-  BrickScheduler scheduler(1);
+  TaskClock time;
+  BrickScheduler scheduler(1, 1.0, time.clock());
   std::vector<char> order;  // one worker: no lock needed
+  std::shared_ptr<CountedSource> second = std::make_shared<CountedSource>(10, [&] {
+    order.push_back('b');
+    time.spend(std::chrono::milliseconds(2));
+  });
+  // `first` runs alone for 20 turns, then `second` comes: banked, those 40 ms would be 20
+  // turns of credit, more than all of `second`'s 10.
   auto first = std::make_shared<CountedSource>(40, [&] {
     order.push_back('a');
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    time.spend(std::chrono::milliseconds(2));
+    if (order.size() == 20) scheduler.notify(second, 10);
   });
-  scheduler.notify(first, 10);
-  // `first` runs alone a while: banked, that would be about 20 turns of credit, more than
-  // `second` has.
-  std::this_thread::sleep_for(std::chrono::milliseconds(40));
-  auto second = std::make_shared<CountedSource>(10, [&] {
-    order.push_back('b');
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  });
-  scheduler.notify(second, 10);
+  scheduler.notify(first, 40);
   scheduler.stop();
-  // Once `second` came, no run of its own longer than a few turns (a busy machine stretches
-  // some turns: a little slack), where credit banked would run all 10 of them in a row.
+  ASSERT_EQ(order.size(), 50u);
   int longest_b_run = 0;
   for (int i = 0, run = 0; i < static_cast<int>(order.size()); ++i) {
     run = order[static_cast<std::size_t>(i)] == 'b' ? run + 1 : 0;
     longest_b_run = std::max(longest_b_run, run);
   }
-  EXPECT_LE(longest_b_run, 4) << std::string(order.begin(), order.end());
-  EXPECT_EQ(order.size(), 50u);
+  EXPECT_EQ(as_text(order).substr(0, 20), std::string(20, 'a'));
+  EXPECT_LE(longest_b_run, 2) << as_text(order);
 }
 
 TEST(BrickScheduler, TheSourcesOfOneClientShareOneClientsTurns) {
   // Client a has four sources, client b one, all with tasks of the same length: b gets half
   // the turns, not a fifth.
-  BrickScheduler scheduler(1);
+  TaskClock time;
+  StartGate gate;
+  BrickScheduler scheduler(1, 1.0, time.clock());
   std::vector<char> order;  // one worker: no lock needed
   const auto task_of = [&](char client) {
-    return [&order, client] {
+    return [&order, &time, &gate, client] {
+      gate.wait();
       order.push_back(client);
-      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      time.spend(std::chrono::milliseconds(2));
     };
   };
   std::vector<std::shared_ptr<CountedSource>> sources;
@@ -101,11 +139,12 @@ TEST(BrickScheduler, TheSourcesOfOneClientShareOneClientsTurns) {
   sources.push_back(std::make_shared<CountedSource>(40, task_of('b')));
   sources.back()->share_with(scheduler.share_of("b"));
   for (const auto& source : sources) scheduler.notify(source, 10);
+  gate.open();
   scheduler.stop();
   ASSERT_EQ(order.size(), 80u);
   const auto b_turns = std::count(order.begin(), order.begin() + 40, 'b');
-  EXPECT_GE(b_turns, 16) << std::string(order.begin(), order.end());  // about 20 of 40
-  EXPECT_LE(b_turns, 24) << std::string(order.begin(), order.end());
+  EXPECT_GE(b_turns, 19) << as_text(order);  // 20 of 40, give or take the first turn
+  EXPECT_LE(b_turns, 21) << as_text(order);
 }
 
 }  // namespace
