@@ -246,6 +246,22 @@ TEST(BrickFetcher, RefusedKeysAreReportedAndNotAskedAgain) {
   EXPECT_EQ(fetcher.stats().requested, 1u);
 }
 
+// A server that takes small messages, few wants a message and a short queue per stream: the
+// fetcher reads those bounds and packs its requests to fit, so every brick arrives, nothing is
+// refused and the stream is never dropped for a message too large.
+TEST(BrickFetcher, KeepsWithinTheServersMessageAndQueueBounds) {
+  FetcherAgainstServer setup({"--max-message-bytes", "1024", "--max-keys-per-request", "16",
+                              "--max-queued-per-stream", "24"});
+  auto& [server, cache, fetcher, id] = setup;
+  fetcher.want(level(id, 0, 8));
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(60)));
+  const net::SourceStats stats = fetcher.stats();
+  EXPECT_EQ(stats.received, 512u);
+  EXPECT_EQ(stats.errors, 0u);
+  EXPECT_EQ(stats.reconnects, 0u);
+  expect_cached_brick_is_local(cache, id, 0, {5, 6, 7});
+}
+
 TEST(BrickFetcher, SurvivesAServerRestart) {
   const int port = testing::free_port();
   std::optional<SoltexdProcess> server(std::in_place, std::vector<std::string>{}, port);

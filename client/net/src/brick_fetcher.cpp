@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "request_packer.h"
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/check.h"
 #include "soltex/common/texture_id.h"
@@ -55,6 +56,7 @@ struct BrickFetcher::Channel {
 };
 
 struct BrickFetcher::Stream {
+  grpc::ClientContext info_context;  // the GetServerInfo before the stream opens
   grpc::ClientContext context;
   std::mutex write_mutex;  // Write and Finish never overlap
   std::unique_ptr<grpc::ClientReaderWriter<v1::BrickRequest, v1::BrickBatch>> call;
@@ -66,6 +68,7 @@ BrickFetcher::BrickFetcher(std::string server_address, BrickCache& cache, Fetche
       options_(options),
       channel_(std::make_unique<Channel>()),
       warnings_(std::make_unique<Warnings>()),
+      in_flight_bound_(options.max_in_flight),
       codec_(options.codec) {
   grpc::ChannelArguments args;
   args.SetMaxReceiveMessageSize(64 << 20);
@@ -87,7 +90,10 @@ BrickFetcher::~BrickFetcher() {
     opening = opening_;
   }
   if (stream) stream->context.TryCancel();
-  if (opening) opening->context.TryCancel();
+  if (opening) {
+    opening->info_context.TryCancel();
+    opening->context.TryCancel();
+  }
   changed_.notify_all();
   writer_.join();
   supervisor_.join();
@@ -144,6 +150,7 @@ void BrickFetcher::supervise() {
         if (stopping_) return;
         opening_ = stream;
       }
+      learn_bounds(*stream);
       stream->call = channel_->stub->StreamBricks(&stream->context);
       {
         std::lock_guard lock(mutex_);
@@ -195,6 +202,21 @@ void BrickFetcher::supervise() {
   }
 }
 
+void BrickFetcher::learn_bounds(Stream& stream) {
+  authorize(options_.security, stream.info_context);
+  stream.info_context.set_deadline(std::chrono::system_clock::now() + options_.register_timeout);
+  v1::ServerInfo info;
+  if (!channel_->stub->GetServerInfo(&stream.info_context, {}, &info).ok()) return;
+  const v1::Limits& limits = info.limits();
+  std::lock_guard lock(mutex_);
+  if (limits.max_message_bytes() > 0) bounds_.max_bytes = limits.max_message_bytes();
+  if (limits.max_keys_per_request() > 0) bounds_.max_wants = limits.max_keys_per_request();
+  in_flight_bound_ = options_.max_in_flight;
+  if (limits.max_queued_per_stream() > 0) {
+    in_flight_bound_ = std::min<std::size_t>(in_flight_bound_, limits.max_queued_per_stream());
+  }
+}
+
 bool BrickFetcher::wait_to_reconnect(std::chrono::milliseconds backoff) {
   // Waiting on the channel rather than a timer: it asks gRPC to connect and returns as soon
   // as it has, so a restarted server is reached at once. After a sleep instead, a fail-fast
@@ -232,7 +254,11 @@ void BrickFetcher::on_batch(v1::BrickBatch& batch) {
     for (const auto& error : batch.errors()) {
       const BrickKey key = from_proto(error.key());
       in_flight_.erase(key);
-      failed_.insert(key);
+      // Over a bound of the moment (the stream's queue, with cancelled bricks still in
+      // production counted): asked for again when a frame next misses it.
+      if (error.code() != static_cast<int32_t>(grpc::StatusCode::RESOURCE_EXHAUSTED)) {
+        failed_.insert(key);
+      }
       ++stats_.errors;
       throttled_warning(warnings_->refused, "brick refused: {}", error.message());
     }
@@ -385,53 +411,24 @@ void BrickFetcher::write_loop() {
       return stopping_ ||
              (stream_ &&
               (resend_ || codec_changed_ || !to_cancel_.empty() || !unsent_registrations_.empty() ||
-               (!waiting_.empty() && in_flight_.size() < options_.max_in_flight)));
+               (!waiting_.empty() && in_flight_.size() < in_flight_bound_)));
     });
     if (stopping_) return;
     std::shared_ptr<Stream> stream = stream_;
-    v1::BrickRequest request;
-    const auto add_texture = [&](const std::string& serialized) {
-      request.add_textures()->ParseFromString(serialized);
-    };
-    if (resend_) {
-      // A new stream, perhaps to another replica, knows nothing of the old one: send every
-      // texture, then everything still in flight.
-      for (const auto& [id, serialized] : registrations_) add_texture(serialized);
-      for (const BrickKey& key : in_flight_) *request.add_want()->mutable_key() = to_proto(key);
-      resend_ = false;
-      codec_changed_ = true;
-    } else {
-      for (const uint64_t id : unsent_registrations_) add_texture(registrations_.at(id));
-    }
-    unsent_registrations_.clear();
-    if (codec_changed_) request.add_accept_codecs(to_proto(codec_));
-    codec_changed_ = false;
-    for (const BrickKey& key : to_cancel_) *request.add_cancel() = to_proto(key);
-    to_cancel_.clear();
-    std::size_t taken = 0;
-    while (taken < waiting_.size() && in_flight_.size() < options_.max_in_flight) {
-      const BrickWant& w = waiting_[taken++];
-      waiting_keys_.erase(w.key);
-      if (cache_.contains(w.key) || in_flight_.contains(w.key) || held_keys_.contains(w.key)) {
-        continue;
-      }
-      in_flight_.insert(w.key);
-      auto* want = request.add_want();
-      *want->mutable_key() = to_proto(w.key);
-      want->set_priority(static_cast<int32_t>(std::min<uint32_t>(w.screen_pixels, 1u << 30)));
-      ++stats_.requested;
-    }
-    waiting_.erase(waiting_.begin(), waiting_.begin() + static_cast<std::ptrdiff_t>(taken));
-    SOLTEX_DCHECK(waiting_keys_.size() == waiting_.size());
+    std::vector<v1::BrickRequest> requests = pack_requests();
     // Write outside the lock: it may wait for flow control.
     lock.unlock();
-    bool ok;
+    bool ok = true;
     {
       std::lock_guard writing(stream->write_mutex);
-      ok = stream->call->Write(request);
-    }
-    if (ok && options_.on_event) {
-      options_.on_event(FetchEvent::request_written, static_cast<std::size_t>(request.want_size()));
+      for (const v1::BrickRequest& request : requests) {
+        ok = stream->call->Write(request);
+        if (!ok) break;
+        if (options_.on_event) {
+          options_.on_event(FetchEvent::request_written,
+                            static_cast<std::size_t>(request.want_size()));
+        }
+      }
     }
     lock.lock();
     if (!ok && stream_ == stream) {
@@ -439,6 +436,50 @@ void BrickFetcher::write_loop() {
       changed_.wait_for(lock, std::chrono::milliseconds(50));
     }
   }
+}
+
+std::vector<v1::BrickRequest> BrickFetcher::pack_requests() {
+  RequestPacker packer(bounds_);
+  const auto add_texture = [&](uint64_t id, const std::string& serialized) {
+    // Larger than this server's messages: it was registered with another server (RegisterTexture
+    // sends the same bytes). Its bricks are refused as unknown and drawn from what is resident.
+    if (!packer.add_texture(serialized)) {
+      throttled_warning(warnings_->refused,
+                        "texture {:016x} ({} bytes) is larger than {} accepts in a message "
+                        "({} bytes, max_message_bytes); not sent",
+                        id, serialized.size(), address_, bounds_.max_bytes);
+    }
+  };
+  if (resend_) {
+    // A new stream, perhaps to another replica, knows nothing of the old one: send every
+    // texture, then everything still in flight.
+    for (const auto& [id, serialized] : registrations_) add_texture(id, serialized);
+    for (const BrickKey& key : in_flight_) packer.add_want(to_proto(key), 0);
+    resend_ = false;
+    codec_changed_ = true;
+  } else {
+    for (const uint64_t id : unsent_registrations_) add_texture(id, registrations_.at(id));
+  }
+  unsent_registrations_.clear();
+  if (codec_changed_) packer.add_codec(to_proto(codec_));
+  codec_changed_ = false;
+  for (const BrickKey& key : to_cancel_) packer.add_cancel(to_proto(key));
+  to_cancel_.clear();
+  std::size_t taken = 0;
+  while (taken < waiting_.size() && in_flight_.size() < in_flight_bound_) {
+    const BrickWant& w = waiting_[taken++];
+    waiting_keys_.erase(w.key);
+    if (cache_.contains(w.key) || in_flight_.contains(w.key) || held_keys_.contains(w.key)) {
+      continue;
+    }
+    in_flight_.insert(w.key);
+    packer.add_want(to_proto(w.key),
+                    static_cast<int32_t>(std::min<uint32_t>(w.screen_pixels, 1u << 30)));
+    ++stats_.requested;
+  }
+  waiting_.erase(waiting_.begin(), waiting_.begin() + static_cast<std::ptrdiff_t>(taken));
+  SOLTEX_DCHECK(waiting_keys_.size() == waiting_.size());
+  return packer.take();
 }
 
 void BrickFetcher::set_codec(Codec codec) {

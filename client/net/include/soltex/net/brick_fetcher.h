@@ -21,9 +21,11 @@
 #include "soltex/common/texture_spec.h"
 #include "soltex/net/brick_source.h"
 #include "soltex/net/channel_security.h"
+#include "soltex/net/request_bounds.h"
 
 namespace soltex::v1 {
 class BrickBatch;
+class BrickRequest;
 }  // namespace soltex::v1
 
 namespace soltex::net {
@@ -99,7 +101,13 @@ class BrickFetcher final : public BrickSource {
   void supervise();  // connect, re-register, read until the stream breaks, back off, repeat
   // Up to `backoff` for the channel to connect; false when the fetcher is stopping.
   bool wait_to_reconnect(std::chrono::milliseconds backoff);
-  void write_loop();                     // sends wants and cancellations as they come
+  void write_loop();  // sends wants and cancellations as they come
+  // What write_loop() has to send, packed into messages within the server's bounds; the
+  // wants taken are then in flight. mutex_ held.
+  std::vector<v1::BrickRequest> pack_requests();
+  // Reads the bounds of the server `stream` is about to open on (ServerInfo.limits); keeps
+  // the last known when it does not answer.
+  void learn_bounds(Stream& stream);
   void on_batch(v1::BrickBatch& batch);  // its bricks decoded and cached, its errors recorded
   void receive(const std::vector<std::pair<BrickKey, std::string>>& payloads);
   // Appends to waiting_ unless the key waits already; true if it was added.
@@ -127,7 +135,11 @@ class BrickFetcher final : public BrickSource {
   std::unordered_set<BrickKey, BrickKeyHash> failed_;  // refused by the server: not asked again
   std::unordered_map<BrickKey, int, BrickKeyHash> refetches_;  // corrupt arrivals per key
   std::vector<BrickKey> to_cancel_;
-  bool resend_ = false;  // a new stream: everything in flight must be asked for again
+  // The server's bounds on a message and on what one stream may have queued, as its last
+  // answer to GetServerInfo gave them: every request is packed to fit them.
+  RequestBounds bounds_;
+  std::size_t in_flight_bound_;  // options_.max_in_flight, or less when the server queues less
+  bool resend_ = false;          // a new stream: everything in flight must be asked for again
   Codec codec_;
   bool codec_changed_ = false;  // codec_ goes out with the next request
   bool holding_ = false;        // hold_arrivals(true): arrivals wait in held_
