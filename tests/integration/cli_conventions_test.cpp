@@ -272,7 +272,9 @@ TEST_F(SoltexdCli, TheOldEnvironmentNameStillWorks) {
   soltexd.signal(SIGTERM);
   const ToolRun r = soltexd.finish();
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find("SOLTEXD_LISTEN is deprecated; use SOLTEX_LISTEN"), std::string::npos)
+  // A line of the log like any other, with its time stamp and level.
+  EXPECT_NE(r.err.find(" warning soltexd: SOLTEXD_LISTEN is deprecated; use SOLTEX_LISTEN"),
+            std::string::npos)
       << r.err;
 }
 

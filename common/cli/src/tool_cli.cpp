@@ -62,11 +62,25 @@ void name_environment(CLI::App& app) {
   }
 }
 
-void adopt_deprecated(const std::string& tool, const DeprecatedEnvironmentName& names) {
+// Warnings found while parsing, before the log exists: start_logging() writes them in the
+// log's own format, or parse() to stderr when the tool stops before it logs.
+std::vector<std::string>& warnings_before_logging() {
+  static std::vector<std::string> warnings;
+  return warnings;
+}
+
+void print_warnings_before_logging(const std::string& tool) {
+  for (const std::string& warning : warnings_before_logging()) {
+    std::fprintf(stderr, "%s: %s\n", tool.c_str(), warning.c_str());
+  }
+  warnings_before_logging().clear();
+}
+
+void adopt_deprecated(const DeprecatedEnvironmentName& names) {
   const char* old_value = std::getenv(names.old_name);
   if (old_value == nullptr) return;
-  std::fprintf(stderr, "%s: %s is deprecated; use %s\n", tool.c_str(), names.old_name,
-               names.new_name);
+  warnings_before_logging().push_back(std::string(names.old_name) + " is deprecated; use " +
+                                      names.new_name);
   setenv(names.new_name, old_value, /*overwrite=*/0);  // the new name wins when both are set
 }
 
@@ -173,10 +187,11 @@ std::optional<std::string> unknown_argument(const CLI::App& app, int argc, char*
 std::optional<int> parse(CLI::App& app, const std::string& tool, int argc, char** argv,
                          std::initializer_list<DeprecatedEnvironmentName> deprecated) {
   name_environment(app);
-  for (const DeprecatedEnvironmentName& names : deprecated) adopt_deprecated(tool, names);
+  for (const DeprecatedEnvironmentName& names : deprecated) adopt_deprecated(names);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    print_warnings_before_logging(tool);
     // Help and version: app.exit prints them on stdout.
     if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
       return app.exit(e) == 0 ? kExitOk : kExitUsage;
@@ -203,6 +218,8 @@ void start_logging(const std::string& tool, const std::string& level, LogStyle s
   spdlog::set_pattern(style == LogStyle::timestamped
                           ? "%Y-%m-%dT%H:%M:%S.%e %^%l%$ " + tool + ": %v"
                           : "%^%l%$ " + tool + ": %v");
+  for (const std::string& warning : warnings_before_logging()) spdlog::warn("{}", warning);
+  warnings_before_logging().clear();
 }
 
 void prepare_for_grpc_streams() {
