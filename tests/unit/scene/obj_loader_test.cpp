@@ -351,7 +351,10 @@ std::string star_obj(std::size_t points, double inner = 0.3) {
     text += line;
   }
   text += "f";
-  for (std::size_t i = 0; i < 2 * points; ++i) text += " " + std::to_string(i + 1);
+  for (std::size_t i = 0; i < 2 * points; ++i) {
+    text += ' ';
+    text += std::to_string(i + 1);
+  }
   return text + "\n";
 }
 
