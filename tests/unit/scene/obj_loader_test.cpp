@@ -412,7 +412,10 @@ std::string comb_obj(int teeth) {
     }
   }
   text += "f";
-  for (int i = 1; i <= 4 * teeth; ++i) text += " " + std::to_string(i);
+  for (int i = 1; i <= 4 * teeth; ++i) {
+    text += ' ';
+    text += std::to_string(i);
+  }
   return text + "\n";
 }
 
@@ -440,7 +443,10 @@ TEST(ParseObjPolygons, LargestFaceLoadsAndOneMoreIsRefusedWithTheBound) {
   expect_covers_exactly(parse_obj(comb_obj(teeth), "largest.obj"), comb_area(teeth),
                         kMaxFaceVertices);
   std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf";
-  for (std::size_t i = 0; i <= kMaxFaceVertices; ++i) text += " " + std::to_string(1 + i % 3);
+  for (std::size_t i = 0; i <= kMaxFaceVertices; ++i) {
+    text += ' ';
+    text += std::to_string(1 + i % 3);
+  }
   EXPECT_THAT(
       obj_error_of(text + "\n", "huge.obj").what(),
       AllOf(HasSubstr("huge.obj"), HasSubstr("line 4: face 1"), HasSubstr("more than 16384")));
