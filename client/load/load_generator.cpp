@@ -155,6 +155,9 @@ LoadStream::Settings stream_settings(const LoadOptions& options, const ServerSet
   // 0: a server that states no limit; the server's own default then.
   const uint32_t max_keys = server.info.limits().max_keys_per_request();
   settings.max_keys_per_request = max_keys > 0 ? max_keys : 1024;
+  if (const uint32_t max_bytes = server.info.limits().max_message_bytes(); max_bytes > 0) {
+    settings.max_message_bytes = max_bytes;
+  }
   settings.max_backlog = options.max_backlog_per_stream;
   settings.codec = codec_to_proto(options.codec);
   settings.verify = options.verify;

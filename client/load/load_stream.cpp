@@ -5,6 +5,7 @@
 #include <span>
 
 #include "soltex/common/brick_codec.h"
+#include "soltex/net/request_packer.h"
 #include "soltex/spec_proto/brick_proto.h"
 
 namespace soltex::load {
@@ -105,8 +106,17 @@ LoadStream::Starts LoadStream::next_starts_locked() {
   Starts starts;
   if (writing_ || half_closed_ || reads_ended_) return starts;
   write_.Clear();
+  // The message's bytes as protobuf will count them: the texture and codec that go with the
+  // wants, then each want, so that it stays within the server's max_message_bytes.
+  std::size_t bytes = (texture_sent_ ? 0 : net::field_bytes(settings_.texture.ByteSizeLong())) +
+                      net::RequestPacker::kCodecBytes;
   while (!backlog_.empty() &&
          static_cast<uint32_t>(write_.want_size()) < settings_.max_keys_per_request) {
+    v1::BrickWant want;
+    *want.mutable_key() = to_proto(backlog_.front().want.key);
+    want.set_priority(backlog_.front().want.priority);
+    const std::size_t want_bytes = net::field_bytes(want.ByteSizeLong());
+    if (write_.want_size() > 0 && bytes + want_bytes > settings_.max_message_bytes) break;
     Pending next = std::move(backlog_.front());
     backlog_.pop_front();
     // An earlier request for the same key went out since this one was issued.
@@ -114,9 +124,8 @@ LoadStream::Starts LoadStream::next_starts_locked() {
       park_locked(std::move(next));
       continue;
     }
-    v1::BrickWant& want = *write_.add_want();
-    *want.mutable_key() = to_proto(next.want.key);
-    want.set_priority(next.want.priority);
+    *write_.add_want() = std::move(want);
+    bytes += want_bytes;
   }
   if (write_.want_size() > 0) {
     write_.add_accept_codecs(settings_.codec);

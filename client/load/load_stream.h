@@ -36,6 +36,7 @@ class LoadStream final : public grpc::ClientBidiReactor<v1::BrickRequest, grpc::
   struct Settings {
     int in_flight = 0;  // closed loop; 0: open loop
     uint32_t max_keys_per_request = 1024;
+    std::size_t max_message_bytes = 4u << 20;  // the server's; a larger message ends the stream
     std::size_t max_backlog = 1'000'000;
     v1::Codec codec = v1::CODEC_ZSTD;
     bool verify = false;

@@ -92,6 +92,21 @@ TEST(SoltexLoad, CountStopsAtExactlyThatManyBricks) {
   EXPECT_EQ(metric(server, "soltex_bricks_served_total"), 500.0);
 }
 
+// A server whose messages are small: the tool reads its bound and writes many small requests
+// instead of one that would end the stream.
+TEST(SoltexLoad, RequestsFitTheServersMessageBound) {
+  SoltexdProcess server({"--max-message-bytes", "1024"});
+  LoadOptions options = options_for(server);
+  options.mix = MixKind::uniform;
+  options.in_flight = 512;
+  options.count = 2000;
+  const LoadResult result = run_load(options);
+  EXPECT_EQ(result.stream_failures(), 0u);
+  EXPECT_EQ(result.bricks, 2000u);
+  EXPECT_EQ(result.unanswered, 0u);
+  EXPECT_EQ(metric(server, "soltex_bricks_served_total"), 2000.0);
+}
+
 // The server keeps a key at most once in a stream's queue, so the tool must not ask for a key
 // it already waits for: with a single hot key every request waits for the one before it.
 TEST(SoltexLoad, RepeatedKeysAreAnsweredOneByOne) {

@@ -8,7 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "request_packer.h"
+#include "soltex/net/request_packer.h"
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/check.h"
 #include "soltex/common/texture_id.h"

@@ -1,4 +1,4 @@
-#include "request_packer.h"
+#include "soltex/net/request_packer.h"
 
 #include <google/protobuf/io/coded_stream.h>
 
@@ -7,14 +7,6 @@
 #include "soltex/common/check.h"
 
 namespace soltex::net {
-namespace {
-
-// A packed repeated enum: its tag and length once, then a varint per codec; every codec is
-// below 128, one byte, and the length stays one byte for fewer than 128 of them.
-constexpr std::size_t kCodecBytes = 3;
-
-}  // namespace
-
 std::size_t field_bytes(std::size_t length) {
   // Every BrickRequest field number is below 16: a one-byte tag.
   return 1 + google::protobuf::io::CodedOutputStream::VarintSize64(length) + length;

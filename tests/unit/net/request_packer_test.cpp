@@ -1,4 +1,4 @@
-#include "request_packer.h"
+#include "soltex/net/request_packer.h"
 
 #include <gtest/gtest.h>
 

@@ -16,6 +16,10 @@ namespace soltex::net {
 // max_bytes.
 class RequestPacker {
  public:
+  // What one codec in accept_codecs adds at most: a packed repeated enum's tag and length once,
+  // then a varint per codec, every codec below 128.
+  static constexpr std::size_t kCodecBytes = 3;
+
   explicit RequestPacker(RequestBounds bounds);
 
   // A serialized RegisterTextureRequest. False, and nothing added, when it alone is larger
