@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "edge_antialiasing.h"
+#include "soltex/common/check.h"
 #include "soltex/common/overloaded.h"
 #include "soltex/common/texture_evaluator.h"
 #include "soltex/render/anisotropic_taps.h"
@@ -137,6 +138,8 @@ render::FrameShading FrameRenderer::frame_shading(const PreparedScene& scene,
   render::FrameShading shading{{}, prepare_lights(*scene.scene), unprojection, options};
   for (std::size_t i = 0; i < scene.objects.size(); ++i) {
     const PreparedObject& o = scene.objects[i];
+    SOLTEX_DCHECK(o.raster.object_id == i);
+    shading.unprojection.add_object(o.world_from_object, o.raster.texture_from_object);
     render::ObjectShading object;
     object.material = render::material_inputs(o);
     object.surface = render::TextureSurface(o);

@@ -38,7 +38,29 @@ struct UnprojectInputs {
   alignas(64) ShadeBatch::Lanes<double> ndc_x, ndc_y;
   alignas(64) ShadeBatch::Lanes<float> depth, nx, ny, nz;
   alignas(64) ShadeBatch::Lanes<uint8_t> back;
+  // Read for positions only (point lights): the texture position and the index of its map
+  // to world space in SurfaceUnprojection::world_from_texture.
+  alignas(64) ShadeBatch::Lanes<glm::dvec3> texture_position;
+  alignas(64) ShadeBatch::Lanes<uint32_t> map;
 };
+
+// The index of `object_id`'s map in u.world_from_texture: the identity for no object.
+uint32_t map_of(const SurfaceUnprojection& u, uint32_t object_id) {
+  const auto identity = static_cast<uint32_t>(u.world_from_texture.size() - 1);
+  return object_id < identity ? object_id : identity;
+}
+
+// The world positions of the lanes, from their texture positions: exact in double, where
+// the window depth is a float (see SurfaceUnprojection::world_from_texture).
+void world_positions(const SurfaceUnprojection& u, const UnprojectInputs& in, ShadeBatch& b) {
+  for (std::size_t l = 0; l < static_cast<std::size_t>(b.count); ++l) {
+    const glm::dmat4& m = u.world_from_texture[in.map[l]];
+    const glm::dvec3 p = glm::dvec3(m * glm::dvec4(in.texture_position[l], 1.0));
+    b.position_x[l] = p.x;
+    b.position_y[l] = p.y;
+    b.position_z[l] = p.z;
+  }
+}
 
 // The batch's position, to_viewer and normal lanes from `in` (SurfaceUnprojection::fill()).
 // Restrict: with `in` and the batch possibly one, the loop would stay scalar. kPositions:
@@ -55,7 +77,6 @@ HWY_NOINLINE void unproject_lanes(const SurfaceUnprojection& u,
   const auto& nz = in.nz;
   const auto& back = in.back;
   const glm::dmat4 m = u.inverse_vp;
-  const glm::dvec3 eye = u.eye;
   for (std::size_t l = 0; l < count; ++l) {
     const double ndc_z = static_cast<double>(depth[l]) * 2.0 - 1.0;
     // glm's matrix-vector product: (m0 x + m1 y) + (m2 z + m3 w), with w = 1.
@@ -63,12 +84,9 @@ HWY_NOINLINE void unproject_lanes(const SurfaceUnprojection& u,
     const double hy = (m[0].y * ndc_x[l] + m[1].y * ndc_y[l]) + (m[2].y * ndc_z + m[3].y * 1.0);
     const double hz = (m[0].z * ndc_x[l] + m[1].z * ndc_y[l]) + (m[2].z * ndc_z + m[3].z * 1.0);
     const double hw = (m[0].w * ndc_x[l] + m[1].w * ndc_y[l]) + (m[2].w * ndc_z + m[3].w * 1.0);
+    // A point on the pixel's ray from the eye: its direction is exact whatever the depth's
+    // rounding, its distance is not (positions come from world_positions()).
     const double rx = hx / hw, ry = hy / hw, rz = hz / hw;
-    if constexpr (kPositions) {
-      b.position_x[l] = eye.x + rx;
-      b.position_y[l] = eye.y + ry;
-      b.position_z[l] = eye.z + rz;
-    }
     const auto vx = static_cast<float>(-rx);
     const auto vy = static_cast<float>(-ry);
     const auto vz = static_cast<float>(-rz);
@@ -94,6 +112,7 @@ HWY_NOINLINE void unproject_lanes(const SurfaceUnprojection& u,
     b.to_viewer_y[l] = ty;
     b.to_viewer_z[l] = tz;
   }
+  if constexpr (kPositions) world_positions(u, in, b);
 }
 
 void unproject_target(const SurfaceUnprojection& u, const GBuffer& g, LitPixels& lit) {
@@ -109,6 +128,8 @@ void unproject_target(const SurfaceUnprojection& u, const GBuffer& g, LitPixels&
     in.ny[l] = g.normal[i].y;
     in.nz[l] = g.normal[i].z;
     in.back[l] = g.back_face(i) ? 1 : 0;
+    in.texture_position[l] = g.texture_position[i];
+    in.map[l] = map_of(u, g.object_id[i]);
   }
   unproject_lanes<true>(u, in, lit.batch);
 }
@@ -319,6 +340,12 @@ void light_tile_target(const SurfaceUnprojection& u, const PreparedLights& light
       in.nz[at] = g.normal[gi + l].z;
       in.back[at] = (g.flags[gi + l] & GBuffer::kBackFace) != 0 ? 1 : 0;
     }
+    if (!lights.point.empty()) {
+      for (std::size_t l = 0; l < n; ++l) {
+        in.texture_position[lanes + l] = g.texture_position[gi + l];
+        in.map[lanes + l] = map_of(u, g.object_id[gi + l]);
+      }
+    }
     lanes += n;
   }
   if (lanes > 0) light_pending();
@@ -390,6 +417,12 @@ void render::LitPixels::write(Image& image) const {
 void render::LitTile::light(const SurfaceUnprojection& u, const PreparedLights& lights,
                             const GBuffer& g, ShadeBatch& scratch, Image& image) {
   render_internal::light_tile(u, lights, g, *this, scratch, image);
+}
+
+void render::SurfaceUnprojection::add_object(const glm::dmat4& world_from_object,
+                                             const glm::dmat4& texture_from_object) {
+  world_from_texture.insert(world_from_texture.end() - 1,
+                            world_from_object * glm::inverse(texture_from_object));
 }
 
 void render::SurfaceUnprojection::fill(const GBuffer& g, LitPixels& lit) const {

@@ -142,10 +142,18 @@ struct SurfaceUnprojection {
   // Each column's and row's pixel centre in normalised device coordinates, made once per
   // frame: the same two double divisions every pixel of a column or row would otherwise make.
   std::vector<double> ndc_x, ndc_y;
+  // Per object id, world space from its texture space, and one identity more for pixels of no
+  // object. Point lights need each pixel's world position, which the G-buffer's double
+  // texture position gives exactly: unprojected from its float window depth instead, it
+  // erred by a quarter of a unit two units away with a near plane of 1e-6 (depth keeps
+  // about 24 bits of 1 - near / distance), and point-lit walls broke into blocks.
+  std::vector<glm::dmat4> world_from_texture{glm::dmat4(1.0)};
+  // Adds object `id`'s map (ids in order from 0), keeping the identity last.
+  void add_object(const glm::dmat4& world_from_object, const glm::dmat4& texture_from_object);
 
-  // Writes the batch's position, to_viewer and normal lanes from the G-buffer's depth and
-  // normal at the pixels `lit` holds (lighting_kernels.cpp: runtime-dispatched, every target
-  // the same IEEE operations in the same order, so the same bits).
+  // Writes the batch's position, to_viewer and normal lanes from the G-buffer's texture
+  // position, depth and normal at the pixels `lit` holds (lighting_kernels.cpp: runtime-dispatched,
+  // every target the same IEEE operations in the same order, so the same bits).
   void fill(const GBuffer& g, LitPixels& lit) const;
 };
 

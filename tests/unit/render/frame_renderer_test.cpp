@@ -153,6 +153,35 @@ TEST(FrameRenderer, ATinyNearPlaneDrawsWhatAnOrdinaryOneDraws) {
   EXPECT_TRUE(renderer.last_gbuffer().object_id == ordinary_ids);
 }
 
+// Inside a room, where the near plane stays as given, a point light shades its walls from each
+// pixel's world position. That position comes from the G-buffer's double texture position, so
+// a near plane of 1e-6, with which the float depth resolves only about a quarter of a unit at
+// the walls, lights them as one of 1e-3 does (from the depth they broke into blocks).
+TEST(FrameRenderer, APointLightShadesTheSameWhateverTheNearPlane) {
+  // Away from the origin, where a position from the depth would also lose bits to the eye's.
+  Scene scene = parse_scene(R"({
+    "camera": {"position": [3.999, -6.001, 11.999], "target": [3, -7, 11]},
+    "lights": [{"point": {"position": [3, -7, 11.5], "intensity": 1}}],
+    "objects": [{"name": "room", "mesh": {"box": {"size": 2}},
+                 "transform": {"translate": [3, -7, 11]},
+                 "material": {"texture": {"colour_cube": {}}, "space": "world", "specular": 0}}]
+  })",
+                            "room.json");
+  BrickCache cache(64u << 20);
+  net::LocalBrickSource source(cache);
+  const PreparedScene prepared = prepare_scene(scene, TextureResolution{6, 16, {}}, source);
+  RenderOptions options{.threads = 2};
+  options.access = TextureAccess::evaluated;
+  FrameRenderer renderer(cache, options);
+  const auto draw = [&](double near) {
+    scene.camera.near = near;
+    return renderer.render(prepared, scene.camera, 160, 120).image;
+  };
+  const Image ordinary = draw(1e-3);
+  const Image tiny = draw(1e-6);
+  EXPECT_TRUE(tiny == ordinary);
+}
+
 TEST(FrameRenderer, TileMissesAddUpToTheFramesMisses) {
   const Scene scene = default_scene();
   BrickCache cache(256u << 20);
