@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <glm/geometric.hpp>
 #include <utility>
 #include <vector>
@@ -118,6 +119,21 @@ std::size_t merge_duplicate_vertices(std::vector<Position>& positions,
   return merged;
 }
 
+namespace {
+
+// `v` times the power of two that brings its largest component into [0.5, 1): exact, and the
+// same direction, so that an edge's cross product neither underflows (a mesh 1e-165 across)
+// nor overflows; zero stays zero.
+glm::dvec3 scaled_to_unit(const glm::dvec3& v) {
+  const double largest = std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  if (!(largest > 0.0) || !std::isfinite(largest)) return v;
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  return {std::ldexp(v.x, -exponent), std::ldexp(v.y, -exponent), std::ldexp(v.z, -exponent)};
+}
+
+}  // namespace
+
 template <class Position>
 std::size_t drop_degenerate_triangles(const std::vector<Position>& positions,
                                       std::vector<uint32_t>& indices) {
@@ -127,7 +143,7 @@ std::size_t drop_degenerate_triangles(const std::vector<Position>& positions,
     const uint32_t a = indices[3 * t], b = indices[3 * t + 1], c = indices[3 * t + 2];
     if (a == b || b == c || a == c) continue;
     const glm::dvec3 pa(positions[a]), pb(positions[b]), pc(positions[c]);
-    if (glm::cross(pb - pa, pc - pa) == glm::dvec3(0.0)) continue;
+    if (glm::cross(scaled_to_unit(pb - pa), scaled_to_unit(pc - pa)) == glm::dvec3(0.0)) continue;
     indices[3 * kept] = a;
     indices[3 * kept + 1] = b;
     indices[3 * kept + 2] = c;

@@ -29,11 +29,14 @@ namespace {
 constexpr double kMaxCoordinate = SceneLimits::kMaxCoordinate;
 constexpr double kMaxIntensity = 1e6;
 
-// A direction: non-zero, returned with unit length.
+// A direction: non-zero, returned with unit length. Scaled by its largest component first, so
+// that a tiny one (1e-13, or denormal components) has a length that does not underflow.
 glm::dvec3 read_direction(const JsonValue& value) {
   const glm::dvec3 v = value.vec3(-kMaxCoordinate, kMaxCoordinate);
-  if (!(glm::length(v) > 1e-12)) value.fail("must not be the zero vector");
-  return glm::normalize(v);
+  const glm::dvec3 magnitude = glm::abs(v);
+  const double largest = std::max({magnitude.x, magnitude.y, magnitude.z});
+  if (!(largest > 0.0)) value.fail("must not be the zero vector");
+  return glm::normalize(v / largest);
 }
 
 ImageSize read_image(const JsonValue& value) {
@@ -80,7 +83,12 @@ void read_camera(const JsonValue& value, Scene& scene) {
               " must be greater than near = " + format_number(camera.near));
   }
   const glm::dvec3 view = camera.target - camera.position;
-  if (!(glm::length(view) > 1e-9)) value.fail("position and target must differ");
+  // A view direction from points closer than this would carry little but their rounding.
+  constexpr double kMinViewDistance = 1e-9;
+  if (!(glm::length(view) >= kMinViewDistance)) {
+    value.fail("position and target are " + format_number(glm::length(view)) +
+               " apart; they must be at least " + format_number(kMinViewDistance) + " apart");
+  }
   if (!(glm::length(glm::cross(glm::normalize(view), camera.up)) > 1e-6)) {
     if (up) up->fail("must not be parallel to the view direction (target - position)");
     value.fail(

@@ -466,11 +466,12 @@ std::string l_shape_obj(double scale, double z = 0.0) {
 
 TEST(ParseObjPolygons, AConcavePolygonKeepsItsShapeAtAnyScale) {
   // Near DBL_MAX the corners' differences overflow, and near 1e155 their cross products: the
-  // reflex corner must still be seen, or the notch would be filled.
+  // reflex corner must still be seen, or the notch would be filled. Below 1e-162 the cross
+  // products underflow: the triangles must not be taken for ones of zero area.
   const LoadedObj unit = parse_obj(l_shape_obj(1.0), "l.obj", {.normalize = true});
   double area = 0.0;
   for (std::size_t t = 0; t < unit.mesh.triangle_count(); ++t) area += triangle_area(unit.mesh, t);
-  for (const double scale : {1e-150, 1e155, 1e300, 8e307}) {
+  for (const double scale : {1e-300, 1e-200, 1e-150, 1e155, 1e300, 8e307}) {
     SCOPED_TRACE(scale);
     const LoadedObj obj = parse_obj(l_shape_obj(scale), "l.obj", {.normalize = true});
     expect_covers_exactly(obj, area, 6);

@@ -115,6 +115,20 @@ TEST(ParseScene, MinimalSceneTakesTheDefaults) {
   EXPECT_EQ(object.mesh->triangle_count(), make_sphere({}).triangle_count());
 }
 
+// Any non-zero direction is one, however short: it is scaled by its largest component before
+// its length is taken, which would otherwise underflow.
+TEST(ParseScene, TinyDirectionsAreDirections) {
+  for (const double scale : {1e-13, 1e-200, 5e-324}) {
+    json s = minimal_scene();
+    s["lights"] = {{{"directional", {{"direction", {0, -scale, 0}}}}}};
+    s["camera"] = {{"up", {scale, scale, 0}}};
+    const Scene scene = parse_scene(s.dump(), "tiny.json");
+    EXPECT_EQ(std::get<DirectionalLight>(scene.lights[0]).direction, glm::dvec3(0, -1, 0));
+    EXPECT_NEAR(scene.camera.up.x, std::sqrt(0.5), 1e-15) << scale;
+    EXPECT_NEAR(scene.camera.up.y, std::sqrt(0.5), 1e-15) << scale;
+  }
+}
+
 TEST(ParseScene, ReadsEveryField) {
   const Scene scene = parse_scene(R"({
     "description": "all fields",
@@ -373,6 +387,11 @@ INSTANTIATE_TEST_SUITE_P(
                    s["lights"] = {{{"directional", {{"direction", {0, 0, 0}}}}}};
                  },
                  "lights[0].directional.direction", "zero vector"},
+        BadScene{"TargetAtThePosition",
+                 [](json& s) {
+                   s["camera"] = {{"position", {1, 2, 3}}, {"target", {1, 2, 3 + 1e-10}}};
+                 },
+                 "camera", "must be at least 1e-09 apart"},
         BadScene{"ImageTooLarge",
                  [](json& s) {
                    s["image"] = {{"width", 100000}};
