@@ -8,10 +8,10 @@
 #include <optional>
 #include <stdexcept>
 
-#include "soltex/net/request_packer.h"
 #include "soltex/common/brick_codec.h"
 #include "soltex/common/check.h"
 #include "soltex/common/texture_id.h"
+#include "soltex/net/request_packer.h"
 #include "soltex/spec_proto/brick_proto.h"
 #include "soltex/spec_proto/spec_from_proto.h"
 #include "soltex/v1/brick_service.grpc.pb.h"
