@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "headless_session.h"
+#include "refused_textures.h"
 #include "request_log.h"
 #include "soltex/cli/tool_cli.h"
 #include "soltex/render/frame_renderer.h"
@@ -111,7 +112,7 @@ void print_reference(const ViewOptions& options, const Scene& scene, const ViewS
 int run_headless(const ViewOptions& options, const Scene& scene, ViewSetup& setup,
                  StartupTimeline* timeline) {
   mark_on(timeline, "cache and brick source ready");
-  const PreparedScene prepared = prepare_scene(
+  PreparedScene prepared = prepare_scene(
       scene, options.texture_resolution(setup.choice.finest_level_log2), *setup.source);
   warn_of_refused_textures(prepared);
   mark_on(timeline, "scene prepared, textures registered");

@@ -6,6 +6,7 @@
 #include <climits>
 
 #include "level_cap.h"
+#include "refused_textures.h"
 #include "soltex/common/process_cpu_time.h"
 
 namespace soltex::view {
@@ -104,7 +105,7 @@ void wait_for_bricks(net::BrickSource& source, Clock::time_point deadline, Headl
   result.waiting_ms += std::chrono::duration<double, std::milli>(Clock::now() - wait_start).count();
 }
 
-HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, const Camera& camera,
+HeadlessResult converge(FrameRenderer& renderer, PreparedScene& scene, const Camera& camera,
                         int width, int height, net::BrickSource& source,
                         const HeadlessOptions& options) {
   const auto start = Clock::now();
@@ -122,6 +123,7 @@ HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, con
   // frame.
   bool for_misses = options.first_frame_for_misses && !renderer.options().false_colour_levels;
   for (;;) {
+    adopt_refused_textures(scene, source);
     const uint64_t received_before_frame = source.stats().received;
     Frame frame = [&] {
       const EarlyRequests early(renderer, source, cap, options.cache,
@@ -181,7 +183,7 @@ HeadlessResult converge(FrameRenderer& renderer, const PreparedScene& scene, con
 
 }  // namespace
 
-HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedScene& scene,
+HeadlessResult render_until_converged(FrameRenderer& renderer, PreparedScene& scene,
                                       const Camera& camera, int width, int height,
                                       net::BrickSource& source, const HeadlessOptions& options) {
   const double cpu_start = process_cpu_ms();

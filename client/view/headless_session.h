@@ -62,8 +62,9 @@ struct HeadlessResult {
 // frame's misses to the source; every frame is drawn at once from what the cache holds. Stops
 // early, not converged, when the frame still misses bricks that nobody is fetching any more.
 // With a start level it converges at that cap first, then lifts the cap in one step (the
-// output is the final picture only, so the levels in between would be wasted fetches).
-HeadlessResult render_until_converged(FrameRenderer& renderer, const PreparedScene& scene,
+// output is the final picture only, so the levels in between would be wasted fetches). A
+// texture the source refuses meanwhile is evaluated per pixel from the next frame on.
+HeadlessResult render_until_converged(FrameRenderer& renderer, PreparedScene& scene,
                                       const Camera& camera, int width, int height,
                                       net::BrickSource& source, const HeadlessOptions& options);
 

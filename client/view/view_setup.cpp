@@ -172,13 +172,4 @@ ViewSetup set_up_view(const ViewOptions& options, const Scene& scene,
   return setup;
 }
 
-void warn_of_refused_textures(const PreparedScene& prepared) {
-  for (std::size_t i = 0; i < prepared.objects.size(); ++i) {
-    const PreparedObject& o = prepared.objects[i];
-    if (!o.evaluated_here) continue;
-    spdlog::warn("objects[{}] \"{}\": {}; its texture is evaluated per pixel here instead", i,
-                 o.object != nullptr ? o.object->name : std::string(), o.refusal);
-  }
-}
-
 }  // namespace soltex::view

@@ -29,8 +29,5 @@ struct ViewSetup {
 ViewSetup set_up_view(const ViewOptions& options, const Scene& scene,
                       net::FetcherOptions fetcher_options, StartupTimeline* timeline);
 
-// A warning for each object whose texture the server refused, naming it and why: its texture
-// is evaluated per pixel here instead.
-void warn_of_refused_textures(const PreparedScene& prepared);
 
 }  // namespace soltex::view

@@ -19,6 +19,7 @@
 #include "level_cap.h"
 #include "object_picker.h"
 #include "orbit_controller.h"
+#include "refused_textures.h"
 #include "turntable.h"
 #include "view_setup.h"
 #include "window_title.h"
@@ -466,6 +467,7 @@ void ViewerWindow::Impl::draw_frame(ViewerResult& result, Clock::time_point run_
   }
   // Bricks arriving from here on are not in this frame, and call for the next one.
   received_at_last_frame = source.stats().received;
+  adopt_refused_textures(prepared, source);
   renderer->set_level_bias(level_bias());
   Frame frame = renderer->render(prepared, orbit.camera(), settings.width, settings.height);
   FrameNeeds needs = needs_of(frame, cap.active() ? &cap : nullptr, &cache,

@@ -29,6 +29,16 @@ class BrickStream::Reactor final : public BrickStream::ServerReactor {
 
 namespace {
 
+// The id a refused texture would have had, so that the client knows which of its textures it
+// was; 0 where its spec gives none.
+uint64_t id_of_refused(const v1::RegisterTextureRequest& texture) {
+  try {
+    return registration_id(texture);
+  } catch (const RegistrationError&) {
+    return 0;
+  }
+}
+
 // A brick's entry as sent, with the last payload byte flipped when fault injection says this
 // send is due for it; otherwise the cached entry itself.
 grpc::Slice element_to_send(const EncodedBrick& brick, FaultInjection& faults) {
@@ -157,7 +167,8 @@ void BrickStream::register_textures() {
       const uint64_t id = pin.texture()->id;
       pins_.try_emplace(id, std::move(pin));  // already held: the extra pin is let go
     } catch (const RegistrationError& e) {
-      add_request_error(e.code(), std::string("texture on the stream refused: ") + e.what());
+      add_request_error(e.code(), std::string("texture on the stream refused: ") + e.what(),
+                        id_of_refused(texture));
       if (e.code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
         context_.refusals.refused(client, "texture on stream " + std::to_string(id_) + " from " +
                                               client + " refused: " + e.what());
@@ -449,10 +460,12 @@ void BrickStream::add_error(const v1::BrickKey& key, grpc::StatusCode code, std:
   outbox_.push_back({nullptr, std::move(error), std::nullopt, now, now});
 }
 
-void BrickStream::add_request_error(grpc::StatusCode code, std::string message) {
+void BrickStream::add_request_error(grpc::StatusCode code, std::string message,
+                                    uint64_t texture_id) {
   v1::RequestError error;
   error.set_code(static_cast<int32_t>(code));
   error.set_message(std::move(message));
+  error.set_texture_id(texture_id);
   context_.metrics.count_error(static_cast<int>(code));
   const auto now = std::chrono::steady_clock::now();
   outbox_.push_back({nullptr, std::nullopt, std::move(error), now, now});

@@ -141,7 +141,8 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   void count_queued(int64_t delta);     // this stream's queue grew or shrank by delta
   void drop_queue();                    // empties the queue, counted
   void add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message);
-  void add_request_error(grpc::StatusCode code, std::string message);
+  // texture_id: the request's texture the error refused, 0 for the whole request.
+  void add_request_error(grpc::StatusCode code, std::string message, uint64_t texture_id = 0);
   bool answer_from_cache(const BrickKey& key, std::chrono::steady_clock::time_point now);
   void write_outbox();         // starts the write of the next message from the outbox
   void pump();                 // start the next read, write or finish, whichever is due

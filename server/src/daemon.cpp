@@ -59,6 +59,7 @@ v1::ServerInfo make_info(const ServerConfig& config, int threads) {
   limits->set_max_finest_level_log2(SpecLimits::kMaxFinestLevelLog2);
   limits->set_max_keys_per_request(config.max_keys_per_request);
   limits->set_max_queued_per_stream(config.max_queued_per_stream);
+  limits->set_max_queued_per_client(config.max_queued_per_client);
   limits->set_max_textures(config.max_textures);
   limits->set_max_message_bytes(config.max_message_bytes);
   limits->set_max_octaves(SpecLimits::kMaxOctaveCount);

@@ -45,7 +45,7 @@ Drawn draw(const ImageCase& c, const std::filesystem::path& scratch, bool with_r
   BrickCache cache(std::size_t{1} << 30);
   net::LocalBrickSource source(cache);
   const TextureResolution resolution{c.finest_level_log2, 16, MipSettings{}};
-  const PreparedScene prepared = prepare_scene(scene, resolution, source);
+  PreparedScene prepared = prepare_scene(scene, resolution, source);
   RenderOptions options;
   options.antialias = c.antialias;
   options.access = c.access;

@@ -262,6 +262,82 @@ TEST(BrickFetcher, KeepsWithinTheServersMessageAndQueueBounds) {
   expect_cached_brick_is_local(cache, id, 0, {5, 6, 7});
 }
 
+// Reconnected to a server with smaller bounds than the one it lost, the fetcher asks again for
+// what was in flight only as far as the new bounds allow; the rest waits its turn.
+TEST(BrickFetcher, AReplacementServersSmallerQueueIsKept) {
+  const int port = testing::free_port();
+  // Bricks held a long while: all 64 are still in flight when this server goes.
+  std::optional<SoltexdProcess> server(
+      std::in_place, std::vector<std::string>{"--fault-delay-ms", "60000"}, port);
+  BrickCache cache(64 << 20);
+  net::BrickFetcher fetcher("127.0.0.1:" + std::to_string(port), cache, quick_reconnect());
+  const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  fetcher.want(level(id, 1, 4));
+  for (int i = 0; i < 200 && fetcher.stats().in_flight < 64; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_EQ(fetcher.stats().in_flight, 64u);
+  server->kill_now();
+  server.reset();
+  server.emplace(std::vector<std::string>{"--max-queued-per-stream", "24",
+                                          "--max-keys-per-request", "16"},
+                 port);
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
+  const net::SourceStats stats = fetcher.stats();
+  EXPECT_EQ(stats.received, 64u);
+  EXPECT_EQ(stats.deferred, 0u);
+  EXPECT_EQ(stats.errors, 0u);
+}
+
+// Two clients of one address share that address's queue bound: each keeps within what it is
+// told, yet together they overrun it. Refused wants are asked for again at a pace the server
+// keeps up with, not in a storm, and none is lost or counted as an error.
+TEST(BrickFetcher, ClientsSharingAnAddressBoundGetEveryBrick) {
+  SoltexdProcess server({"--max-queued-per-client", "8", "--max-keys-per-request", "8",
+                         "--max-queued-per-stream", "8"});
+  BrickCache cache_a(64 << 20), cache_b(64 << 20);
+  net::BrickFetcher a(server.grpc_address(), cache_a), b(server.grpc_address(), cache_b);
+  const uint64_t id = a.register_texture(marble(), unit_volume(6), 8, {});
+  ASSERT_EQ(b.register_texture(marble(), unit_volume(6), 8, {}), id);
+  a.want(level(id, 0, 8));
+  b.want(level(id, 0, 8));
+  ASSERT_TRUE(a.wait_idle(std::chrono::seconds(60)));
+  ASSERT_TRUE(b.wait_idle(std::chrono::seconds(60)));
+  for (const net::BrickFetcher* f : {&a, &b}) {
+    const net::SourceStats stats = f->stats();
+    EXPECT_EQ(stats.received, 512u);
+    EXPECT_EQ(stats.errors, 0u);
+    // A storm would refuse many times the bricks; pacing keeps it to a fraction of them.
+    EXPECT_LT(stats.deferred, 512u) << stats.deferred;
+  }
+}
+
+// A texture the server takes with RegisterTexture but refuses when the stream sends it (its
+// registry full of textures the stream pins) is reported once, with the server's reason; its
+// wants are dropped and the other texture's bricks all arrive.
+TEST(BrickFetcher, ATextureRefusedOnTheStreamIsReported) {
+  SoltexdProcess server({"--max-textures", "1"});
+  BrickCache cache(64 << 20);
+  net::BrickFetcher fetcher(server.grpc_address(), cache);
+  TextureSpec other;
+  other.pattern = WoodParams{};
+  const uint64_t kept = fetcher.register_texture(marble(), unit_volume(6), 8, {});
+  const uint64_t refused = fetcher.register_texture(other, unit_volume(6), 8, {});
+  std::vector<net::BrickWant> wants = level(kept, 1, 4);
+  for (const net::BrickWant& w : level(refused, 1, 4)) wants.push_back(w);
+  fetcher.want(wants);
+  ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
+  const auto refusals = fetcher.take_refused_textures();
+  ASSERT_EQ(refusals.size(), 1u);
+  EXPECT_EQ(refusals[0].first, refused);
+  EXPECT_NE(refusals[0].second.find("max_textures"), std::string::npos) << refusals[0].second;
+  EXPECT_TRUE(fetcher.take_refused_textures().empty());
+  EXPECT_EQ(fetcher.stats().received, 64u);
+  EXPECT_EQ(fetcher.stats().errors, 0u);
+  fetcher.want(level(refused, 1, 4));  // not asked for again
+  EXPECT_TRUE(fetcher.idle());
+}
+
 TEST(BrickFetcher, SurvivesAServerRestart) {
   const int port = testing::free_port();
   std::optional<SoltexdProcess> server(std::in_place, std::vector<std::string>{}, port);

@@ -30,7 +30,7 @@ struct Rendered {
 
 Rendered render_with(net::BrickSource& source, BrickCache& cache, const Scene& scene,
                      int finest_level, RenderOptions options = {}) {
-  const PreparedScene prepared =
+  PreparedScene prepared =
       prepare_scene(scene, TextureResolution{finest_level, 16, {}}, source);
   FrameRenderer renderer(cache, options);
   view::HeadlessOptions headless;
@@ -113,7 +113,7 @@ TEST(ViewRender, ATextureTheServerRefusesIsEvaluatedHere) {
   SoltexdProcess server({"--max-message-bytes", "6000"});
   BrickCache cache(64u << 20);
   net::BrickFetcher fetcher(server.grpc_address(), cache);
-  const PreparedScene prepared = prepare_scene(scene, TextureResolution{7, 16, {}}, fetcher);
+  PreparedScene prepared = prepare_scene(scene, TextureResolution{7, 16, {}}, fetcher);
   ASSERT_EQ(prepared.objects.size(), 2u);
   EXPECT_FALSE(prepared.objects[0].evaluated_here);
   EXPECT_TRUE(prepared.objects[1].evaluated_here);
@@ -143,7 +143,7 @@ TEST(ViewRender, CachedImageIsWithin40DbOfThePerPixelReference) {
   ASSERT_EQ(scene.objects.size(), 2u);
   BrickCache cache(512u << 20);
   net::LocalBrickSource source(cache);
-  const PreparedScene prepared = prepare_scene(scene, TextureResolution{9, 16, {}}, source);
+  PreparedScene prepared = prepare_scene(scene, TextureResolution{9, 16, {}}, source);
   FrameRenderer renderer(cache, RenderOptions{});
   view::HeadlessOptions headless;
   const view::HeadlessResult cached = view::render_until_converged(
@@ -194,7 +194,7 @@ TEST(ViewRender, KeepsDrawingThroughAServerRestart) {
   options.initial_backoff = std::chrono::milliseconds(50);
   options.max_backoff = std::chrono::milliseconds(400);
   net::BrickFetcher fetcher("127.0.0.1:" + std::to_string(port), cache, options);
-  const PreparedScene prepared = prepare_scene(scene, TextureResolution{8, 16, {}}, fetcher);
+  PreparedScene prepared = prepare_scene(scene, TextureResolution{8, 16, {}}, fetcher);
   FrameRenderer renderer(cache, RenderOptions{});
 
   // A few frames: some bricks arrive, then the server goes away mid-render.
@@ -231,7 +231,7 @@ TEST(ViewRender, ASlowServerLeavesTheClientDrawing) {
   SoltexdProcess server({"--fault-delay-ms", "20", "--threads", "2"});
   BrickCache cache(256u << 20);
   net::BrickFetcher fetcher(server.grpc_address(), cache);
-  const PreparedScene prepared = prepare_scene(scene, TextureResolution{6, 16, {}}, fetcher);
+  PreparedScene prepared = prepare_scene(scene, TextureResolution{6, 16, {}}, fetcher);
   FrameRenderer renderer(cache, RenderOptions{});
 
   Frame first = renderer.render(prepared, scene.camera, kWidth, kHeight);
@@ -275,7 +275,7 @@ TEST(ViewRender, StartingCoarseRefinesToTheSamePicture) {
   const auto run = [&](std::size_t budget, int start_level) {
     BrickCache cache(budget);
     net::LocalBrickSource source(cache);
-    const PreparedScene prepared = prepare_scene(scene, TextureResolution{8, 16, {}}, source);
+    PreparedScene prepared = prepare_scene(scene, TextureResolution{8, 16, {}}, source);
     FrameRenderer renderer(cache, RenderOptions{});
     view::HeadlessOptions headless;
     headless.max_time = std::chrono::seconds(60);
@@ -307,7 +307,7 @@ TEST(ViewRender, AFirstFrameDrawnForItsMissesConvergesToTheSamePicture) {
   const Scene scene = default_scene();
   const auto run = [&](BrickCache& cache, bool for_misses) {
     net::LocalBrickSource source(cache);
-    const PreparedScene prepared = prepare_scene(scene, TextureResolution{7, 16, {}}, source);
+    PreparedScene prepared = prepare_scene(scene, TextureResolution{7, 16, {}}, source);
     FrameRenderer renderer(cache, RenderOptions{});
     view::HeadlessOptions headless;
     headless.max_time = std::chrono::seconds(60);
@@ -338,7 +338,7 @@ TEST(ViewRender, HeadlessStopsEarlyWhenBricksFailForGood) {
   SoltexdProcess server({"--fault-corrupt-every", "1"});
   BrickCache cache(256u << 20);
   net::BrickFetcher fetcher(server.grpc_address(), cache);
-  const PreparedScene prepared = prepare_scene(scene, TextureResolution{6, 16, {}}, fetcher);
+  PreparedScene prepared = prepare_scene(scene, TextureResolution{6, 16, {}}, fetcher);
   FrameRenderer renderer(cache, RenderOptions{});
   view::HeadlessOptions headless;
   headless.max_time = std::chrono::seconds(60);

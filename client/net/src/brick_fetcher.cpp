@@ -23,6 +23,11 @@ namespace {
 // How soon a waiting supervisor sees that the fetcher is stopping.
 constexpr auto kStopCheck = std::chrono::milliseconds(50);
 
+// The pause after the server refused every want it was sent over a queue bound, doubled for
+// each refusal in a row up to the most, and back to the first once a brick arrives.
+constexpr std::chrono::milliseconds kFirstRefusalBackoff{10};
+constexpr std::chrono::milliseconds kMaxRefusalBackoff{1000};
+
 // `line` through `throttle`, with how many like it were held back before it.
 template <typename... Args>
 void throttled_warning(WarningThrottle& throttle, fmt::format_string<Args...> line,
@@ -69,6 +74,7 @@ BrickFetcher::BrickFetcher(std::string server_address, BrickCache& cache, Fetche
       channel_(std::make_unique<Channel>()),
       warnings_(std::make_unique<Warnings>()),
       in_flight_bound_(options.max_in_flight),
+      congestion_bound_(options.max_in_flight),
       codec_(options.codec) {
   grpc::ChannelArguments args;
   args.SetMaxReceiveMessageSize(64 << 20);
@@ -212,9 +218,10 @@ void BrickFetcher::learn_bounds(Stream& stream) {
   if (limits.max_message_bytes() > 0) bounds_.max_bytes = limits.max_message_bytes();
   if (limits.max_keys_per_request() > 0) bounds_.max_wants = limits.max_keys_per_request();
   in_flight_bound_ = options_.max_in_flight;
-  if (limits.max_queued_per_stream() > 0) {
-    in_flight_bound_ = std::min<std::size_t>(in_flight_bound_, limits.max_queued_per_stream());
+  for (const uint32_t queued : {limits.max_queued_per_stream(), limits.max_queued_per_client()}) {
+    if (queued > 0) in_flight_bound_ = std::min<std::size_t>(in_flight_bound_, queued);
   }
+  congestion_bound_ = in_flight_bound_;
 }
 
 bool BrickFetcher::wait_to_reconnect(std::chrono::milliseconds backoff) {
@@ -251,20 +258,26 @@ void BrickFetcher::on_batch(v1::BrickBatch& batch) {
   if (options_.on_event) options_.on_event(FetchEvent::batch_received, payloads.size());
   if (batch.errors_size() > 0 || batch.request_errors_size() > 0) {
     std::lock_guard lock(mutex_);
+    // A texture refused on the stream first: the NOT_FOUND answers to its wants follow it.
+    for (const auto& error : batch.request_errors()) {
+      if (error.texture_id() != 0) {
+        refuse_texture(error.texture_id(), error.message());
+        continue;
+      }
+      ++stats_.errors;
+      throttled_warning(warnings_->refused, "request refused: {}", error.message());
+    }
     for (const auto& error : batch.errors()) {
       const BrickKey key = from_proto(error.key());
       in_flight_.erase(key);
-      // Over a bound of the moment (the stream's queue, with cancelled bricks still in
-      // production counted): asked for again when a frame next misses it.
-      if (error.code() != static_cast<int32_t>(grpc::StatusCode::RESOURCE_EXHAUSTED)) {
-        failed_.insert(key);
+      if (error.code() == static_cast<int32_t>(grpc::StatusCode::RESOURCE_EXHAUSTED)) {
+        defer(key);
+        continue;
       }
+      failed_.insert(key);
+      if (refused_ids_.contains(key.texture)) continue;  // said once, with the texture
       ++stats_.errors;
       throttled_warning(warnings_->refused, "brick refused: {}", error.message());
-    }
-    for (const auto& error : batch.request_errors()) {
-      ++stats_.errors;
-      throttled_warning(warnings_->refused, "request refused: {}", error.message());
     }
   }
   changed_.notify_all();
@@ -313,11 +326,13 @@ void BrickFetcher::receive(const std::vector<std::pair<BrickKey, std::string>>& 
     if (brick) {
       ++stats_.received;
       refetches_.erase(key);
+      congestion_bound_ = std::min(congestion_bound_ + 1, in_flight_bound_);
+      refusal_backoff_ = kFirstRefusalBackoff;
     } else if (++refetches_[key] <= options_.max_refetches) {
       // Damaged on the way: ask again, first in line (unless a frame asked for it again
       // meanwhile and it waits already).
       ++stats_.corrupt;
-      if (waiting_keys_.insert(key).second) waiting_.insert(waiting_.begin(), BrickWant{key, ~0u});
+      wait_first(key);
     } else {
       failed_.insert(key);
       ++stats_.errors;
@@ -372,7 +387,7 @@ void BrickFetcher::want(std::vector<BrickWant> wants) {
     waiting_keys_.clear();
     for (const BrickWant& w : fresh) {
       if (in_flight_.contains(w.key) || held_keys_.contains(w.key) || failed_.contains(w.key) ||
-          cache_.contains(w.key)) {
+          refused_ids_.contains(w.key.texture) || cache_.contains(w.key)) {
         continue;
       }
       add_waiting(w);  // fresh holds each key once
@@ -388,7 +403,7 @@ void BrickFetcher::want_early(std::vector<BrickWant> wants) {
     std::lock_guard lock(mutex_);
     for (const BrickWant& w : wants) {
       if (in_flight_.contains(w.key) || held_keys_.contains(w.key) || failed_.contains(w.key) ||
-          cache_.contains(w.key)) {
+          refused_ids_.contains(w.key.texture) || cache_.contains(w.key)) {
         continue;
       }
       // A key another render thread found first is waiting already.
@@ -404,15 +419,62 @@ bool BrickFetcher::add_waiting(const BrickWant& want) {
   return true;
 }
 
+void BrickFetcher::wait_first(const BrickKey& key) {
+  if (waiting_keys_.insert(key).second) waiting_.insert(waiting_.begin(), BrickWant{key, ~0u});
+}
+
+bool BrickFetcher::may_send_wants() const {
+  return !waiting_.empty() && in_flight_.size() < std::min(in_flight_bound_, congestion_bound_) &&
+         std::chrono::steady_clock::now() >= wants_paused_until_;
+}
+
+void BrickFetcher::defer(const BrickKey& key) {
+  ++stats_.deferred;
+  wait_first(key);
+  // What the server holds now is about what it can hold: no more until bricks come back.
+  congestion_bound_ = std::max<std::size_t>(in_flight_.size(), 1);
+  if (in_flight_.empty()) {
+    // Nothing of ours is in its queue: others fill it. Wait before asking again.
+    wants_paused_until_ = std::chrono::steady_clock::now() + refusal_backoff_;
+    refusal_backoff_ = std::min(refusal_backoff_ * 2, kMaxRefusalBackoff);
+  }
+}
+
+void BrickFetcher::refuse_texture(uint64_t id, const std::string& reason) {
+  if (!refused_ids_.insert(id).second) return;
+  refused_textures_.emplace_back(id, reason);
+  registrations_.erase(id);  // a later stream need not carry it
+  std::erase_if(waiting_, [&](const BrickWant& w) {
+    if (w.key.texture != id) return false;
+    waiting_keys_.erase(w.key);
+    return true;
+  });
+  std::erase_if(in_flight_, [&](const BrickKey& key) { return key.texture == id; });
+}
+
+std::vector<std::pair<uint64_t, std::string>> BrickFetcher::take_refused_textures() {
+  std::lock_guard lock(mutex_);
+  std::vector<std::pair<uint64_t, std::string>> taken;
+  taken.swap(refused_textures_);
+  return taken;
+}
+
 void BrickFetcher::write_loop() {
   std::unique_lock lock(mutex_);
   for (;;) {
-    changed_.wait(lock, [this] {
+    const auto ready = [this] {
       return stopping_ ||
-             (stream_ &&
-              (resend_ || codec_changed_ || !to_cancel_.empty() || !unsent_registrations_.empty() ||
-               (!waiting_.empty() && in_flight_.size() < in_flight_bound_)));
-    });
+             (stream_ && (resend_ || codec_changed_ || !to_cancel_.empty() ||
+                          !unsent_registrations_.empty() || may_send_wants()));
+    };
+    // A pause after refusals ends by itself: wake for it.
+    while (!ready()) {
+      if (!waiting_.empty() && std::chrono::steady_clock::now() < wants_paused_until_) {
+        changed_.wait_until(lock, wants_paused_until_);
+      } else {
+        changed_.wait(lock);
+      }
+    }
     if (stopping_) return;
     std::shared_ptr<Stream> stream = stream_;
     std::vector<v1::BrickRequest> requests = pack_requests();
@@ -454,7 +516,18 @@ std::vector<v1::BrickRequest> BrickFetcher::pack_requests() {
     // A new stream, perhaps to another replica, knows nothing of the old one: send every
     // texture, then everything still in flight.
     for (const auto& [id, serialized] : registrations_) add_texture(id, serialized);
-    for (const BrickKey& key : in_flight_) packer.add_want(to_proto(key), 0);
+    // As many as this server's bounds allow (it may be another, with smaller ones); the rest
+    // wait their turn.
+    std::size_t resent = 0;
+    for (auto it = in_flight_.begin(); it != in_flight_.end();) {
+      if (resent < in_flight_bound_) {
+        packer.add_want(to_proto(*it++), 0);
+        ++resent;
+      } else {
+        wait_first(*it);
+        it = in_flight_.erase(it);
+      }
+    }
     resend_ = false;
     codec_changed_ = true;
   } else {
@@ -466,7 +539,9 @@ std::vector<v1::BrickRequest> BrickFetcher::pack_requests() {
   for (const BrickKey& key : to_cancel_) packer.add_cancel(to_proto(key));
   to_cancel_.clear();
   std::size_t taken = 0;
-  while (taken < waiting_.size() && in_flight_.size() < in_flight_bound_) {
+  const bool paused = std::chrono::steady_clock::now() < wants_paused_until_;
+  const std::size_t bound = paused ? 0 : std::min(in_flight_bound_, congestion_bound_);
+  while (taken < waiting_.size() && in_flight_.size() < bound) {
     const BrickWant& w = waiting_[taken++];
     waiting_keys_.erase(w.key);
     if (cache_.contains(w.key) || in_flight_.contains(w.key) || held_keys_.contains(w.key)) {

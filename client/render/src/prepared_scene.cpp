@@ -85,4 +85,19 @@ PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolut
   return prepared;
 }
 
+std::vector<std::size_t> evaluate_refused_textures(PreparedScene& prepared,
+                                                   net::BrickSource& source) {
+  std::vector<std::size_t> marked;
+  for (const auto& [id, reason] : source.take_refused_textures()) {
+    for (std::size_t i = 0; i < prepared.objects.size(); ++i) {
+      PreparedObject& o = prepared.objects[i];
+      if (o.texture_id != id || o.evaluated_here) continue;
+      o.evaluated_here = true;
+      o.refusal = reason;
+      marked.push_back(i);
+    }
+  }
+  return marked;
+}
+
 }  // namespace soltex

@@ -80,6 +80,7 @@ class BrickFetcher final : public BrickSource {
 
   // Asks for the bricks of later wants in `codec` (bricks in flight keep theirs).
   void set_codec(Codec codec) override;
+  std::vector<std::pair<uint64_t, std::string>> take_refused_textures() override;
 
   // Nothing requested, waiting or in flight.
   bool idle() const override;
@@ -112,6 +113,17 @@ class BrickFetcher final : public BrickSource {
   void receive(const std::vector<std::pair<BrickKey, std::string>>& payloads);
   // Appends to waiting_ unless the key waits already; true if it was added.
   bool add_waiting(const BrickWant& want);
+  // Puts `key` first in line again (unless it waits already).
+  void wait_first(const BrickKey& key);
+  // Whether wants may go out now: fewer in flight than the bounds allow, and no backoff
+  // after the server refused wants. mutex_ held.
+  bool may_send_wants() const;
+  // A brick the server refused over a queue bound of the moment: asked for again, at a pace
+  // the server keeps up with. mutex_ held.
+  void defer(const BrickKey& key);
+  // The server refused texture `id` on the stream: its keys leave the queues, later wants of
+  // it are ignored, and take_refused_textures() reports it. mutex_ held.
+  void refuse_texture(uint64_t id, const std::string& reason);
   bool nothing_pending() const;  // idle(), with mutex_ held
 
   const std::string address_;
@@ -139,6 +151,14 @@ class BrickFetcher final : public BrickSource {
   // answer to GetServerInfo gave them: every request is packed to fit them.
   RequestBounds bounds_;
   std::size_t in_flight_bound_;  // options_.max_in_flight, or less when the server queues less
+  // After the server refused wants over a queue bound it does not advertise (one shared by
+  // several clients of one address): the most in flight, grown by one per brick received
+  // back to in_flight_bound_; and, when nothing was left in flight, a pause before more go.
+  std::size_t congestion_bound_;
+  std::chrono::steady_clock::time_point wants_paused_until_{};
+  std::chrono::milliseconds refusal_backoff_{10};
+  std::unordered_set<uint64_t> refused_ids_;                       // by the server, on a stream
+  std::vector<std::pair<uint64_t, std::string>> refused_textures_;  // not yet taken
   bool resend_ = false;          // a new stream: everything in flight must be asked for again
   Codec codec_;
   bool codec_changed_ = false;  // codec_ goes out with the next request

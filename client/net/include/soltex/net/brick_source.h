@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cstdint>
 #include <stdexcept>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "soltex/common/brick_codec.h"
@@ -31,6 +33,8 @@ struct SourceStats {
   uint64_t bytes = 0;      // encoded bytes that travelled (0 for an in-process source)
   uint64_t cancelled = 0;  // keys dropped because no frame wanted them any more
   uint64_t errors = 0;     // refused bricks, and bricks still corrupt after every refetch
+  // Bricks a server refused over a queue bound of the moment and that were asked for again.
+  uint64_t deferred = 0;
   uint64_t corrupt = 0;    // bricks that failed their checksum and were asked for again
   uint64_t reconnects = 0;
   // Time spent decoding arrived bricks (wall, on the receiving thread) and their decoded
@@ -73,6 +77,10 @@ class BrickSource {
   virtual void hold_arrivals(bool /*hold*/) {}
   // The codec later bricks travel in; a source that moves no bytes (in-process) ignores it.
   virtual void set_codec(Codec) {}
+  // Textures the server refused after register_texture() had taken them (a stream sent them
+  // again when the server's registry or the client's quota was full): each id with the
+  // server's reason, once. Their bricks will not come; their objects must be evaluated here.
+  virtual std::vector<std::pair<uint64_t, std::string>> take_refused_textures() { return {}; }
   virtual bool idle() const = 0;
   virtual bool wait_idle(std::chrono::milliseconds timeout) = 0;
   virtual SourceStats stats() const = 0;

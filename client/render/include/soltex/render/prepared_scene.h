@@ -48,4 +48,10 @@ struct PreparedScene {
 PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolution,
                             net::BrickSource& source);
 
+// Marks the objects whose texture `source` refused after registering it
+// (BrickSource::take_refused_textures) as evaluated here, with the source's reason, and
+// returns their indices: a client draws on, those objects now per pixel.
+std::vector<std::size_t> evaluate_refused_textures(PreparedScene& prepared,
+                                                   net::BrickSource& source);
+
 }  // namespace soltex
