@@ -26,18 +26,21 @@ struct Rendered {
   Image image;
   net::SourceStats stats;
   bool converged;
+  std::size_t evaluated_here = 0;  // objects whose texture the source refused
 };
 
 Rendered render_with(net::BrickSource& source, BrickCache& cache, const Scene& scene,
                      int finest_level, RenderOptions options = {}) {
-  PreparedScene prepared =
-      prepare_scene(scene, TextureResolution{finest_level, 16, {}}, source);
+  PreparedScene prepared = prepare_scene(scene, TextureResolution{finest_level, 16, {}}, source);
   FrameRenderer renderer(cache, options);
   view::HeadlessOptions headless;
   headless.max_time = std::chrono::seconds(60);
   const view::HeadlessResult result = view::render_until_converged(
       renderer, prepared, scene.camera, kWidth, kHeight, source, headless);
-  return {result.image, source.stats(), result.converged_ms >= 0.0};
+  const auto refused = std::count_if(prepared.objects.begin(), prepared.objects.end(),
+                                     [](const PreparedObject& o) { return o.evaluated_here; });
+  return {result.image, source.stats(), result.converged_ms >= 0.0,
+          static_cast<std::size_t>(refused)};
 }
 
 TEST(ViewRender, ConvergedImageEqualsTheInProcessSourceBitForBit) {
@@ -129,6 +132,26 @@ TEST(ViewRender, ATextureTheServerRefusesIsEvaluatedHere) {
   // The served sphere the same; the other differs only as evaluating a texture differs from
   // looking it up.
   EXPECT_GT(psnr(rendered.image, served.image), 35.0);
+}
+
+// A server whose registry holds fewer textures than the scene has takes every RegisterTexture
+// (nothing pins a texture yet) and refuses the last texture when the stream sends them all. The
+// frame goes on with that object evaluated per pixel and converges.
+TEST(ViewRender, ATextureRefusedOnTheStreamIsEvaluatedHere) {
+  const Scene scene = default_scene();
+  SoltexdProcess server({"--max-textures", "3"});
+  BrickCache cache(256u << 20);
+  net::BrickFetcher fetcher(server.grpc_address(), cache);
+  const Rendered rendered = render_with(fetcher, cache, scene, 7);
+  ASSERT_TRUE(rendered.converged);
+  EXPECT_EQ(rendered.evaluated_here, 1u);
+  EXPECT_EQ(rendered.stats.errors, 0u);
+
+  BrickCache local_cache(256u << 20);
+  net::LocalBrickSource local(local_cache);
+  const Rendered in_process = render_with(local, local_cache, scene, 7);
+  ASSERT_TRUE(in_process.converged);
+  EXPECT_GT(psnr(rendered.image, in_process.image), 35.0);
 }
 
 // Smooth textures (marble, turbulence): their cached, trilinearly filtered image approaches
