@@ -88,6 +88,8 @@ namespace {
     "Bricks written back to the shared cache.")                                                   \
   X(shared_store_errors, "soltex_shared_cache_store_errors_total", counter,                       \
     "Write-backs to the shared cache that failed (ignored).")                                     \
+  X(shared_skipped, "soltex_shared_cache_skipped_total", counter,                                 \
+    "Shared cache lookups and write-backs not tried: their node rests after a failure.")          \
   X(faults_corrupted, "soltex_faults_corrupted_total", counter,                                   \
     "Bricks deliberately corrupted on the way out (--fault-corrupt-every).")                      \
   X(reloads, "soltex_config_reloads_total", counter,                                              \
@@ -194,6 +196,7 @@ void write_shared_cache(Exposition& e, const SharedCacheStats& shared) {
   counter(F::shared_corrupt, shared.corrupt);
   counter(F::shared_stores, shared.stores);
   counter(F::shared_store_errors, shared.store_errors);
+  counter(F::shared_skipped, shared.skipped);
 }
 
 void write_registry(Exposition& e, const RegistryStats& registry) {

@@ -41,6 +41,12 @@ class PooledConnection {
   memcached_st* connection_ = nullptr;
 };
 
+int64_t steady_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(
+             std::chrono::steady_clock::now().time_since_epoch())
+      .count();
+}
+
 void set_behavior(memcached_st* m, memcached_behavior_t behavior, uint64_t value) {
   if (memcached_behavior_set(m, behavior, value) != MEMCACHED_SUCCESS) {
     throw std::runtime_error("memcached: cannot set behavior " + std::to_string(behavior));
@@ -70,6 +76,10 @@ SharedBrickCache::SharedBrickCache(const SharedCacheConfig& config)
       if (memcached_server_add(master_, address.host.c_str(), address.port) != MEMCACHED_SUCCESS) {
         throw std::invalid_argument("memcached server '" + server + "' is not a usable address");
       }
+      auto node = std::make_unique<Node>();
+      node->host = address.host;
+      node->port = address.port;
+      nodes_.push_back(std::move(node));
     }
     const auto timeout = static_cast<uint64_t>(config.timeout_ms);
     set_behavior(master_, MEMCACHED_BEHAVIOR_KETAMA, 1);  // consistent hashing
@@ -97,6 +107,45 @@ SharedBrickCache::~SharedBrickCache() {
   memcached_free(master_);
 }
 
+SharedBrickCache::Node* SharedBrickCache::node_of(memcached_st* connection,
+                                                  const std::string& name) {
+  memcached_return_t rc;
+  const memcached_instance_st* server =
+      memcached_server_by_key(connection, name.data(), name.size(), &rc);
+  if (server == nullptr) return nullptr;
+  const char* host = memcached_server_name(server);
+  const int port = memcached_server_port(server);
+  for (const auto& node : nodes_) {
+    if (node->port == port && host != nullptr && node->host == host) return node.get();
+  }
+  return nullptr;
+}
+
+bool SharedBrickCache::resting(const Node* node) {
+  if (node == nullptr) return false;
+  const int64_t until = node->rest_until_ns.load(std::memory_order_relaxed);
+  if (until == 0 || steady_ns() >= until) return false;
+  skipped_.fetch_add(1, std::memory_order_relaxed);
+  return true;
+}
+
+void SharedBrickCache::settle(Node* node, int rc) {
+  if (node == nullptr) return;
+  const auto code = static_cast<memcached_return_t>(rc);
+  const bool answered = code == MEMCACHED_SUCCESS || code == MEMCACHED_NOTFOUND ||
+                        code == MEMCACHED_NOTSTORED || code == MEMCACHED_DATA_EXISTS;
+  if (answered) {
+    node->rest_until_ns.store(0, std::memory_order_relaxed);
+    return;
+  }
+  const int64_t until =
+      steady_ns() + std::chrono::duration_cast<std::chrono::nanoseconds>(kNodeRest).count();
+  if (node->rest_until_ns.exchange(until, std::memory_order_relaxed) == 0) {
+    spdlog::warn("memcached {}:{} failed ({}): its keys are misses for {} s", node->host,
+                 node->port, memcached_strerror(nullptr, code), kNodeRest.count());
+  }
+}
+
 std::optional<std::string> SharedBrickCache::fetch(const BrickKey& key, Codec codec) {
   PooledConnection connection(pool_, timeout_ms_);
   if (!connection.get()) {
@@ -104,11 +153,14 @@ std::optional<std::string> SharedBrickCache::fetch(const BrickKey& key, Codec co
     return std::nullopt;
   }
   const std::string name = key_of(key, codec);
+  Node* node = node_of(connection.get(), name);
+  if (resting(node)) return std::nullopt;
   std::size_t length = 0;
   uint32_t flags = 0;
   memcached_return_t rc;
   std::unique_ptr<char, decltype(&std::free)> value(
       memcached_get(connection.get(), name.data(), name.size(), &length, &flags, &rc), &std::free);
+  settle(node, rc);
   if (rc == MEMCACHED_NOTFOUND) {
     misses_.fetch_add(1, std::memory_order_relaxed);
     return std::nullopt;
@@ -141,12 +193,15 @@ void SharedBrickCache::store(const BrickKey& key, Codec codec, std::string_view 
     return;
   }
   const std::string name = key_of(key, codec);
+  Node* node = node_of(connection.get(), name);
+  if (resting(node)) return;
   std::string value(kChecksumBytes, '\0');
   const uint64_t checksum = XXH64(payload.data(), payload.size(), 0);
   std::memcpy(value.data(), &checksum, kChecksumBytes);
   value.append(payload);
   const memcached_return_t rc = memcached_set(connection.get(), name.data(), name.size(),
                                               value.data(), value.size(), ttl_seconds_, 0);
+  settle(node, rc);
   if (rc == MEMCACHED_SUCCESS) {
     stores_.fetch_add(1, std::memory_order_relaxed);
   } else {
@@ -158,7 +213,8 @@ void SharedBrickCache::store(const BrickKey& key, Codec codec, std::string_view 
 SharedCacheStats SharedBrickCache::stats() const {
   return {hits_.load(std::memory_order_relaxed),   misses_.load(std::memory_order_relaxed),
           errors_.load(std::memory_order_relaxed), corrupt_.load(std::memory_order_relaxed),
-          stores_.load(std::memory_order_relaxed), store_errors_.load(std::memory_order_relaxed)};
+          stores_.load(std::memory_order_relaxed), store_errors_.load(std::memory_order_relaxed),
+          skipped_.load(std::memory_order_relaxed)};
 }
 
 }  // namespace soltex::server

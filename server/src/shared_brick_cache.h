@@ -1,7 +1,9 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -29,12 +31,17 @@ struct SharedCacheStats {
   uint64_t corrupt = 0;  // value failed its checksum: treated as a miss
   uint64_t stores = 0;
   uint64_t store_errors = 0;
+  uint64_t skipped = 0;  // lookups and write-backs not tried: their node rests after a failure
 };
 
 // The second-level brick cache that replicas share: encoded bricks in memcached, spread over
 // the nodes by consistent hashing (ketama), so adding or losing a node moves only its share of
 // the keys. It never fails a request: an unreachable, slow or dead node is a miss (and is
-// ejected for a few seconds), and a value that does not match its checksum is a miss.
+// ejected for a few seconds), and a value that does not match its checksum is a miss. A node
+// that fails or times out rests for kNodeRest: the keys it holds are misses meanwhile, without
+// a call (libmemcached ejects a node that refuses connections, not one that accepts them and
+// never answers, which would cost every brick a timeout on the lookup and another on the
+// write-back).
 // Thread-safe; connections come from a pool.
 class SharedBrickCache {
  public:
@@ -49,15 +56,32 @@ class SharedBrickCache {
 
   SharedCacheStats stats() const;
 
+  static constexpr std::chrono::seconds kNodeRest{2};
+
   // The memcached key of a brick: versioned, so a format change never reads old values.
   static std::string key_of(const BrickKey& key, Codec codec);
 
  private:
+  // A node of the ring, and until when it rests (steady clock, ns; 0: not resting).
+  struct Node {
+    std::string host;
+    int port = 0;
+    std::atomic<int64_t> rest_until_ns{0};
+  };
+  // The node `name` hashes to on `connection`, or null when libmemcached names none.
+  Node* node_of(memcached_st* connection, const std::string& name);
+  // Whether a call to `node` is skipped now (counted in `skipped_`).
+  bool resting(const Node* node);
+  // After a call to `node` returned `rc`: a failure (not a plain miss) makes it rest.
+  void settle(Node* node, int rc);
+
+  std::vector<std::unique_ptr<Node>> nodes_;
   memcached_st* master_ = nullptr;
   memcached_pool_st* pool_ = nullptr;
   const uint32_t ttl_seconds_;
   const int timeout_ms_;
-  std::atomic<uint64_t> hits_{0}, misses_{0}, errors_{0}, corrupt_{0}, stores_{0}, store_errors_{0};
+  std::atomic<uint64_t> hits_{0}, misses_{0}, errors_{0}, corrupt_{0}, stores_{0}, store_errors_{0},
+      skipped_{0};
 };
 
 }  // namespace soltex::server

@@ -4,6 +4,7 @@
 
 #include <boost/asio/ip/tcp.hpp>
 #include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <stdexcept>
 #include <thread>
@@ -58,6 +59,14 @@ MemcachedProcess::~MemcachedProcess() {
 
 void MemcachedProcess::kill() {
   kill_and_reap(pid_);
+}
+
+void MemcachedProcess::pause() {
+  if (pid_ > 0) ::kill(pid_, SIGSTOP);
+}
+
+void MemcachedProcess::resume() {
+  if (pid_ > 0) ::kill(pid_, SIGCONT);
 }
 
 }  // namespace soltex::testing

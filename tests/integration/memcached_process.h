@@ -19,6 +19,10 @@ class MemcachedProcess {
   std::string address() const { return "127.0.0.1:" + std::to_string(port_); }
   int port() const { return port_; }
   void kill();
+  // Stops it (SIGSTOP): it keeps its connections and its port but answers nothing, as a hung
+  // node does, until resume() (SIGCONT).
+  void pause();
+  void resume();
 
   // Where memcached is, or "" when it is not installed.
   static std::string binary();

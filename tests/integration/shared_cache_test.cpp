@@ -131,6 +131,33 @@ TEST(SharedCache, LosingOneMemcachedNodeCostsNoClientErrors) {
   expect_bricks_are_local(result, registration);
 }
 
+// A node that accepts connections and never answers (stopped, hung) times out instead of
+// failing: after its first timeout it rests, and its keys are misses without a call, so the
+// bricks do not each wait out a lookup and a write-back.
+TEST(SharedCache, AHungMemcachedNodeRestsAfterItsFirstTimeout) {
+  REQUIRE_MEMCACHED();
+  MemcachedProcess node;
+  SoltexdProcess server({"--memcached", node.address(), "--memcached-timeout-ms", "200"});
+  auto stub = connect(server);
+  const v1::RegisterTextureRequest registration = marble_request(6, 8);
+  const uint64_t id = register_texture(*stub, registration).id();
+  ASSERT_TRUE(stream_once(*stub, want(level_keys(id, 1, 4))).status.ok());
+  node.pause();
+  const std::vector<v1::BrickKey> finest = level_keys(id, 0, 8);  // 512 bricks, none cached
+  const StreamResult result = stream_once(*stub, want(finest));
+  node.resume();
+  ASSERT_TRUE(result.status.ok()) << result.status.error_message();
+  EXPECT_EQ(result.bricks.size(), finest.size());
+  EXPECT_TRUE(result.errors.empty());
+  // A timeout for each worker that called before the first one ended, at most.
+  const double failed = metric(server, "soltex_shared_cache_errors_total") +
+                        metric(server, "soltex_shared_cache_store_errors_total");
+  EXPECT_GE(failed, 1);
+  EXPECT_LE(failed, 8);
+  EXPECT_GE(metric(server, "soltex_shared_cache_skipped_total"), 512 - failed);
+  expect_bricks_are_local(result, registration);
+}
+
 TEST(SharedCache, ACorruptSharedValueIsEvaluatedAgain) {
   REQUIRE_MEMCACHED();
   MemcachedProcess node;
