@@ -274,9 +274,12 @@ void Daemon::reload() {
     if (http_) http_->reload_tls();
     if (tokens) access_.replace_tokens(std::move(*tokens));
     reloads_ok_.fetch_add(1);
-    spdlog::info("reloaded{}{}: open streams go on, new calls use what was read",
-                 tls_ ? " the TLS certificate and key" : "",
-                 config_.token_file.empty() ? "" : " the tokens file");
+    std::vector<std::string> reloaded;
+    if (!config_.tls_cert_file.empty()) reloaded.emplace_back("the TLS certificate and key");
+    if (!config_.token_file.empty()) reloaded.emplace_back("the tokens file");
+    spdlog::info("reloaded {}: open streams go on, new calls use what was read",
+                 reloaded.empty() ? std::string("nothing (no TLS files, no tokens file)")
+                                  : fmt::format("{}", fmt::join(reloaded, " and ")));
   } catch (const std::exception& e) {
     reloads_failed_.fetch_add(1);
     spdlog::error("reload failed, keeping what was loaded before: {}", e.what());

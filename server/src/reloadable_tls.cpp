@@ -1,7 +1,11 @@
 #include "reloadable_tls.h"
 
 #include <grpc/grpc.h>
+#include <openssl/err.h>
+#include <openssl/pem.h>
+#include <openssl/x509.h>
 
+#include <memory>
 #include <stdexcept>
 
 #include "soltex/common/text_file.h"
@@ -18,6 +22,46 @@ std::string read_pem(const std::string& path, const std::string& what, const cha
                              " block");
   }
   return text;
+}
+
+// OpenSSL's last error, as text, for a message that names the file it was about.
+std::string openssl_error() {
+  const unsigned long code = ERR_get_error();
+  ERR_clear_error();
+  if (code == 0) return "no detail";
+  char text[256];
+  ERR_error_string_n(code, text, sizeof text);
+  return text;
+}
+
+// The certificate and the key must be a pair: gRPC takes a mismatched pair without a word and
+// then fails every handshake ("Invalid private key" in its own log), and at start-up the
+// failure to add the port read as an address in use.
+void check_key_matches_certificate(const std::string& cert, const std::string& key,
+                                   const TlsFiles& files) {
+  const auto bio_of = [](const std::string& text) {
+    return std::unique_ptr<BIO, decltype(&BIO_free)>(
+        BIO_new_mem_buf(text.data(), static_cast<int>(text.size())), &BIO_free);
+  };
+  const auto cert_bio = bio_of(cert);
+  const std::unique_ptr<X509, decltype(&X509_free)> x509(
+      PEM_read_bio_X509(cert_bio.get(), nullptr, nullptr, nullptr), &X509_free);
+  if (!x509) {
+    throw std::runtime_error("the TLS certificate file '" + files.cert +
+                             "' does not parse: " + openssl_error());
+  }
+  const auto key_bio = bio_of(key);
+  const std::unique_ptr<EVP_PKEY, decltype(&EVP_PKEY_free)> pkey(
+      PEM_read_bio_PrivateKey(key_bio.get(), nullptr, nullptr, nullptr), &EVP_PKEY_free);
+  if (!pkey) {
+    throw std::runtime_error("the TLS key file '" + files.key +
+                             "' does not parse: " + openssl_error());
+  }
+  if (X509_check_private_key(x509.get(), pkey.get()) != 1) {
+    ERR_clear_error();
+    throw std::runtime_error("the TLS key file '" + files.key +
+                             "' is not the key of the certificate in '" + files.cert + "'");
+  }
 }
 
 grpc_ssl_certificate_config_reload_status fetch_callback(
@@ -59,6 +103,7 @@ ReloadableTls::Pem ReloadableTls::read() const {
   Pem pem;
   pem.cert = read_pem(files_.cert, "TLS certificate", "CERTIFICATE");
   pem.key = read_pem(files_.key, "TLS key", "PRIVATE KEY");
+  check_key_matches_certificate(pem.cert, pem.key, files_);
   if (!files_.client_ca.empty())
     pem.client_ca = read_pem(files_.client_ca, "client CA", "CERTIFICATE");
   return pem;

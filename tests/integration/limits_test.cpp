@@ -350,5 +350,24 @@ TEST(Reload, SighupReloadsTheCertificateAndOpenStreamsGoOn) {
   std::filesystem::remove(key);
 }
 
+// A certificate and a key that are not a pair: refused at start, naming both files (not as an
+// address in use), and on SIGHUP counted as a failed reload that keeps the pair loaded before.
+TEST(Reload, ACertificateAndKeyThatAreNotAPairAreRefused) {
+  const TestCertificates certs, other;
+  EXPECT_THROW(SoltexdProcess({"--tls-cert", certs.server_cert(), "--tls-key", other.server_key()}),
+               std::runtime_error);
+  const std::string cert = write_temporary_file("cert", "");
+  std::filesystem::copy_file(certs.server_cert(), cert,
+                             std::filesystem::copy_options::overwrite_existing);
+  SoltexdProcess server({"--tls-cert", cert, "--tls-key", certs.server_key()});
+  std::filesystem::copy_file(other.server_cert(), cert,
+                             std::filesystem::copy_options::overwrite_existing);
+  server.send_signal(SIGHUP);
+  ASSERT_TRUE(wait_for_metric(server, "soltex_config_reloads_total{result=\"failed\"}", 1.0));
+  EXPECT_EQ(metric_value(metrics(server), "soltex_config_reloads_total{result=\"ok\"}"), 0.0);
+  EXPECT_TRUE(server_info(*tls_stub(server, certs.ca())).ok()) << "the old pair still serves";
+  std::filesystem::remove(cert);
+}
+
 }  // namespace
 }  // namespace soltex
