@@ -114,7 +114,11 @@ uint64_t LatencyHistogramSnapshot::value_at_percentile(double p) const {
   uint64_t seen = 0;
   for (std::size_t i = 0; i < counts_.size(); ++i) {
     seen += counts_[i];
-    if (seen >= wanted) return p == 0.0 ? layout_.lowest_value_at(i) : layout_.highest_value_at(i);
+    if (seen < wanted) continue;
+    // A bucket's bound, but never past the values recorded: the top bucket's bound is above
+    // the largest value, which a p99 must not report as more than the max.
+    const uint64_t bound = p == 0.0 ? layout_.lowest_value_at(i) : layout_.highest_value_at(i);
+    return std::clamp(bound, min(), max());
   }
   return layout_.highest_value_at(counts_.size() - 1);  // unreachable: counts sum to the total
 }

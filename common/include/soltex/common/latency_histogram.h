@@ -82,9 +82,10 @@ class LatencyHistogramSnapshot {
   uint64_t overflow_count() const { return overflow_count_; }
 
   // The smallest value v such that at least p% of the recorded values are equivalent to or
-  // below v, reported as the highest value equivalent to it (HdrHistogram semantics; so it may
-  // exceed max() by less than one bucket width). p = 0 reports the lowest value equivalent to
-  // min(). Throws std::invalid_argument when p is NaN or outside [0, 100].
+  // below v, reported as the highest value equivalent to it (HdrHistogram semantics), but
+  // clamped to [min(), max()]: a report never shows a p99 above its max. p = 0 reports the
+  // lowest value equivalent to min(), that is min(). Throws std::invalid_argument when p is NaN
+  // or outside [0, 100].
   uint64_t value_at_percentile(double p) const;
 
   // Recorded values at or below `value`, counting whole buckets: values equivalent to `value`
