@@ -11,16 +11,29 @@ namespace soltex::server {
 
 namespace {
 
+// What an address option accepts besides HOST:PORT with a port in [0, 65535].
+struct AddressForm {
+  bool allow_empty = false;  // an empty address turns the endpoint off
+  bool allow_unix = false;   // gRPC's unix-socket addresses (unix:PATH, unix-abstract:NAME)
+  bool dialed = false;       // an address soltexd connects to: port 0 names no server
+};
+
 // HOST:PORT as the daemon reads it (parse_host_port()), refused at parse time with its
-// message; `allow_empty`: an endpoint that an empty address turns off; `allow_unix`: gRPC's
-// unix-socket addresses (`unix:PATH`, `unix-abstract:NAME`), which gRPC checks itself.
-CLI::Validator host_port(bool allow_empty, bool allow_unix = false) {
+// message.
+CLI::Validator host_port(AddressForm form) {
   return CLI::Validator(
-      [allow_empty, allow_unix](std::string& text) -> std::string {
-        if (allow_empty && text.empty()) return {};
-        if (allow_unix && is_unix_socket_address(text)) return {};
+      [form](std::string& text) -> std::string {
+        if (form.allow_empty && text.empty()) return {};
+        if (is_unix_socket_address(text)) {
+          if (!form.allow_unix) return "address '" + text + "': a unix socket is not served here";
+          const std::size_t colon = text.find(':');
+          if (colon + 1 == text.size()) return "address '" + text + "' names no socket path";
+          return {};
+        }
         try {
-          (void)parse_host_port(text);
+          if (parse_host_port(text).port == 0 && form.dialed) {
+            return "address '" + text + "': port must be in [1, 65535]";
+          }
           return {};
         } catch (const std::invalid_argument& e) {
           return e.what();
@@ -33,11 +46,11 @@ CLI::Validator host_port(bool allow_empty, bool allow_unix = false) {
 void add_serving_options(CLI::App& app, ServerConfig& config) {
   app.add_option("--listen", config.listen,
                  "gRPC address HOST:PORT (port 0: any free port), or unix:PATH")
-      ->check(host_port(false, true))
+      ->check(host_port({.allow_unix = true}))
       ->capture_default_str();
   app.add_option("--metrics-listen", config.metrics_listen,
                  "Prometheus metrics address HOST:PORT, served at GET /metrics")
-      ->check(host_port(false))
+      ->check(host_port({}))
       ->capture_default_str();
   app.add_option("--cache-mb", config.cache_mb, "encoded-brick cache budget in MiB")
       ->check(cli::IntegerIn(1, 1 << 20))
@@ -101,7 +114,7 @@ void add_http_options(CLI::App& app, ServerConfig& config) {
   auto* web = app.add_option_group("http", "bricks over HTTP/1.1 (docs/PROTOCOL.md, HTTP)");
   web->add_option("--http-listen", config.http_listen,
                   "HTTP brick address HOST:PORT (port 0: any free port); empty: off")
-      ->check(host_port(true));
+      ->check(host_port({.allow_empty = true}));
   web->add_option("--http-max-connections", config.http_max_connections,
                   "open HTTP connections; one more is answered 503 and closed")
       ->check(cli::IntegerIn(1u, 1u << 20))
@@ -128,7 +141,7 @@ void add_shared_cache_options(CLI::App& app, ServerConfig& config) {
       ->add_option("--memcached", config.memcached,
                    "memcached nodes HOST:PORT[,HOST:PORT...] (consistent hashing); empty: off")
       ->delimiter(',')
-      ->check(host_port(true));
+      ->check(host_port({.allow_empty = true, .dialed = true}));
   shared
       ->add_option("--memcached-timeout-ms", config.memcached_timeout_ms,
                    "connect and I/O timeout; a slower node counts as a miss")

@@ -323,6 +323,24 @@ TEST_F(SoltexdCli, AnAddressOutsideHostPortExits2NamingTheBound) {
   }
 }
 
+// Addresses that parse but name nothing usable: a memcached node on port 0, a unix socket
+// without a path, a unix socket where only TCP is served.
+TEST_F(SoltexdCli, AnAddressThatNamesNothingUsableExits2) {
+  const struct {
+    std::string option, address, says;
+  } cases[] = {{"--memcached", "127.0.0.1:0", "port must be in [1, 65535]"},
+               {"--listen", "unix:", "names no socket path"},
+               {"--listen", "unix-abstract:", "names no socket path"},
+               {"--metrics-listen", "unix:/tmp/metrics.sock", "a unix socket is not served here"},
+               {"--http-listen", "unix:/tmp/http.sock", "a unix socket is not served here"}};
+  for (const auto& c : cases) {
+    const ToolRun r = run_tool(SOLTEXD_BINARY, {c.option, c.address});
+    EXPECT_EQ(r.exit_code, 2) << c.option << " " << c.address << ": " << r.err;
+    EXPECT_NE(r.err.find(c.option + ": address '" + c.address + "'"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
+  }
+}
+
 TEST_F(SoltexdCli, TheGrpcAddressMayBeAUnixSocket) {
   const std::filesystem::path ready = directory_ / "ready";
   const std::filesystem::path socket = directory_ / "soltexd.sock";
