@@ -20,4 +20,9 @@ void write_ready_file(const std::string& path, const std::string& grpc, int metr
 // away). Only a file: a path naming a folder is refused when written, not removed.
 void remove_ready_file(const std::string& path);
 
+// At start: remove_ready_file(), and a std::runtime_error naming the file and its owner when a
+// live soltexd holds it (this instance would overwrite it once listening, and remove it when
+// it stops, while the other goes on serving).
+void claim_ready_file(const std::string& path);
+
 }  // namespace soltex::server

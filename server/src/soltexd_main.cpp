@@ -17,6 +17,7 @@
 
 namespace {
 
+using soltex::server::claim_ready_file;
 using soltex::server::remove_ready_file;
 using soltex::server::ServerConfig;
 using soltex::server::write_ready_file;
@@ -78,12 +79,12 @@ int main(int argc, char** argv) {
   std::signal(SIGPIPE, SIG_IGN);
   raise_descriptor_limit();
 
-  // A ready file says "serving now": one left by an earlier run that is gone must not say so
-  // for this one before it listens, nor after a failed start.
-  remove_ready_file(config.ready_file);
-
   std::unique_ptr<soltex::server::Daemon> daemon;
   try {
+    // A ready file says "serving now": one left by an earlier run that is gone must not say so
+    // for this one before it listens, nor after a failed start; one a live soltexd holds is
+    // that one's.
+    claim_ready_file(config.ready_file);
     daemon = std::make_unique<soltex::server::Daemon>(config);
   } catch (const std::exception& e) {
     spdlog::critical("{}", e.what());

@@ -408,6 +408,28 @@ TEST_F(SoltexdCli, AStaleReadyFileIsRemovedBeforeListening) {
   EXPECT_EQ(file_text(ready), same);
 }
 
+// A second soltexd given a running one's ready file by mistake stops before it listens,
+// naming the file and its owner: it would overwrite the file, and take it away when it stops.
+TEST_F(SoltexdCli, AReadyFileARunningSoltexdHoldsIsNotTaken) {
+  const std::filesystem::path ready = directory_ / "ready";
+  ToolProcess first(SOLTEXD_BINARY,
+                    {"--listen", "127.0.0.1:0", "--metrics-listen", "127.0.0.1:0", "--ready-file",
+                     ready.string()},
+                    {}, directory_);
+  ASSERT_TRUE(wait_for_file(ready));
+  const std::string announced = file_text(ready);
+  const ToolRun second = run_tool(SOLTEXD_BINARY, {"--listen", "127.0.0.1:0", "--metrics-listen",
+                                                   "127.0.0.1:0", "--ready-file", ready.string()});
+  EXPECT_EQ(second.exit_code, 1) << second.err;
+  EXPECT_NE(second.err.find("--ready-file " + ready.string() + " belongs to the running process"),
+            std::string::npos)
+      << second.err;
+  EXPECT_EQ(file_text(ready), announced);
+  first.signal(SIGTERM);
+  EXPECT_EQ(first.finish().exit_code, 0);
+  EXPECT_FALSE(std::filesystem::exists(ready));
+}
+
 TEST_F(SoltexdCli, OptionsThatDoNotGoTogetherOrAFileThatDoesNotParseExit2) {
   const std::filesystem::path file = directory_ / "some.pem";
   std::ofstream(file) << "not a certificate\n";
