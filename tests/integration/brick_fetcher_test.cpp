@@ -267,8 +267,8 @@ TEST(BrickFetcher, KeepsWithinTheServersMessageAndQueueBounds) {
 TEST(BrickFetcher, AReplacementServersSmallerQueueIsKept) {
   const int port = testing::free_port();
   // Bricks held a long while: all 64 are still in flight when this server goes.
-  std::optional<SoltexdProcess> server(
-      std::in_place, std::vector<std::string>{"--fault-delay-ms", "60000"}, port);
+  std::optional<SoltexdProcess> server(std::in_place,
+                                       std::vector<std::string>{"--fault-delay-ms", "60000"}, port);
   BrickCache cache(64 << 20);
   net::BrickFetcher fetcher("127.0.0.1:" + std::to_string(port), cache, quick_reconnect());
   const uint64_t id = fetcher.register_texture(marble(), unit_volume(6), 8, {});
@@ -279,9 +279,9 @@ TEST(BrickFetcher, AReplacementServersSmallerQueueIsKept) {
   ASSERT_EQ(fetcher.stats().in_flight, 64u);
   server->kill_now();
   server.reset();
-  server.emplace(std::vector<std::string>{"--max-queued-per-stream", "24",
-                                          "--max-keys-per-request", "16"},
-                 port);
+  server.emplace(
+      std::vector<std::string>{"--max-queued-per-stream", "24", "--max-keys-per-request", "16"},
+      port);
   ASSERT_TRUE(fetcher.wait_idle(std::chrono::seconds(30)));
   const net::SourceStats stats = fetcher.stats();
   EXPECT_EQ(stats.received, 64u);
@@ -412,6 +412,26 @@ class SilentListener {
   int fd_;
   int port_ = 0;
 };
+
+// A server that answers at once, refusing, is not one that did not answer: the message says
+// which it was.
+TEST(BrickFetcher, ARefusalIsToldFromASilence) {
+  const std::string token_file = testing::write_temporary_file("token", "right-token\n");
+  SoltexdProcess server({"--token-file", token_file});
+  BrickCache cache(16 << 20);
+  net::BrickFetcher fetcher(server.grpc_address(), cache);
+  try {
+    fetcher.measure_round_trip(std::chrono::seconds(5));
+    ADD_FAILURE() << "a server that wants a token answered without one";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("refused this client: this server requires a bearer token"),
+              std::string::npos)
+        << what;
+    EXPECT_EQ(what.find("did not answer"), std::string::npos) << what;
+  }
+  std::filesystem::remove(token_file);
+}
 
 TEST(BrickFetcher, AServerThatNeverAnswersFailsWithinTheTimeoutAndStopsPromptly) {
   SilentListener silent;

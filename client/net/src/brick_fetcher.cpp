@@ -463,9 +463,8 @@ void BrickFetcher::write_loop() {
   std::unique_lock lock(mutex_);
   for (;;) {
     const auto ready = [this] {
-      return stopping_ ||
-             (stream_ && (resend_ || codec_changed_ || !to_cancel_.empty() ||
-                          !unsent_registrations_.empty() || may_send_wants()));
+      return stopping_ || (stream_ && (resend_ || codec_changed_ || !to_cancel_.empty() ||
+                                       !unsent_registrations_.empty() || may_send_wants()));
     };
     // A pause after refusals ends by itself: wake for it.
     while (!ready()) {
@@ -596,9 +595,17 @@ std::chrono::microseconds BrickFetcher::measure_round_trip(std::chrono::millisec
   context.set_deadline(std::chrono::system_clock::now() + timeout);
   v1::ServerInfo info;
   const grpc::Status status = channel_->stub->GetServerInfo(&context, {}, &info);
-  if (!status.ok()) {
+  if (status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED) {
     throw std::runtime_error("server " + address_ + " did not answer within " +
-                             std::to_string(timeout.count()) + " ms: " + status.error_message());
+                             std::to_string(timeout.count()) + " ms");
+  }
+  if (!status.ok()) {
+    // Answered at once: refused (a token, TLS), or nothing listens there.
+    throw std::runtime_error("server " + address_ +
+                             (status.error_code() == grpc::StatusCode::UNAVAILABLE
+                                  ? " cannot be reached: "
+                                  : " refused this client: ") +
+                             status.error_message());
   }
   return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() -
                                                                start);
