@@ -283,16 +283,15 @@ std::optional<BrickKey> BrickStream::admitted_key(const v1::BrickKey& k,
   if (!first_in_request(key)) return std::nullopt;
   if (lease_->usage().queued.load(std::memory_order_relaxed) >=
       static_cast<int64_t>(limits.max_queued_per_client)) {
-    add_error(k, grpc::StatusCode::RESOURCE_EXHAUSTED,
-              describe(k) + ": client " + lease_->usage().client + " has " +
-                  std::to_string(limits.max_queued_per_client) +
-                  " bricks queued over its streams (max_queued_per_client)");
+    refuse_over_queue_bound(k, "client " + lease_->usage().client + " has " +
+                                   std::to_string(limits.max_queued_per_client) +
+                                   " bricks queued over its streams (max_queued_per_client)");
     return std::nullopt;
   }
   if (owed() >= limits.max_queued_per_stream) {
-    add_error(k, grpc::StatusCode::RESOURCE_EXHAUSTED,
-              describe(k) + ": stream queue is full (" +
-                  std::to_string(limits.max_queued_per_stream) + " bricks, max_queued_per_stream)");
+    refuse_over_queue_bound(k, "stream queue is full (" +
+                                   std::to_string(limits.max_queued_per_stream) +
+                                   " bricks, max_queued_per_stream)");
     return std::nullopt;
   }
   return key;
@@ -458,6 +457,13 @@ void BrickStream::add_error(const v1::BrickKey& key, grpc::StatusCode code, std:
   context_.metrics.count_error(static_cast<int>(code));
   const auto now = std::chrono::steady_clock::now();
   outbox_.push_back({nullptr, std::move(error), std::nullopt, now, now});
+}
+
+void BrickStream::refuse_over_queue_bound(const v1::BrickKey& k, const std::string& why) {
+  add_error(k, grpc::StatusCode::RESOURCE_EXHAUSTED, describe(k) + ": " + why);
+  const std::string& client = lease_->usage().client;
+  context_.refusals.refused(
+      client, "bricks on stream " + std::to_string(id_) + " from " + client + " refused: " + why);
 }
 
 void BrickStream::add_request_error(grpc::StatusCode code, std::string message,

@@ -141,6 +141,9 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   void count_queued(int64_t delta);     // this stream's queue grew or shrank by delta
   void drop_queue();                    // empties the queue, counted
   void add_error(const v1::BrickKey& key, grpc::StatusCode code, std::string message);
+  // A want refused over a queue bound: RESOURCE_EXHAUSTED for the client, and a line in the
+  // refusal log (at most one a second per client).
+  void refuse_over_queue_bound(const v1::BrickKey& k, const std::string& why);
   // texture_id: the request's texture the error refused, 0 for the whole request.
   void add_request_error(grpc::StatusCode code, std::string message, uint64_t texture_id = 0);
   bool answer_from_cache(const BrickKey& key, std::chrono::steady_clock::time_point now);

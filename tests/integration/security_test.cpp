@@ -152,6 +152,18 @@ TEST(Security, OneClientMayQueueOnlySoManyBricks) {
   EXPECT_EQ(result.errors[0].code(), static_cast<int>(grpc::StatusCode::RESOURCE_EXHAUSTED));
   EXPECT_NE(result.errors[0].message().find("max_queued_per_client"), std::string::npos)
       << result.errors[0].message();
+  // The log says so once, not 48 times: what the operator reads to find the bound.
+  const std::string log = server.log();
+  EXPECT_NE(log.find(" refused: client 127.0.0.1 has 16 bricks queued over its streams "
+                     "(max_queued_per_client)"),
+            std::string::npos)
+      << log;
+  std::size_t lines = 0;
+  for (std::size_t at = log.find("max_queued_per_client"); at != std::string::npos;
+       at = log.find("max_queued_per_client", at + 1)) {
+    ++lines;
+  }
+  EXPECT_EQ(lines, 1u) << log;
   // The server serves everyone else, and this client again once its queue drained.
   EXPECT_EQ(stream_once(*stub, want({keys[63]})).bricks.size(), 1u);
 }
