@@ -3,7 +3,6 @@
 #include <spdlog/spdlog.h>
 
 #include <chrono>
-#include <thread>
 #include <vector>
 
 #include "soltex/common/brick_evaluator.h"
@@ -12,7 +11,7 @@
 namespace soltex::server {
 
 void BrickProducer::produce(const WorkItem& item, Deliver deliver) {
-  if (faults_ && faults_->delay().count() > 0) std::this_thread::sleep_for(faults_->delay());
+  if (faults_) faults_->delay_brick();
   EncodedBrickPtr cached;
   switch (store_.claim(item.key, item.codec, cached, deliver)) {
     case BrickStore::Claim::hit:

@@ -205,7 +205,7 @@ Daemon::Daemon(const ServerConfig& config)
     http_ = std::make_unique<HttpBrickServer>(
         http_address.host, http_address.port, http_limits(config),
         HttpRequestHandler::Context{registry_, scheduler_, producer_, metrics_state_, access_,
-                                    refusals_},
+                                    refusals_, &faults_},
         http_tls);
   }
   // Health answers for the service by name as well as for the server ("").
@@ -329,6 +329,7 @@ void Daemon::shut_down() {
   server_->GetHealthCheckService()->SetServingStatus(false);
   if (http_) http_->stop_accepting();  // as gRPC takes no new calls during the grace
   finish_calls_within_grace();
+  faults_.stop();
   scheduler_.stop();
   if (http_) http_->stop();
   metrics_->stop();

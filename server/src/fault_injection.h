@@ -2,7 +2,9 @@
 
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
 #include <cstdint>
+#include <mutex>
 #include <string>
 
 namespace soltex::server {
@@ -10,7 +12,7 @@ namespace soltex::server {
 // Faults an operator can switch on to test clients against a misbehaving server. Off by
 // default; soltexd logs a warning when any is on.
 struct FaultConfig {
-  int delay_ms = 0;            // every brick is delivered this much later (a slow server)
+  int delay_ms = 0;            // every brick takes this much longer to make (a slow server)
   uint32_t corrupt_every = 0;  // every Nth brick sent has one payload byte flipped (0: never)
   bool any() const { return delay_ms > 0 || corrupt_every > 0; }
 };
@@ -20,6 +22,23 @@ class FaultInjection {
   explicit FaultInjection(FaultConfig config) : config_(config) {}
 
   std::chrono::milliseconds delay() const { return std::chrono::milliseconds(config_.delay_ms); }
+
+  // The delay of one brick, on the worker making it, as a slow evaluation would take it;
+  // ended early by stop().
+  void delay_brick() {
+    if (config_.delay_ms <= 0) return;
+    std::unique_lock lock(mutex_);
+    stopped_changed_.wait_for(lock, delay(), [this] { return stopped_; });
+  }
+  // Ends every delay, now and later: once the shutdown grace is over, the bricks still queued
+  // must not hold the workers (and the exit) a delay each.
+  void stop() {
+    {
+      std::lock_guard lock(mutex_);
+      stopped_ = true;
+    }
+    stopped_changed_.notify_all();
+  }
 
   bool corrupts() const { return config_.corrupt_every > 0; }
 
@@ -40,6 +59,9 @@ class FaultInjection {
 
  private:
   const FaultConfig config_;
+  std::mutex mutex_;
+  std::condition_variable stopped_changed_;
+  bool stopped_ = false;
   std::atomic<uint64_t> sent_{0};
   std::atomic<uint64_t> corrupted_{0};
 };

@@ -357,6 +357,10 @@ void HttpRequestHandler::handle_brick(const Route& route, std::shared_ptr<Call> 
       response.set("X-Soltex-Codec", codec_name(brick->codec));
       response.set("X-Soltex-Checksum", hex64(brick->checksum));
       response.body() = std::string(brick->payload());
+      // Corrupted on the way out, as a stream's copy is: the ETag and the checksum header
+      // still name the brick, which the client's check then refuses.
+      if (!call->head && context_.faults != nullptr)
+        context_.faults->corrupt_if_due(response.body());
       if (!call->head) {
         context_.metrics.http.bricks_served.fetch_add(1, std::memory_order_relaxed);
         context_.metrics.http.brick_bytes.fetch_add(brick->payload().size(),

@@ -9,6 +9,7 @@
 #include "brick_producer.h"
 #include "brick_scheduler.h"
 #include "client_access.h"
+#include "fault_injection.h"
 #include "http_brick_queue.h"
 #include "http_router.h"
 #include "refusal_log.h"
@@ -31,7 +32,8 @@ class HttpRequestHandler {
     BrickProducer& producer;
     ServerMetrics& metrics;
     ClientAccess& access;
-    RefusalLog& refusals;  // a client refused is logged as gRPC's refusals are
+    RefusalLog& refusals;              // a client refused is logged as gRPC's refusals are
+    FaultInjection* faults = nullptr;  // --fault-corrupt-every applies to HTTP bricks too
   };
   // Called once with the response, on the calling thread or a worker's.
   using Respond = std::function<void(HttpResponse)>;

@@ -217,7 +217,8 @@ void add_fault_options(CLI::App& app, ServerConfig& config) {
   auto* faults = app.add_option_group("faults", "for testing clients against a misbehaving server");
   faults
       ->add_option("--fault-delay-ms", config.faults.delay_ms,
-                   "deliver every brick this many milliseconds late")
+                   "make every brick this many milliseconds slower to produce, on the worker "
+                   "making it, as a slow server would (delays end with the shutdown grace)")
       ->check(cli::IntegerIn(0, 60000));
   faults
       ->add_option("--fault-corrupt-every", config.faults.corrupt_every,

@@ -18,6 +18,7 @@
 
 #include "brick_test_client.h"
 #include "http_test_client.h"
+#include "soltex/common/brick_codec.h"
 #include "soltex/common/texture_id.h"
 #include "soltexd_process.h"
 #include "test_certificates.h"
@@ -97,6 +98,29 @@ TEST(HttpBricks, BricksEqualTheGrpcBricksByteForByte) {
       EXPECT_EQ(reply.header("content-type"), "application/vnd.soltex.brick");
     }
   }
+}
+
+// --fault-corrupt-every flips a byte of HTTP bricks as of streamed ones: the body no longer
+// matches its checksum, which a client checks.
+TEST(HttpBricks, CorruptionFaultsReachHttpBricksToo) {
+  SoltexdProcess server(http_args({"--fault-corrupt-every", "2"}));
+  const std::string id = register_over_http(server.http_port())["id"];
+  HttpConnection connection(server.http_port());
+  int corrupt = 0;
+  for (int x = 0; x < 4; ++x) {
+    const HttpReply reply = connection.send("GET", brick_path(id, 1, x, 0, 0) + "?codec=raw");
+    ASSERT_EQ(reply.status, 200) << reply.body;
+    try {
+      (void)decode_brick(
+          std::span(reinterpret_cast<const uint8_t*>(reply.body.data()), reply.body.size()));
+    } catch (const CodecError&) {
+      ++corrupt;
+    }
+  }
+  EXPECT_EQ(corrupt, 2);
+  EXPECT_EQ(testing::metric_value(testing::http_get(server.metrics_port(), "/metrics"),
+                                  "soltex_faults_corrupted_total"),
+            2.0);
 }
 
 TEST(HttpBricks, StrongEtagsAnswerConditionalRequestsWith304) {

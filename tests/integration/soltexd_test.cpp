@@ -553,6 +553,24 @@ TEST(Soltexd, HealthAndGracefulShutdownWithOpenStreams) {
   EXPECT_NE(server.log().find("shutting down"), std::string::npos);
 }
 
+// --fault-delay-ms holds a worker per brick, as a slow evaluation would; the delays end with
+// the grace, so a server asked for bricks a minute each still stops within about the grace.
+TEST(Soltexd, FaultDelaysEndWithTheShutdownGrace) {
+  SoltexdProcess server({"--threads", "2", "--shutdown-grace-s", "1", "--fault-delay-ms", "60000"});
+  auto stub = connect(server);
+  const v1::TextureHandle handle = register_texture(*stub, marble_request(6, 8));
+  grpc::ClientContext context;
+  auto stream = stub->StreamBricks(&context);
+  ASSERT_TRUE(stream->Write(want(level_keys(handle.id(), 1, 4))));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // both workers in a delay
+  const auto signalled = std::chrono::steady_clock::now();
+  server.send_signal(SIGTERM);
+  EXPECT_EQ(server.wait_for_exit(std::chrono::seconds(30)), 0) << server.log();
+  EXPECT_LT(std::chrono::steady_clock::now() - signalled, std::chrono::seconds(10));
+  context.TryCancel();
+  (void)stream->Finish();
+}
+
 // A stream that half-closed before SIGTERM gets every brick it asked for within the grace and
 // ends OK.
 // A stream that has asked for 200 slow bricks and half-closed, its first batch read.
