@@ -57,10 +57,12 @@ std::string registration_json(const LoadOptions& options) {
   return body.dump();
 }
 
-// One keep-alive connection, reopened after a failed exchange.
+// One keep-alive connection, reopened after a failed exchange. Every request carries the
+// bearer token, when there is one, as gRPC calls carry it (docs/PROTOCOL.md, HTTP).
 class Connection {
  public:
-  explicit Connection(Target target) : target_(std::move(target)), socket_(io_) {}
+  Connection(Target target, std::string token)
+      : target_(std::move(target)), token_(std::move(token)), socket_(io_) {}
 
   http::response<http::string_body> exchange(http::request<http::string_body>& request) {
     if (!socket_.is_open()) {
@@ -68,6 +70,7 @@ class Connection {
       boost::asio::connect(socket_, resolver.resolve(target_.host, target_.port));
     }
     request.set(http::field::host, target_.host);
+    if (!token_.empty()) request.set(http::field::authorization, "Bearer " + token_);
     request.keep_alive(true);
     request.prepare_payload();
     http::write(socket_, request);
@@ -87,6 +90,7 @@ class Connection {
 
  private:
   Target target_;
+  std::string token_;
   boost::asio::io_context io_;
   tcp::socket socket_;
   beast::flat_buffer buffer_;
@@ -99,7 +103,7 @@ struct Handle {
 };
 
 Handle register_over_http(const LoadOptions& options, const Target& target) {
-  Connection connection(target);
+  Connection connection(target, options.security.token);
   http::request<http::string_body> request{http::verb::post, "/v1/textures", 11};
   request.set(http::field::content_type, "application/json");
   request.body() = registration_json(options);
@@ -146,7 +150,7 @@ struct Tally {
 void run_connection(const LoadOptions& options, const Target& target, const Handle& handle,
                     RequestMix& mix, Clock::time_point measure_from, Clock::time_point stop_at,
                     std::atomic<uint64_t>& measured_left, LatencyHistogram& latency, Tally& tally) {
-  Connection connection(target);
+  Connection connection(target, options.security.token);
   const RequestMix::Busy never_busy = [](const BrickKey&) { return false; };
   while (Clock::now() < stop_at) {
     const PlannedWant want = mix.next(never_busy);
@@ -193,6 +197,11 @@ void run_connection(const LoadOptions& options, const Target& target, const Hand
 HttpLoadResult run_http_load(const LoadOptions& options) {
   if (options.mix == MixKind::replay) throw LoadOptionsError("--http takes --mix hot or uniform");
   if (options.open_loop()) throw LoadOptionsError("--http runs closed loop: leave out --rate");
+  if (options.security.tls() || !options.security.tls_cert_file.empty()) {
+    throw LoadOptionsError(
+        "--http speaks plain HTTP: --tls-ca, --tls-cert and --tls-key are for gRPC (load an "
+        "HTTPS listener through a TLS-terminating proxy, or over gRPC)");
+  }
   const Target target = split_target(options.target);
   const Handle handle = register_over_http(options, target);
   MixSettings settings;

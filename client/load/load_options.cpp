@@ -165,7 +165,8 @@ void add_load_options(CLI::App& app, LoadOptions& o) {
       ->required();
   app.add_flag("--http", o.http,
                "load soltexd's HTTP bricks (--http-listen, or a cache in front) instead of gRPC: "
-               "--connections keep-alive connections, one request at a time each");
+               "--connections keep-alive connections, one request at a time each, plain HTTP "
+               "(the bearer token is sent; the --tls options are refused)");
   app.add_option("--connections", o.connections,
                  "gRPC channels (separate TCP connections); with --http, HTTP connections")
       ->check(soltex::cli::IntegerIn(1, LoadBounds::kMaxConnections))

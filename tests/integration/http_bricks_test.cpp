@@ -2,6 +2,7 @@
 // ids and brick bytes as gRPC, ETags and 304s, CORS, self-contained URLs another replica
 // answers, and every kind of bad request refused while others are served.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <boost/asio/ssl.hpp>
@@ -481,6 +482,26 @@ TEST(HttpBricks, SoltexLoadLoadsTheHttpPath) {
   EXPECT_GT(report["latency_us"]["p50"].get<double>(), 0.0);
   EXPECT_EQ(testing::metric_value(testing::metrics(server), "soltex_http_bricks_served_total"),
             report["bricks"].get<double>());
+}
+
+// A server that wants a token over HTTP as over gRPC: soltex-load --http sends the token it is
+// given, and refuses the TLS options it cannot use instead of speaking plain HTTP to them.
+TEST(HttpBricks, SoltexLoadSendsItsTokenOverHttp) {
+  const std::string token_file = testing::write_temporary_file("token", "http-load-token\n");
+  SoltexdProcess server(http_args({"--token-file", token_file}));
+  const std::string base = std::string(SOLTEX_LOAD_BINARY) +
+                           " --http --server 127.0.0.1:" + std::to_string(server.http_port()) +
+                           " --connections 1 --mix uniform --finest-level 7 --count 20"
+                           " --verify --no-progress";
+  EXPECT_EQ(std::system((base + " --token-file " + token_file + " > /dev/null").c_str()), 0);
+  EXPECT_GE(testing::metric_value(testing::metrics(server), "soltex_http_bricks_served_total"),
+            20.0);  // and those of its warmup
+  EXPECT_NE(std::system((base + " > /dev/null 2>&1").c_str()), 0) << "no token: refused";
+  const int tls = std::system(
+      (base + " --token-file " + token_file + " --tls-ca " + token_file + " > /dev/null 2>&1")
+          .c_str());
+  EXPECT_TRUE(WIFEXITED(tls) && WEXITSTATUS(tls) == 2) << tls;
+  std::filesystem::remove(token_file);
 }
 
 }  // namespace
