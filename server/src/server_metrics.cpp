@@ -89,7 +89,7 @@ namespace {
   X(shared_store_errors, "soltex_shared_cache_store_errors_total", counter,                       \
     "Write-backs to the shared cache that failed (ignored).")                                     \
   X(shared_skipped, "soltex_shared_cache_skipped_total", counter,                                 \
-    "Shared cache lookups and write-backs not tried: their node rests after a failure.")          \
+    "Shared cache lookups and write-backs not tried: their node rests after a timeout.")          \
   X(faults_corrupted, "soltex_faults_corrupted_total", counter,                                   \
     "Bricks deliberately corrupted on the way out (--fault-corrupt-every).")                      \
   X(reloads, "soltex_config_reloads_total", counter,                                              \

@@ -132,10 +132,12 @@ bool SharedBrickCache::resting(const Node* node) {
 void SharedBrickCache::settle(Node* node, int rc) {
   if (node == nullptr) return;
   const auto code = static_cast<memcached_return_t>(rc);
-  const bool answered = code == MEMCACHED_SUCCESS || code == MEMCACHED_NOTFOUND ||
-                        code == MEMCACHED_NOTSTORED || code == MEMCACHED_DATA_EXISTS;
-  if (answered) {
-    node->rest_until_ns.store(0, std::memory_order_relaxed);
+  // Only a timeout: a node that refuses or drops connections libmemcached ejects itself, and
+  // moves its keys to the other nodes, which a rest here would keep from it.
+  if (code != MEMCACHED_TIMEOUT) {
+    if (code == MEMCACHED_SUCCESS || code == MEMCACHED_NOTFOUND) {
+      node->rest_until_ns.store(0, std::memory_order_relaxed);
+    }
     return;
   }
   const int64_t until =

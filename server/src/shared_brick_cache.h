@@ -31,17 +31,16 @@ struct SharedCacheStats {
   uint64_t corrupt = 0;  // value failed its checksum: treated as a miss
   uint64_t stores = 0;
   uint64_t store_errors = 0;
-  uint64_t skipped = 0;  // lookups and write-backs not tried: their node rests after a failure
+  uint64_t skipped = 0;  // lookups and write-backs not tried: their node rests after a timeout
 };
 
 // The second-level brick cache that replicas share: encoded bricks in memcached, spread over
 // the nodes by consistent hashing (ketama), so adding or losing a node moves only its share of
 // the keys. It never fails a request: an unreachable, slow or dead node is a miss (and is
 // ejected for a few seconds), and a value that does not match its checksum is a miss. A node
-// that fails or times out rests for kNodeRest: the keys it holds are misses meanwhile, without
-// a call (libmemcached ejects a node that refuses connections, not one that accepts them and
-// never answers, which would cost every brick a timeout on the lookup and another on the
-// write-back).
+// that times out rests for kNodeRest: the keys it holds are misses meanwhile, without a call
+// (libmemcached ejects a node that refuses connections, not one that accepts them and never
+// answers, which would cost every brick a timeout on the lookup and another on the write-back).
 // Thread-safe; connections come from a pool.
 class SharedBrickCache {
  public:
@@ -72,7 +71,7 @@ class SharedBrickCache {
   Node* node_of(memcached_st* connection, const std::string& name);
   // Whether a call to `node` is skipped now (counted in `skipped_`).
   bool resting(const Node* node);
-  // After a call to `node` returned `rc`: a failure (not a plain miss) makes it rest.
+  // After a call to `node` returned `rc`: a timeout makes it rest, an answer ends its rest.
   void settle(Node* node, int rc);
 
   std::vector<std::unique_ptr<Node>> nodes_;

@@ -56,7 +56,8 @@ PreparedScene prepare_scene(const Scene& scene, const TextureResolution& resolut
     PreparedObject p{&object, RasterObject{},
                      model,   object.material.texture,
                      volume,  object_layout(scene, id, volume, resolution.brick_size),
-                     0,       object.material.texture.channels.sample_count()};
+                     0,       object.material.texture.channels.sample_count(),
+                     false,   {}};
     p.raster.mesh = {mesh.positions, mesh.normals, mesh.indices};
     p.raster.model = glm::mat4(model);
     p.raster.texture_from_object = texture_from_object;

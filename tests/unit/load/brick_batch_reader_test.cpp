@@ -48,8 +48,9 @@ void expect_same(const BrickBatchReader& reader, const v1::BrickBatch& batch, bo
     EXPECT_EQ(got.codec, static_cast<int32_t>(want.codec()));
     EXPECT_EQ(got.checksum, want.checksum());
     EXPECT_EQ(got.payload_size, want.payload().size());
-    if (payloads)
+    if (payloads) {
       EXPECT_EQ(reader.payloads().substr(got.payload_offset, got.payload_size), want.payload());
+    }
   }
   ASSERT_EQ(reader.errors().size(), static_cast<std::size_t>(batch.errors_size()));
   for (int i = 0; i < batch.errors_size(); ++i) {

@@ -28,7 +28,9 @@ struct FineSphere {
                      volume,
                      BrickLayout(volume, 16),
                      0,
-                     3};
+                     3,
+                     false,
+                     {}};
     p.raster.mesh = {ball.mesh->positions, ball.mesh->normals, ball.mesh->indices};
     return p;
   }
