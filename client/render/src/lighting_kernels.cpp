@@ -52,13 +52,20 @@ uint32_t map_of(const SurfaceUnprojection& u, uint32_t object_id) {
 
 // The world positions of the lanes, from their texture positions: exact in double, where
 // the window depth is a float (see SurfaceUnprojection::world_from_texture).
+// Lanes in runs of one map (a tile's pixels are mostly one object's), each run with its
+// matrix in registers. The products as glm's matrix-vector one orders them, w = 1.
 void world_positions(const SurfaceUnprojection& u, const UnprojectInputs& in, ShadeBatch& b) {
-  for (std::size_t l = 0; l < static_cast<std::size_t>(b.count); ++l) {
-    const glm::dmat4& m = u.world_from_texture[in.map[l]];
-    const glm::dvec3 p = glm::dvec3(m * glm::dvec4(in.texture_position[l], 1.0));
-    b.position_x[l] = p.x;
-    b.position_y[l] = p.y;
-    b.position_z[l] = p.z;
+  const auto count = static_cast<std::size_t>(b.count);
+  for (std::size_t begin = 0, end = 0; begin < count; begin = end) {
+    end = begin + 1;
+    while (end < count && in.map[end] == in.map[begin]) ++end;
+    const glm::dmat4 m = u.world_from_texture[in.map[begin]];
+    for (std::size_t l = begin; l < end; ++l) {
+      const glm::dvec3& t = in.texture_position[l];
+      b.position_x[l] = (m[0].x * t.x + m[1].x * t.y) + (m[2].x * t.z + m[3].x);
+      b.position_y[l] = (m[0].y * t.x + m[1].y * t.y) + (m[2].y * t.z + m[3].y);
+      b.position_z[l] = (m[0].z * t.x + m[1].z * t.y) + (m[2].z * t.z + m[3].z);
+    }
   }
 }
 
