@@ -133,11 +133,15 @@ std::string brick_target(const Handle& handle, const BrickKey& key, CodecChoice 
   const std::string path = std::to_string(key.level) + "/" + std::to_string(key.brick.x) + "/" +
                            std::to_string(key.brick.y) + "/" + std::to_string(key.brick.z);
   target.replace(target.find(placeholder), placeholder.size(), path);
-  // An unknown texture (invalid mix) keeps the real spec: the server must refuse the mismatch.
+  if (key.texture == handle.shape.texture_id) return target + "&codec=" + codec_choice_name(codec);
+  // An unknown texture (the invalid mix): its id without the real one's spec, which the server
+  // would refuse as another texture's (400) before finding the id unknown (404, as NOT_FOUND
+  // over gRPC).
   char id[17];
   std::snprintf(id, sizeof id, "%016llx", static_cast<unsigned long long>(key.texture));
+  target.erase(target.find('?'));
   target.replace(target.find(handle.id), handle.id.size(), id);
-  return target + "&codec=" + codec_choice_name(codec);
+  return target + "?codec=" + codec_choice_name(codec);
 }
 
 // What every connection thread adds up, merged under one lock at its end.
@@ -147,30 +151,58 @@ struct Tally {
   std::map<std::string, uint64_t> cache_statuses;
 };
 
+// Takes one of the requests left, or false when none is.
+bool take_one(std::atomic<uint64_t>& left) {
+  uint64_t now = left.load();
+  do {
+    if (now == 0) return false;
+  } while (!left.compare_exchange_weak(now, now - 1));
+  return true;
+}
+
+// After a failed exchange (a server gone, refusing connections): a pause before the next
+// attempt, 10 ms doubling to 1 s while failures go on, so a run against a dead server does not
+// spin on connect().
+class ReconnectBackoff {
+ public:
+  void succeeded() { pause_ = kFirst; }
+  void wait(Clock::time_point stop_at) {
+    std::this_thread::sleep_until(std::min(Clock::now() + pause_, stop_at));
+    pause_ = std::min(pause_ * 2, kMost);
+  }
+
+ private:
+  static constexpr std::chrono::milliseconds kFirst{10}, kMost{1000};
+  std::chrono::milliseconds pause_ = kFirst;
+};
+
 void run_connection(const LoadOptions& options, const Target& target, const Handle& handle,
                     RequestMix& mix, Clock::time_point measure_from, Clock::time_point stop_at,
                     std::atomic<uint64_t>& measured_left, LatencyHistogram& latency, Tally& tally) {
   Connection connection(target, options.security.token);
   const RequestMix::Busy never_busy = [](const BrickKey&) { return false; };
+  ReconnectBackoff backoff;
   while (Clock::now() < stop_at) {
     const PlannedWant want = mix.next(never_busy);
     http::request<http::string_body> request{http::verb::get,
                                              brick_target(handle, want.key, options.codec), 11};
     const Clock::time_point sent = Clock::now();
+    const bool measured = sent >= measure_from;
+    // --count: a measured request takes its place before it goes, so that no more than that
+    // many are sent over all threads (the server's counters then agree with the report).
+    if (measured && !take_one(measured_left)) return;
     http::response<http::string_body> response;
     try {
       response = connection.exchange(request);
+      backoff.succeeded();
     } catch (const std::exception&) {
+      if (measured) measured_left.fetch_add(1);
       connection.close();
       ++tally.connection_errors;
+      backoff.wait(stop_at);
       continue;
     }
-    if (sent < measure_from) continue;
-    // --count: the run ends when that many measured requests were answered, over all threads.
-    uint64_t left = measured_left.load();
-    do {
-      if (left == 0) return;
-    } while (!measured_left.compare_exchange_weak(left, left - 1));
+    if (!measured) continue;
     latency.record(static_cast<uint64_t>(
         std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now() - sent).count()));
     ++tally.requests;

@@ -125,11 +125,11 @@ std::vector<RecordedRequest> read_replay(const LoadOptions& options) {
     needed = std::max(needed, r.level + log2_brick + static_cast<int>(std::bit_width(widest)));
   }
   if (needed > options.finest_level) {
-    throw LoadSetupError(options.replay_file + ": its keys need --finest-level " +
-                         std::to_string(needed) + " or more (with --brick-size " +
-                         std::to_string(options.brick_size) + "); the volume has 2^" +
-                         std::to_string(options.finest_level) +
-                         " cells, so they would be refused as out of range");
+    throw LoadOptionsError(options.replay_file + ": its keys need --finest-level " +
+                           std::to_string(needed) + " or more (with --brick-size " +
+                           std::to_string(options.brick_size) + "); the volume has 2^" +
+                           std::to_string(options.finest_level) +
+                           " cells, so they would be refused as out of range");
   }
   return replay;
 }

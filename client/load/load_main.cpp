@@ -10,6 +10,7 @@
 #include "load_options.h"
 #include "load_report.h"
 #include "progress_bar.h"
+#include "request_log.h"
 #include "soltex/cli/tool_cli.h"
 #include "soltex/net/channel_security_options.h"
 
@@ -33,7 +34,8 @@ int main(int argc, char** argv) {
     return cli::kExitUsage;
   }
 
-  if (options.mix == MixKind::hot && !options.open_loop() && options.in_flight > options.hot_set) {
+  if (!options.http && options.mix == MixKind::hot && !options.open_loop() &&
+      options.in_flight > options.hot_set) {
     // A stream never waits for one key twice at once, so it cannot keep more than the hot
     // set outstanding; the rest wait on the client and the run measures that, not the server.
     std::fprintf(stderr,
@@ -54,7 +56,16 @@ int main(int argc, char** argv) {
       }
     }
     try {
-      std::cout << format_http_result(run_http_load(options), options.format) << std::flush;
+      const HttpLoadResult result = run_http_load(options);
+      std::cout << format_http_result(result, options.format) << std::flush;
+      if (result.connection_errors > 0) {
+        // As a gRPC stream ending in error: the server went away or dropped connections.
+        std::fprintf(stderr,
+                     "soltex-load: %llu HTTP exchanges failed at the connection (refused, reset "
+                     "or closed unanswered); see the report\n",
+                     static_cast<unsigned long long>(result.connection_errors));
+        return cli::kExitFailure;
+      }
     } catch (const LoadOptionsError& e) {
       std::fprintf(stderr, "soltex-load: %s\n", e.what());
       return cli::kExitUsage;
@@ -80,6 +91,10 @@ int main(int argc, char** argv) {
       return cli::kExitFailure;
     }
   } catch (const LoadOptionsError& e) {
+    std::fprintf(stderr, "soltex-load: %s\n", e.what());
+    return cli::kExitUsage;
+  } catch (const RequestLogFormatError& e) {
+    // A --replay-file that does not parse: bad input, as a scene file is to soltex-view.
     std::fprintf(stderr, "soltex-load: %s\n", e.what());
     return cli::kExitUsage;
   } catch (const LoadSetupError& e) {

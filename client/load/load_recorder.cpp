@@ -81,6 +81,7 @@ void LoadRecorder::fill(LoadResult& r, Clock::time_point window_end) const {
   r.request_errors = load(request_errors_);
   r.stream_status = load(stream_status_);
   r.unanswered = unanswered_.load(relaxed);
+  r.streams_let_go = streams_let_go_.load(relaxed);
   r.dropped_backlog = dropped_backlog_.load(relaxed);
   r.unexpected = unexpected_.load(relaxed);
   r.checksum_failures = checksum_failures_.load(relaxed);

@@ -32,6 +32,8 @@ class LoadRecorder {
   void brick_error(Clock::time_point intended, int code);
   void request_error(int code);
   void stream_ended(int code);
+  // A stream this tool cancelled at the drain timeout (LoadResult::streams_let_go).
+  void stream_let_go() { add(streams_let_go_, 1); }
   void unanswered(uint64_t n) { add(unanswered_, n); }
   void dropped_backlog() { add(dropped_backlog_, 1); }
   void unexpected() { add(unexpected_, 1); }
@@ -57,7 +59,8 @@ class LoadRecorder {
   Counter bytes_{0}, total_bytes_{0};
   std::array<Counter, 17> brick_errors_{}, total_brick_errors_{}, request_errors_{},
       stream_status_{};
-  Counter unanswered_{0}, dropped_backlog_{0}, unexpected_{0}, checksum_failures_{0};
+  Counter unanswered_{0}, dropped_backlog_{0}, unexpected_{0}, checksum_failures_{0},
+      streams_let_go_{0};
   Counter injected_out_of_range_{0}, injected_unknown_texture_{0};
   std::atomic<int64_t> last_measured_answer_ns_{0};  // since measure_from_
 };

@@ -173,6 +173,7 @@ std::string format_text(const LoadResult& r) {
                        static_cast<unsigned long long>(r.stream_status[0]), o.streams);
   const std::pair<const char*, uint64_t> client_side[] = {
       {"unanswered at the end", r.unanswered},
+      {"streams let go at the drain timeout", r.streams_let_go},
       {"dropped, backlog full", r.dropped_backlog},
       {"unexpected answers", r.unexpected},
       {"checksum failures", r.checksum_failures}};
@@ -256,6 +257,7 @@ std::string format_json(const LoadResult& r) {
                    {"bytes", r.total_bytes},
                    {"brick_errors", codes(r.total_brick_errors, false)}}},
                  {"unanswered", r.unanswered},
+                 {"streams_let_go", r.streams_let_go},
                  {"dropped_backlog", r.dropped_backlog},
                  {"unexpected", r.unexpected},
                  {"checksum_failures", r.checksum_failures},

@@ -55,6 +55,7 @@ struct LoadResult {
   CodeCounts request_errors{};     // BrickBatch.request_errors
   CodeCounts stream_status{};      // how each stream ended (OK counts clean ends)
   uint64_t unanswered = 0;         // sent or queued, no answer by the end (drain timeout, failure)
+  uint64_t streams_let_go = 0;     // cancelled here at --drain-timeout-s: no failure, not OK
   uint64_t dropped_backlog = 0;    // not sent: the stream's unsent backlog was full
   uint64_t unexpected = 0;         // answers for keys the stream was not waiting for
   uint64_t checksum_failures = 0;  // with --verify: bricks that did not decode to their checksum

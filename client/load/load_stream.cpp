@@ -255,7 +255,11 @@ void LoadStream::OnDone(const grpc::Status& status) {
     backlog_.clear();
     parked_.clear();
     parked_count_ = 0;
-    recorder_.stream_ended(static_cast<int>(status.error_code()));
+    if (status.error_code() == grpc::StatusCode::CANCELLED && cancelled_here_.load()) {
+      recorder_.stream_let_go();
+    } else {
+      recorder_.stream_ended(static_cast<int>(status.error_code()));
+    }
     done_ = true;
   }
   on_done_();  // may destroy this stream: the last thing done here

@@ -4,6 +4,7 @@
 #include <grpcpp/generic/generic_stub.h>
 #include <grpcpp/grpcpp.h>
 
+#include <atomic>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -55,8 +56,12 @@ class LoadStream final : public grpc::ClientBidiReactor<v1::BrickRequest, grpc::
   // No new requests: send what was issued, then half-close; the server ends the call once it
   // has answered everything.
   void close();
-  // Drain timeout: end the call now; what is still owed is counted as unanswered.
-  void cancel() { context_.TryCancel(); }
+  // Drain timeout: end the call now; what is still owed is counted as unanswered, and the
+  // stream as let go, not as one that failed.
+  void cancel() {
+    cancelled_here_.store(true);
+    context_.TryCancel();
+  }
   bool done() const;
 
   void OnReadDone(bool ok) override;
@@ -112,7 +117,8 @@ class LoadStream final : public grpc::ClientBidiReactor<v1::BrickRequest, grpc::
   bool reads_ended_ = false;
   bool hold_released_ = false;
   bool done_ = false;
-  int starting_ = 0;  // threads between deciding on a start and making it
+  std::atomic<bool> cancelled_here_{false};  // cancel() ran: a CANCELLED end is ours
+  int starting_ = 0;                         // threads between deciding on a start and making it
 };
 
 }  // namespace soltex::load

@@ -66,7 +66,7 @@ std::vector<RecordedRequest> read_request_log(std::istream& in, const std::strin
   std::string line;
   std::size_t number = 0;
   const auto fail = [&](const std::string& what) {
-    throw RequestLogError(source + ":" + std::to_string(number) + ": " + what);
+    throw RequestLogFormatError(source + ":" + std::to_string(number) + ": " + what);
   };
   if (!std::getline(in, line)) {
     number = 1;

@@ -44,10 +44,17 @@ inline constexpr double kMaxRecordedSeconds = 1e9;
 // A log is read whole into memory; this bounds what a file can make the reader hold.
 inline constexpr std::size_t kMaxRecordedRequests = 10'000'000;
 
-// A malformed log; the message names the source, the line and what was wrong with it.
+// A log that cannot be read or written; the message names the source and why.
 class RequestLogError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// A malformed log, a tool's bad input: the message names the source, the line and what was
+// wrong with it.
+class RequestLogFormatError : public RequestLogError {
+ public:
+  using RequestLogError::RequestLogError;
 };
 
 // Writes the header at construction and one line per append().
@@ -63,7 +70,8 @@ class RequestLogWriter {
   double last_seconds_ = 0.0;
 };
 
-// Reads a whole log; `source` names it in error messages. Throws RequestLogError.
+// Reads a whole log; `source` names it in error messages. Throws RequestLogFormatError for
+// malformed contents, RequestLogError for a file that cannot be read.
 std::vector<RecordedRequest> read_request_log(std::istream& in, const std::string& source);
 std::vector<RecordedRequest> read_request_log_file(const std::string& path);
 void write_request_log_file(const std::string& path, const std::vector<RecordedRequest>& requests);

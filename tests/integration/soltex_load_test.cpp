@@ -6,7 +6,9 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
+#include <thread>
 
 #include "http_load.h"
 #include "load_generator.h"
@@ -105,6 +107,52 @@ TEST(SoltexLoad, RequestsFitTheServersMessageBound) {
   EXPECT_EQ(result.bricks, 2000u);
   EXPECT_EQ(result.unanswered, 0u);
   EXPECT_EQ(metric(server, "soltex_bricks_served_total"), 2000.0);
+}
+
+// Streams still owed bricks at --drain-timeout-s are cancelled by the tool itself: a run that
+// finished, its unanswered bricks in the report, not a stream that failed.
+TEST(SoltexLoad, StreamsLetGoAtTheDrainTimeoutAreNoFailure) {
+  SoltexdProcess server({"--fault-delay-ms", "300", "--threads", "1"});
+  LoadOptions options = options_for(server);
+  options.mix = MixKind::uniform;
+  options.in_flight = 8;
+  options.warmup_seconds = 0.0;
+  options.duration_seconds = 0.5;
+  options.drain_timeout_seconds = 0.2;
+  const LoadResult result = run_load(options);
+  EXPECT_EQ(result.stream_failures(), 0u);
+  EXPECT_EQ(result.streams_let_go, 1u);
+  EXPECT_GT(result.unanswered, 0u);
+}
+
+// Over HTTP, --count sends exactly that many measured requests over all connections: the
+// server's count of bricks served agrees with the report. Against a server gone, every
+// exchange fails at the connection, which the result counts (soltex-load then exits 1).
+TEST(SoltexLoad, HttpCountIsExactAndAGoneServerIsCounted) {
+  std::optional<SoltexdProcess> server(std::in_place,
+                                       std::vector<std::string>{"--http-listen", "127.0.0.1:0"});
+  LoadOptions options = options_for(*server);
+  options.target = "127.0.0.1:" + std::to_string(server->http_port());
+  options.http = true;
+  options.mix = MixKind::uniform;
+  options.connections = 8;
+  options.warmup_seconds = 0.0;
+  options.count = 100;
+  const HttpLoadResult counted = run_http_load(options);
+  EXPECT_EQ(counted.requests, 100u);
+  EXPECT_EQ(metric(*server, "soltex_http_bricks_served_total"), 100.0);
+
+  options.count.reset();
+  options.duration_seconds = 1.0;
+  std::thread stop([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    server->kill_now();
+  });
+  const HttpLoadResult gone = run_http_load(options);
+  stop.join();
+  EXPECT_GT(gone.connection_errors, 0u);
+  // Backing off, not spinning on connect(): a few tries per connection, not thousands.
+  EXPECT_LT(gone.connection_errors, 8u * 20u);
 }
 
 // The server keeps a key at most once in a stream's queue, so the tool must not ask for a key

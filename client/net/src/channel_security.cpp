@@ -1,5 +1,6 @@
 #include "soltex/net/channel_security.h"
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "soltex/common/text_file.h"
@@ -22,6 +23,18 @@ std::string read_pem_file(const std::string& path, const std::string& what) {
 
 std::string read_token_file(const std::string& path) {
   return read_trimmed_text_file(path, "token");
+}
+
+void check_token(const std::string& token, const std::string& source) {
+  for (std::size_t i = 0; i < token.size(); ++i) {
+    const auto c = static_cast<unsigned char>(token[i]);
+    if (c >= 0x21 && c <= 0x7E) continue;
+    char code[8];
+    std::snprintf(code, sizeof code, "0x%02X", c);
+    throw std::invalid_argument(source + ": the token's character " + std::to_string(i + 1) +
+                                " is " + code +
+                                "; a bearer token is visible ASCII (0x21 to 0x7E), one line");
+  }
 }
 
 std::shared_ptr<grpc::ChannelCredentials> channel_credentials(const ChannelSecurity& security) {

@@ -157,9 +157,9 @@ class BrickFetcher final : public BrickSource {
   std::size_t congestion_bound_;
   std::chrono::steady_clock::time_point wants_paused_until_{};
   std::chrono::milliseconds refusal_backoff_{10};
-  std::unordered_set<uint64_t> refused_ids_;                       // by the server, on a stream
+  std::unordered_set<uint64_t> refused_ids_;                        // by the server, on a stream
   std::vector<std::pair<uint64_t, std::string>> refused_textures_;  // not yet taken
-  bool resend_ = false;          // a new stream: everything in flight must be asked for again
+  bool resend_ = false;  // a new stream: everything in flight must be asked for again
   Codec codec_;
   bool codec_changed_ = false;  // codec_ goes out with the next request
   bool holding_ = false;        // hold_arrivals(true): arrivals wait in held_

@@ -35,7 +35,7 @@ struct SourceStats {
   uint64_t errors = 0;     // refused bricks, and bricks still corrupt after every refetch
   // Bricks a server refused over a queue bound of the moment and that were asked for again.
   uint64_t deferred = 0;
-  uint64_t corrupt = 0;    // bricks that failed their checksum and were asked for again
+  uint64_t corrupt = 0;  // bricks that failed their checksum and were asked for again
   uint64_t reconnects = 0;
   // Time spent decoding arrived bricks (wall, on the receiving thread) and their decoded
   // bytes, per codec (index: Codec): what a codec costs this machine, as the link probe sees.

@@ -22,6 +22,11 @@ struct ChannelSecurity {
 // Reads a token file (one line; surrounding whitespace dropped). Throws std::runtime_error.
 std::string read_token_file(const std::string& path);
 
+// A bearer token must be visible ASCII (0x21 to 0x7E) to travel in an HTTP/2 header: gRPC
+// aborts the process on anything else. Throws std::invalid_argument naming `source` (the
+// option or file it came from) and the first character out of that range.
+void check_token(const std::string& token, const std::string& source);
+
 // Credentials for the channel; throws std::runtime_error naming a file it cannot read or a
 // certificate given without its key.
 std::shared_ptr<grpc::ChannelCredentials> channel_credentials(const ChannelSecurity& security);

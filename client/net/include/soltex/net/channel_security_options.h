@@ -32,10 +32,16 @@ inline void add_channel_security_options(CLI::App& app, ChannelSecurityOptions& 
       ->envname("SOLTEX_TOKEN");
 }
 
-// Throws std::runtime_error when the token file cannot be read.
+// Throws std::runtime_error when the token file cannot be read, std::invalid_argument for a
+// token that cannot travel in a header (check_token).
 inline ChannelSecurity finish_channel_security(const ChannelSecurityOptions& options) {
   ChannelSecurity security = options.security;
-  if (!options.token_file.empty()) security.token = read_token_file(options.token_file);
+  if (!options.token_file.empty()) {
+    security.token = read_token_file(options.token_file);
+    check_token(security.token, "--token-file " + options.token_file);
+  } else {
+    check_token(security.token, "--token");
+  }
   return security;
 }
 
