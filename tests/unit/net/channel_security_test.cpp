@@ -66,5 +66,22 @@ TEST(ChannelSecurity, ACaFileWithNoPemBlockIsNamedAtOnce) {
   std::filesystem::remove(ca);
 }
 
+// gRPC aborts the process on a header value outside visible ASCII: such a token is refused
+// first, naming where it came from and the character.
+TEST(ChannelSecurity, ATokenThatCannotTravelInAHeaderIsRefused) {
+  EXPECT_NO_THROW(check_token("abc.DEF-123_~+/=", "--token"));
+  EXPECT_NO_THROW(check_token("", "--token"));
+  for (const std::string bad : {"ab\ncd", "ab\tcd", "ab cd", "ab\x7f", "\xc3\xa9t\xc3\xa9"}) {
+    try {
+      check_token(bad, "--token-file t");
+      ADD_FAILURE() << "accepted a token with a byte outside visible ASCII";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("--token-file t: the token's character "),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace soltex::net
