@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -91,6 +92,23 @@ std::optional<int> refuse(const view::ViewOptions& options) {
     // Not refused: SOLTEX_SERVER may be set for every tool in the environment.
     spdlog::warn("--local draws without a server: --server {} is not used", options.server);
   }
+  // Written files must not overwrite what the run reads or writes besides (the scene, each
+  // other): both would exit 0 with a file lost.
+  if (!options.record_path.empty()) {
+    std::error_code ignored;
+    const auto same = [&](const std::filesystem::path& other) {
+      return !other.empty() && (std::filesystem::equivalent(options.record_path, other, ignored) ||
+                                std::filesystem::absolute(options.record_path, ignored) ==
+                                    std::filesystem::absolute(other, ignored));
+    };
+    for (const auto& [name, path] :
+         {std::pair{"--scene", options.scene_path}, std::pair{"--out", options.out}}) {
+      if (!same(path)) continue;
+      std::fprintf(stderr, "soltex-view: --record %s is the file %s names; give another\n",
+                   options.record_path.string().c_str(), name);
+      return kExitBadInput;
+    }
+  }
   // A level holds at least one brick on a side.
   const int brick_log2 = options.brick_size == 8 ? 3 : 4;
   if (options.finest_level > 0 && options.finest_level < brick_log2) {
@@ -110,10 +128,20 @@ std::optional<int> refuse(const view::ViewOptions& options) {
   return std::nullopt;
 }
 
-// Before rendering: a reference too large to rasterize would fail only after the frame.
-void check_reference_size(const view::ViewOptions& options, const capability::Choice& choice) {
-  if (!options.reference) return;
+// Before rendering: a frame or a reference too large to rasterize would fail only after the
+// frame, with the rasterizer's words rather than the options'.
+void check_frame_sizes(const view::ViewOptions& options, const capability::Choice& choice) {
   const int side = std::max(choice.width, choice.height);
+  if (static_cast<int64_t>(side) * options.antialias > RasterView::kMaxSize) {
+    throw std::invalid_argument("--antialias " + std::to_string(options.antialias) + " draws " +
+                                std::to_string(static_cast<int64_t>(side) * options.antialias) +
+                                " sub-pixels on a side, more than " +
+                                std::to_string(RasterView::kMaxSize) + ": give --antialias " +
+                                std::to_string(std::max(1, RasterView::kMaxSize / side)) +
+                                " or less for a " + std::to_string(choice.width) + "x" +
+                                std::to_string(choice.height) + " image");
+  }
+  if (!options.reference) return;
   if (static_cast<int64_t>(side) * options.supersample <= RasterView::kMaxSize) return;
   throw std::invalid_argument(
       "--reference at --supersample " + std::to_string(options.supersample) + " needs " +
@@ -136,6 +164,7 @@ int run(const view::ViewOptions& options, const CLI::App& app,
   view::mark_on(marks, "command line read");
   const Scene scene = options.scene_path.empty() ? default_scene() : load_scene(options.scene_path);
   view::ViewSetup setup = view::set_up_view(options, scene, fetcher_options, marks);
+  check_frame_sizes(options, setup.choice);
 #ifdef SOLTEX_HAVE_SDL2
   if (!options.headless) {
     for (const char* option :
@@ -149,7 +178,6 @@ int run(const view::ViewOptions& options, const CLI::App& app,
 #else
   (void)app;
 #endif
-  check_reference_size(options, setup.choice);
   return view::run_headless(options, scene, setup, marks);
 }
 

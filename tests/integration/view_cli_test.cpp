@@ -182,6 +182,11 @@ TEST_F(ViewCli, RunningOutOfTimeExitsThree) {
   EXPECT_NE(run.output.find("NOT converged within"), std::string::npos) << run.output;
 }
 
+std::string file_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 TEST_F(ViewCli, BadInputExitsTwo) {
   EXPECT_EQ(view("brick-size", {"--headless", "--local", "--brick-size", "12"}).exit_code, 2);
   EXPECT_EQ(view("unknown", {"--headless", "--local", "--no-such-option"}).exit_code, 2);
@@ -199,6 +204,27 @@ TEST_F(ViewCli, BadInputExitsTwo) {
       << R"({"image": {"width": 64, "height": 64}, "objects": [{"mesh": "cube"}]})";
   const ViewRun bad_scene = view("bad-scene", {"--headless", "--local", "--scene", scene.string()});
   EXPECT_EQ(bad_scene.exit_code, 2) << bad_scene.output;
+
+  // Files the run would lose: --record over the scene it reads or the image it writes.
+  const std::string scene_before = file_text(scene);
+  const ViewRun record_scene = view("record-scene", {"--headless", "--local", "--scene",
+                                                     scene.string(), "--record", scene.string()});
+  EXPECT_EQ(record_scene.exit_code, 2) << record_scene.output;
+  EXPECT_EQ(file_text(scene), scene_before) << "the scene was overwritten";
+  const std::string png = (directory_ / "same.png").string();
+  EXPECT_EQ(view("record-out", {"--headless", "--local", "--out", png, "--record", png}).exit_code,
+            2);
+  // A client certificate without its key, or without TLS: the command line's fault.
+  const ViewRun half_tls =
+      view("half-tls", {"--headless", "--server", "127.0.0.1:1", "--tls-cert", scene.string()});
+  EXPECT_EQ(half_tls.exit_code, 2) << half_tls.output;
+  EXPECT_NE(half_tls.output.find("--tls-cert and --tls-key go together"), std::string::npos)
+      << half_tls.output;
+  // Sub-pixels beyond the rasterizer's side, refused naming the option and what fits.
+  const ViewRun huge = view(
+      "huge", {"--headless", "--local", "--width", "4097", "--height", "100", "--antialias", "4"});
+  EXPECT_EQ(huge.exit_code, 2) << huge.output;
+  EXPECT_NE(huge.output.find("give --antialias 3 or less"), std::string::npos) << huge.output;
 
   EXPECT_EQ(view("help", {"--help"}).exit_code, 0);
 }

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <stdexcept>
 #include <string>
 
 #include "soltex/net/channel_security.h"
@@ -36,6 +37,18 @@ inline void add_channel_security_options(CLI::App& app, ChannelSecurityOptions& 
 // token that cannot travel in a header (check_token).
 inline ChannelSecurity finish_channel_security(const ChannelSecurityOptions& options) {
   ChannelSecurity security = options.security;
+  // Options that cannot work together are the command line's fault (exit 2), not the
+  // connection's, where channel_credentials() would find them.
+  if (security.tls_cert_file.empty() != security.tls_key_file.empty()) {
+    throw std::invalid_argument(
+        "--tls-cert and --tls-key go together: a client certificate "
+        "needs both its chain and its key");
+  }
+  if (!security.tls() && !security.tls_cert_file.empty()) {
+    throw std::invalid_argument(
+        "--tls-cert and --tls-key need --tls-ca: a client certificate "
+        "needs TLS, which the server's CA turns on");
+  }
   if (!options.token_file.empty()) {
     security.token = read_token_file(options.token_file);
     check_token(security.token, "--token-file " + options.token_file);
