@@ -182,6 +182,16 @@ TEST_F(ViewCli, RunningOutOfTimeExitsThree) {
   EXPECT_NE(run.output.find("NOT converged within"), std::string::npos) << run.output;
 }
 
+// The log names the level the run uses: --finest-level's, with the machine's choice beside it.
+TEST_F(ViewCli, TheLogSaysTheFinestLevelTheRunUses) {
+  const ViewRun run = view("finest-9", {"--headless", "--local", "--width", "160", "--height", "90",
+                                        "--finest-level", "9"});
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("choice: finest level 2^9: --finest-level (this machine's choice"),
+            std::string::npos)
+      << run.output;
+}
+
 std::string file_text(const std::filesystem::path& path) {
   std::ifstream in(path);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
