@@ -116,6 +116,8 @@ capability::Choice choose(const ViewOptions& options, const Scene& scene,
   // showing the scene's size shrinks it to what this machine draws in time.
   capability::ChoiceLimits limits;
   limits.scale_frame = !options.headless && options.width == 0 && options.height == 0;
+  limits.texels_per_pixel = static_cast<double>(options.antialias) * options.antialias *
+                            std::pow(4.0, std::max(0.0, -options.level_bias));
   // A headless run shows nothing before it converges: a coarse start only guards its time
   // limit, so the start level's bricks may take half of it (a window starts within 1.5 s).
   if (options.headless) {

@@ -357,8 +357,13 @@ void choose_finest_level(const Scene& scene, const ChoiceLimits& limits,
   while (level > 4 && frame_bricks(level) * decoded_brick_bytes > 0.5 * choice.cache_budget_bytes) {
     --level;
   }
-  choice.finest_level_log2 = level;
-  why << "finest level 2^" << level << ": ";
+  // The estimate bounds a frame's bricks from above, often far above (every object's whole
+  // surface at the level, or the frame's pixels at one brick per 128): where it exceeds the
+  // budget the run starts no finer than the level it fits, and refines while the cache holds
+  // what the next level needs, as the frames' misses tell.
+  choice.finest_level_log2 = wanted;
+  choice.start_level_log2 = level;
+  why << "finest level 2^" << wanted << ": ";
   if (nearest == nullptr) {
     why << "no object needs finer than 2^4";
   } else {
@@ -367,7 +372,10 @@ void choose_finest_level(const Scene& scene, const ChoiceLimits& limits,
         << " comes nearest, " << static_cast<float>(nearest_at) << " from the camera";
   }
   if (wanted < screen_level) why << "; at most 2^" << wanted;
-  if (level < wanted) why << "; the cache holds 2^" << level;
+  if (level < wanted) {
+    why << "; a frame at 2^" << level << " surely fits the cache: it starts there at the "
+        << "finest and refines while the cache holds the next level";
+  }
   why << "\n";
 }
 
@@ -392,7 +400,7 @@ Choice choose(const Capability& capability, const Scene& scene, int width, int h
 
   const FrameBricks frame_bricks{
       static_cast<double>(std::max<std::size_t>(scene.objects.size(), 1)),
-      static_cast<double>(choice.width) * choice.height / 128.0};
+      static_cast<double>(choice.width) * choice.height * limits.texels_per_pixel / 128.0};
   choose_finest_level(scene, limits, frame_bricks, choice, why);
 
   // Start: the finest level whose frame bricks arrive within fetch_seconds: a round of
@@ -406,7 +414,7 @@ Choice choose(const Capability& capability, const Scene& scene, int width, int h
             : 0.0;
     return rounds * capability.brick_latency_ms / 1e3 + transfer;
   };
-  int start = choice.finest_level_log2;
+  int start = choice.start_level_log2;  // no finer than the cache surely holds
   while (start > 4 && fetch_seconds(start) > limits.fetch_seconds) --start;
   choice.start_level_log2 = start;
   why << "start at 2^" << start << ", refine when idle: about "

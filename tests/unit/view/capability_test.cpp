@@ -224,14 +224,28 @@ TEST(Choose, ALongerFetchBudgetStartsFiner) {
   EXPECT_EQ(run.finest_level_log2, window.finest_level_log2);
 }
 
-// Too little memory for the finest level: the cache budget, not the link, lowers the end.
-TEST(Choose, TheCacheBudgetBoundsTheFinestLevel) {
+// Too little memory for a frame at the finest level: the cache budget, not the link, lowers
+// where the run starts; the finest level stays the scene's, to be reached as far as the cache
+// holds what each next level needs. More texels a pixel (anti-aliasing, a finer level bias)
+// lower the start as a smaller cache does.
+TEST(Choose, TheCacheBudgetBoundsWhereARunStarts) {
   const Scene scene = default_scene();
   Capability roomy = strong_machine();
   Capability small = strong_machine();
   small.available_memory_mb = 64;  // a 32 MiB cache
-  EXPECT_LT(choose(small, scene, 1280, 720).finest_level_log2,
-            choose(roomy, scene, 1280, 720).finest_level_log2);
+  const Choice in_roomy = choose(roomy, scene, 1280, 720);
+  const Choice in_small = choose(small, scene, 1280, 720);
+  EXPECT_EQ(in_small.finest_level_log2, in_roomy.finest_level_log2);
+  EXPECT_LT(in_small.start_level_log2, in_roomy.start_level_log2) << in_small.reason;
+  EXPECT_NE(in_small.reason.find("refines while the cache holds the next level"), std::string::npos)
+      << in_small.reason;
+
+  ChoiceLimits sixteen_texels;
+  sixteen_texels.texels_per_pixel = 16.0;  // --antialias 4, or --level-bias -2
+  Capability medium = strong_machine();
+  medium.available_memory_mb = 2048;  // a 256 MiB cache
+  EXPECT_LT(choose(medium, scene, 1280, 720, sixteen_texels).start_level_log2,
+            choose(medium, scene, 1280, 720).start_level_log2);
 }
 
 // A model written far from its origin and drawn where it was written (no translate) gets the

@@ -109,8 +109,11 @@ Codec codec_for_link(double bandwidth_mb_per_s, double zstd_ratio, double zstd_d
 // coarser cap (start_level_log2), fetches no finer while it is busy, and refines to the
 // finest level once idle (client/view/level_cap.h).
 struct Choice {
-  int finest_level_log2 = 8;  // the textures' finest level: where a client ends
-  int start_level_log2 = 8;   // <= finest_level_log2: the cap it starts from
+  int finest_level_log2 = 8;  // the textures' finest level: where a client may end
+  // <= finest_level_log2: the cap it starts from; it refines from there while the cache holds
+  // what the next level needs (a frame's misses say), so a cache too small for the finest
+  // level stops it where the cache is full, not at a level guessed before the first frame.
+  int start_level_log2 = 8;
   std::size_t cache_budget_bytes = 256u << 20;
   int width = 1280;
   int height = 720;
@@ -128,6 +131,9 @@ struct ChoiceLimits {
   // Shrink the frame to what the machine draws in target_frame_seconds (a window); false:
   // keep the size asked for (headless output is the size the scene or command line asks).
   bool scale_frame = true;
+  // Texels a frame pixel reads for each one a lookup at its level reads: antialias^2 sub-pixels
+  // each, and 4 per level a negative level bias goes finer.
+  double texels_per_pixel = 1.0;
 };
 
 // Chooses from the capability, the scene (objects' on-screen size) and the image size asked.
