@@ -132,6 +132,8 @@ uint64_t BrickFetcher::register_texture(const TextureSpec& spec, const Volume& v
     throw std::runtime_error(why);
   }
   std::lock_guard lock(mutex_);
+  // Registered again after a stream's refusal (a scene prepared anew): another chance.
+  refused_ids_.erase(handle.id());
   if (registrations_.emplace(handle.id(), request.SerializeAsString()).second && stream_) {
     unsent_registrations_.push_back(handle.id());
   }
@@ -530,7 +532,11 @@ std::vector<v1::BrickRequest> BrickFetcher::pack_requests() {
     resend_ = false;
     codec_changed_ = true;
   } else {
-    for (const uint64_t id : unsent_registrations_) add_texture(id, registrations_.at(id));
+    for (const uint64_t id : unsent_registrations_) {
+      if (const auto it = registrations_.find(id); it != registrations_.end()) {
+        add_texture(id, it->second);
+      }
+    }
   }
   unsent_registrations_.clear();
   if (codec_changed_) packer.add_codec(to_proto(codec_));
