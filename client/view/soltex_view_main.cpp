@@ -81,6 +81,29 @@ int run_window(const Scene& scene, const TextureResolution& resolution, BrickCac
 }
 #endif
 
+// Options typed on the command line that this run does not read: a warning each, so that a
+// misunderstanding shows (an environment variable is left be: it may serve other runs).
+void warn_of_unused_options(const CLI::App& app, const view::ViewOptions& options, int argc,
+                            char** argv) {
+  const auto typed = [&](const char* name) {
+    return cli::on_command_line(*app.get_option(name), argc, argv);
+  };
+  if (typed("--supersample") && !options.reference) {
+    spdlog::warn(
+        "--supersample sets the --reference frame's sub-pixels: without --reference "
+        "it is not used");
+  }
+  if (typed("--tls-server-name") && !typed("--tls-ca")) {
+    spdlog::warn(
+        "--tls-server-name names the certificate TLS checks: without --tls-ca there is "
+        "no TLS, and it is not used");
+  }
+  if (!options.local) return;
+  for (const char* name : {"--codec", "--token", "--token-file", "--tls-ca"}) {
+    if (typed(name)) spdlog::warn("--local draws without a server: {} is not used", name);
+  }
+}
+
 // A command line that parsed but cannot run: which option is missing, or why a window cannot
 // open; nullopt when it can run.
 std::optional<int> refuse(const view::ViewOptions& options) {
@@ -196,6 +219,7 @@ int main(int argc, char** argv) {
   cli::start_logging("soltex-view", log_level);
   cli::prepare_for_grpc_streams();
   if (const auto exit_code = refuse(options)) return *exit_code;
+  warn_of_unused_options(app, options, argc, argv);
   try {
     return run(options, app, security_options, timeline);
   } catch (const SceneError& e) {

@@ -192,6 +192,17 @@ TEST_F(ViewCli, TheLogSaysTheFinestLevelTheRunUses) {
       << run.output;
 }
 
+// Options typed for a run that does not read them are named in a warning; the run goes on.
+TEST_F(ViewCli, OptionsThisRunDoesNotReadAreNamed) {
+  const ViewRun run = view("unused", {"--headless", "--local", "--width", "64", "--height", "48",
+                                      "--supersample", "2", "--codec", "raw"});
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("without --reference it is not used"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("--local draws without a server: --codec is not used"),
+            std::string::npos)
+      << run.output;
+}
+
 std::string file_text(const std::filesystem::path& path) {
   std::ifstream in(path);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
