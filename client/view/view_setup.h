@@ -29,5 +29,4 @@ struct ViewSetup {
 ViewSetup set_up_view(const ViewOptions& options, const Scene& scene,
                       net::FetcherOptions fetcher_options, StartupTimeline* timeline);
 
-
 }  // namespace soltex::view

@@ -149,8 +149,7 @@ TEST(SceneNeeds, NoClipPlanesNoClippingOrCappingWork) {
   for (const bool with_plane : {false, true}) {
     const Scene scene = with_plane ? default_scene() : default_scene_without_clip_planes();
     stability::LocalRender render;
-    PreparedScene prepared =
-        prepare_scene(scene, TextureResolution{7, 16, {}}, render.source);
+    PreparedScene prepared = prepare_scene(scene, TextureResolution{7, 16, {}}, render.source);
     const Frame frame = render.renderer.render(prepared, scene.camera, kWidth, kHeight);
     const RasterStats& raster = frame.stats.raster;
     if (with_plane) {
@@ -385,8 +384,7 @@ TEST(SceneNeeds, UnlitMaterialsSkipShading) {
     for (int i = 0; i < unlit_objects; ++i)
       scene.objects[3 - static_cast<std::size_t>(i)].material.unlit = true;
     stability::LocalRender render;
-    PreparedScene prepared =
-        prepare_scene(scene, TextureResolution{7, 16, {}}, render.source);
+    PreparedScene prepared = prepare_scene(scene, TextureResolution{7, 16, {}}, render.source);
     const Frame frame = render.renderer.render(prepared, scene.camera, kWidth, kHeight);
     ASSERT_GT(frame.stats.covered_pixels, 0u);
     if (unlit_objects == 0) {
