@@ -149,7 +149,8 @@ TEST(SceneNeeds, NoClipPlanesNoClippingOrCappingWork) {
   for (const bool with_plane : {false, true}) {
     const Scene scene = with_plane ? default_scene() : default_scene_without_clip_planes();
     stability::LocalRender render;
-    PreparedScene prepared = prepare_scene(scene, TextureResolution{7, 16, {}}, render.source);
+    const PreparedScene prepared =
+        prepare_scene(scene, TextureResolution{7, 16, {}}, render.source);
     const Frame frame = render.renderer.render(prepared, scene.camera, kWidth, kHeight);
     const RasterStats& raster = frame.stats.raster;
     if (with_plane) {
@@ -177,7 +178,7 @@ FetchedScene fetch_scene(const SoltexdProcess& server, const Scene& scene,
                          const TextureResolution& resolution, int width, int height) {
   BrickCache cache(std::size_t{512} << 20);
   net::BrickFetcher fetcher(server.grpc_address(), cache);
-  PreparedScene prepared = prepare_scene(scene, resolution, fetcher);
+  const PreparedScene prepared = prepare_scene(scene, resolution, fetcher);
   FrameRenderer renderer(cache, RenderOptions{});
   const stability::ConvergedFrame result = stability::render_until_converged(
       renderer, prepared, scene.camera, width, height, fetcher, 2000);
@@ -269,7 +270,7 @@ TEST(SceneNeeds, StreamedBrickDecodesToTheRegisteredChannels) {
 TEST(SceneNeeds, BricksAreRequestedOnlyForTheVisibleSurface) {
   const Scene scene = default_scene();
   stability::LocalRender render;
-  PreparedScene prepared = prepare_scene(scene, TextureResolution{8, 16, {}}, render.source);
+  const PreparedScene prepared = prepare_scene(scene, TextureResolution{8, 16, {}}, render.source);
   const stability::ConvergedFrame result = stability::render_until_converged(
       render.renderer, prepared, scene.camera, kWidth, kHeight, render.source);
   ASSERT_TRUE(result.converged);
@@ -384,7 +385,8 @@ TEST(SceneNeeds, UnlitMaterialsSkipShading) {
     for (int i = 0; i < unlit_objects; ++i)
       scene.objects[3 - static_cast<std::size_t>(i)].material.unlit = true;
     stability::LocalRender render;
-    PreparedScene prepared = prepare_scene(scene, TextureResolution{7, 16, {}}, render.source);
+    const PreparedScene prepared =
+        prepare_scene(scene, TextureResolution{7, 16, {}}, render.source);
     const Frame frame = render.renderer.render(prepared, scene.camera, kWidth, kHeight);
     ASSERT_GT(frame.stats.covered_pixels, 0u);
     if (unlit_objects == 0) {
@@ -420,7 +422,7 @@ TEST(SceneNeeds, DefaultSceneReport) {
 
   // The same textures (ids are content-addressed), in process, for what the counts mean.
   stability::LocalRender local;
-  PreparedScene prepared = prepare_scene(scene, resolution, local.source);
+  const PreparedScene prepared = prepare_scene(scene, resolution, local.source);
   const GBuffer g = stability::rasterize(prepared, scene.camera, width, height);
   const KeySet surface = surface_bricks(prepared, g, local.cache);
   const auto work = octave_work(prepared, fetched.requested);
