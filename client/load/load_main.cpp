@@ -67,7 +67,8 @@ int main(int argc, char** argv) {
         return cli::kExitFailure;
       }
     } catch (const LoadOptionsError& e) {
-      std::fprintf(stderr, "soltex-load: %s\n", e.what());
+      std::fprintf(stderr, "soltex-load: %s\n",
+                   cli::with_value_source(app, e.what(), argc, argv).c_str());
       return cli::kExitUsage;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "soltex-load: %s\n", e.what());
@@ -91,7 +92,8 @@ int main(int argc, char** argv) {
       return cli::kExitFailure;
     }
   } catch (const LoadOptionsError& e) {
-    std::fprintf(stderr, "soltex-load: %s\n", e.what());
+    std::fprintf(stderr, "soltex-load: %s\n",
+                 cli::with_value_source(app, e.what(), argc, argv).c_str());
     return cli::kExitUsage;
   } catch (const RequestLogFormatError& e) {
     // A --replay-file that does not parse: bad input, as a scene file is to soltex-view.

@@ -227,7 +227,8 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   } catch (const std::invalid_argument& e) {
     // A bad --capability item or a refused texture spec: the input, named in the message.
-    std::fprintf(stderr, "soltex-view: %s\n", e.what());
+    std::fprintf(stderr, "soltex-view: %s\n",
+                 cli::with_value_source(app, e.what(), argc, argv).c_str());
     return kExitBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "soltex-view: %s\n", e.what());

@@ -93,20 +93,26 @@ void collect_options(const CLI::App& app, std::vector<const CLI::Option*>& optio
 }
 
 // Whether a CLI11 message is about `option` ("--name: ...").
+// CLI11 writes "--name: ...", the tools' own checks "--name VALUE: ...".
 bool message_names(const std::string& message, const CLI::Option& option) {
   for (const std::string& name : option.get_lnames()) {
-    if (message.rfind("--" + name + ":", 0) == 0) return true;
+    if (message.rfind("--" + name + ":", 0) == 0 || message.rfind("--" + name + " ", 0) == 0) {
+      return true;
+    }
   }
   return false;
+}
+
+std::string config_file_of(const CLI::App& app) {
+  const CLI::Option* config = app.get_config_ptr();
+  return config != nullptr && config->count() > 0 ? config->as<std::string>() : std::string();
 }
 
 // CLI11's message with what it leaves out: the config file an unknown key is in, and where a
 // refused value came from when the command line did not give it.
 std::string with_source(const CLI::App& app, const CLI::ParseError& error, int argc, char** argv) {
   const std::string message = error.what();
-  const CLI::Option* config = app.get_config_ptr();
-  const std::string config_file =
-      config != nullptr && config->count() > 0 ? config->as<std::string>() : std::string();
+  const std::string config_file = config_file_of(app);
   constexpr std::string_view kUnknownKey = "INI was not able to parse ";
   if (message.rfind(kUnknownKey, 0) == 0) {
     const std::string key = message.substr(kUnknownKey.size());
@@ -118,6 +124,14 @@ std::string with_source(const CLI::App& app, const CLI::ParseError& error, int a
     }
     return "config file " + config_file + ": no option is named " + key;
   }
+  return with_value_source(app, message, argc, argv);
+}
+
+}  // namespace
+
+std::string with_value_source(const CLI::App& app, const std::string& message, int argc,
+                              char** argv) {
+  const std::string config_file = config_file_of(app);
   std::vector<const CLI::Option*> options;
   collect_options(app, options);
   for (const CLI::Option* option : options) {
@@ -135,8 +149,6 @@ std::string with_source(const CLI::App& app, const CLI::ParseError& error, int a
   }
   return message;
 }
-
-}  // namespace
 
 bool on_command_line(const CLI::Option& option, int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {

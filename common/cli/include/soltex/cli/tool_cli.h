@@ -49,6 +49,12 @@ CLI::Validator NumberIn(double min, double max);
 // to the environment or a config file.
 bool on_command_line(const CLI::Option& option, int argc, char** argv);
 
+// `message` ("--name VALUE: ..." or "--name: ...", about one of app's options), with where the
+// value came from when the command line did not give it: " (from the environment variable X)"
+// or the config file. For a tool's own checks after parsing, which CLI11 cannot annotate.
+std::string with_value_source(const CLI::App& app, const std::string& message, int argc,
+                              char** argv);
+
 // A whole number in [min, max], for integer options: text that is not one ("abc", "1.5") is
 // refused as not a whole number rather than as out of range, as CLI::Range words it.
 CLI::Validator IntegerIn(long long min, long long max);
