@@ -88,34 +88,13 @@ void probe_link(const ViewOptions& options, const Scene& scene, net::FetcherOpti
   mark_on(timeline, "link probe done");
 }
 
-// Replaces the line of `reason` that starts with `head` (if any) by `text`.
-void replace_reason_line(std::string& reason, const std::string& head, const std::string& text) {
-  const std::size_t at = reason.find(head);
-  if (at == std::string::npos) return;
-  const std::size_t end = reason.find('\n', at);
-  reason.replace(at, end == std::string::npos ? std::string::npos : end - at, text);
-}
-
-// --finest-level overrides the machine's choice; the log says what the run uses: the lines of
-// the level and start chosen give way to the option's.
-void take_finest_level_option(int level, capability::Choice& choice) {
-  const std::string chosen = std::to_string(choice.finest_level_log2);
-  replace_reason_line(choice.reason, "finest level 2^" + chosen + ":",
-                      "finest level 2^" + std::to_string(level) +
-                          ": --finest-level (this machine's choice: 2^" + chosen + ")");
-  choice.finest_level_log2 = level;
-  if (level >= choice.start_level_log2) return;
-  replace_reason_line(choice.reason, "start at 2^" + std::to_string(choice.start_level_log2),
-                      "start at 2^" + std::to_string(level) + ", the finest level: --finest-level");
-  choice.start_level_log2 = level;
-}
-
 capability::Choice choose(const ViewOptions& options, const Scene& scene,
                           const capability::Capability& effective) {
   // Headless output, and a window given a size, keep the size asked for exactly; a window
   // showing the scene's size shrinks it to what this machine draws in time.
   capability::ChoiceLimits limits;
   limits.scale_frame = !options.headless && options.width == 0 && options.height == 0;
+  limits.finest_level_log2 = options.finest_level;
   limits.texels_per_pixel = static_cast<double>(options.antialias) * options.antialias *
                             std::pow(4.0, std::max(0.0, -options.level_bias));
   // A headless run shows nothing before it converges: a coarse start only guards its time
@@ -126,7 +105,6 @@ capability::Choice choose(const ViewOptions& options, const Scene& scene,
   capability::Choice choice =
       capability::choose(effective, scene, options.width > 0 ? options.width : scene.image.width,
                          options.height > 0 ? options.height : scene.image.height, limits);
-  if (options.finest_level > 0) take_finest_level_option(options.finest_level, choice);
   return choice;
 }
 

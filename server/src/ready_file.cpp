@@ -98,13 +98,12 @@ void remove_ready_file(const std::string& path) {
 void claim_ready_file(const std::string& path) {
   std::error_code ignored;
   if (path.empty() || !std::filesystem::is_regular_file(path, ignored)) return;
-  const ReadyFileOwner owner = ready_file_owner(path);
-  if (lives(owner)) {
+  if (const ReadyFileOwner owner = ready_file_owner(path); lives(owner)) {
     throw std::runtime_error("--ready-file " + path + " belongs to the running process " +
                              std::to_string(owner.pid) +
                              ": give each soltexd a ready file of its own");
   }
-  std::filesystem::remove(path, ignored);
+  remove_ready_file(path);
 }
 
 }  // namespace soltex::server

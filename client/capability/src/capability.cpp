@@ -352,7 +352,8 @@ void choose_finest_level(const Scene& scene, const ChoiceLimits& limits,
     }
   }
   const double decoded_brick_bytes = 17.0 * 17.0 * 17.0 * 3.0 + 64.0;
-  const int wanted = std::min(screen_level, limits.max_level_log2);
+  const int chosen = std::min(screen_level, limits.max_level_log2);
+  const int wanted = limits.finest_level_log2 > 0 ? limits.finest_level_log2 : chosen;
   int level = wanted;
   while (level > 4 && frame_bricks(level) * decoded_brick_bytes > 0.5 * choice.cache_budget_bytes) {
     --level;
@@ -364,14 +365,16 @@ void choose_finest_level(const Scene& scene, const ChoiceLimits& limits,
   choice.finest_level_log2 = wanted;
   choice.start_level_log2 = level;
   why << "finest level 2^" << wanted << ": ";
-  if (nearest == nullptr) {
+  if (limits.finest_level_log2 > 0) {
+    why << "--finest-level (this machine's choice: 2^" << chosen << ")";
+  } else if (nearest == nullptr) {
     why << "no object needs finer than 2^4";
   } else {
     why << "a texel per pixel at 2^" << screen_level << " where "
         << (nearest->name.empty() ? std::string("an object") : "\"" + nearest->name + "\"")
         << " comes nearest, " << static_cast<float>(nearest_at) << " from the camera";
   }
-  if (wanted < screen_level) why << "; at most 2^" << wanted;
+  if (limits.finest_level_log2 == 0 && wanted < screen_level) why << "; at most 2^" << wanted;
   if (level < wanted) {
     why << "; a frame at 2^" << level << " surely fits the cache: it starts there at the "
         << "finest and refines while the cache holds the next level";

@@ -425,9 +425,13 @@ void BrickFetcher::wait_first(const BrickKey& key) {
   if (waiting_keys_.insert(key).second) waiting_.insert(waiting_.begin(), BrickWant{key, ~0u});
 }
 
+std::size_t BrickFetcher::wants_bound() const {
+  if (std::chrono::steady_clock::now() < wants_paused_until_) return 0;
+  return std::min(in_flight_bound_, congestion_bound_);
+}
+
 bool BrickFetcher::may_send_wants() const {
-  return !waiting_.empty() && in_flight_.size() < std::min(in_flight_bound_, congestion_bound_) &&
-         std::chrono::steady_clock::now() >= wants_paused_until_;
+  return !waiting_.empty() && in_flight_.size() < wants_bound();
 }
 
 void BrickFetcher::defer(const BrickKey& key) {
@@ -544,8 +548,7 @@ std::vector<v1::BrickRequest> BrickFetcher::pack_requests() {
   for (const BrickKey& key : to_cancel_) packer.add_cancel(to_proto(key));
   to_cancel_.clear();
   std::size_t taken = 0;
-  const bool paused = std::chrono::steady_clock::now() < wants_paused_until_;
-  const std::size_t bound = paused ? 0 : std::min(in_flight_bound_, congestion_bound_);
+  const std::size_t bound = wants_bound();
   while (taken < waiting_.size() && in_flight_.size() < bound) {
     const BrickWant& w = waiting_[taken++];
     waiting_keys_.erase(w.key);

@@ -127,6 +127,9 @@ struct ChoiceLimits {
   // they come nearest) and the cache budget choose below it. A material's own volume, or
   // --finest-level, sets a level outright.
   int max_level_log2 = SpecLimits::kMaxFinestLevelLog2;
+  // --finest-level: the finest level set outright (0: chosen from the scene); the start is
+  // still chosen below it, from the cache budget and the link.
+  int finest_level_log2 = 0;
   std::size_t in_flight_bricks = 256;  // bricks a client asks for per round (FetcherOptions)
   // Shrink the frame to what the machine draws in target_frame_seconds (a window); false:
   // keep the size asked for (headless output is the size the scene or command line asks).

@@ -115,8 +115,10 @@ class BrickFetcher final : public BrickSource {
   bool add_waiting(const BrickWant& want);
   // Puts `key` first in line again (unless it waits already).
   void wait_first(const BrickKey& key);
-  // Whether wants may go out now: fewer in flight than the bounds allow, and no backoff
-  // after the server refused wants. mutex_ held.
+  // How many may be in flight now: the bounds, or 0 while paused after the server refused
+  // wants. mutex_ held.
+  std::size_t wants_bound() const;
+  // Whether wants may go out now: some wait, and fewer are in flight than wants_bound().
   bool may_send_wants() const;
   // A brick the server refused over a queue bound of the moment: asked for again, at a pace
   // the server keeps up with. mutex_ held.
