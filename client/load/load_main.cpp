@@ -28,9 +28,13 @@ int main(int argc, char** argv) {
   cli::start_logging("soltex-load", log_level);
   cli::prepare_for_grpc_streams();
   try {
-    options.security = soltex::net::finish_channel_security(security);
+    options.security = soltex::net::finish_channel_security(
+        security, cli::value_from_environment(*app.get_option("--token"), argc, argv)
+                      ? soltex::net::TokenOrigin::environment
+                      : soltex::net::TokenOrigin::typed);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "soltex-load: %s\n", e.what());
+    std::fprintf(stderr, "soltex-load: %s\n",
+                 cli::with_value_source(app, e.what(), argc, argv).c_str());
     return cli::kExitUsage;
   }
 

@@ -68,7 +68,8 @@ int main(int argc, char** argv) {
     return *exit_code;
   }
   if (const std::string problem = soltex::server::usage_problem(config); !problem.empty()) {
-    std::fprintf(stderr, "soltexd: %s\n", problem.c_str());
+    std::fprintf(stderr, "soltexd: %s\n",
+                 soltex::cli::with_value_source(app, problem, argc, argv).c_str());
     return soltex::cli::kExitUsage;
   }
   soltex::cli::start_logging("soltexd", config.log_level, soltex::cli::LogStyle::timestamped);

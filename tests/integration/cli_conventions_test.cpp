@@ -310,6 +310,34 @@ TEST_F(SoltexdCli, AConfigFileErrorNamesTheFile) {
       << bound.err;
 }
 
+// A check across two options says where each value the command line did not give came from.
+TEST_F(SoltexdCli, ACrossOptionErrorSaysWhereEachValueCameFrom) {
+  const std::string message =
+      "--max-keys-per-request (16) must not exceed --max-queued-per-stream (8)";
+  const ToolRun r = run_tool(SOLTEXD_BINARY, {"--max-keys-per-request", "16"},
+                             {{"SOLTEX_MAX_QUEUED_PER_STREAM", "8"}});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(message + " (--max-queued-per-stream from the environment variable "
+                                 "SOLTEX_MAX_QUEUED_PER_STREAM)"),
+            std::string::npos)
+      << r.err;
+  const std::filesystem::path config = directory_ / "soltexd.toml";
+  std::ofstream(config) << "max-keys-per-request = 16\n";
+  const ToolRun both = run_tool(SOLTEXD_BINARY, {"--config", config.string()},
+                                {{"SOLTEX_MAX_QUEUED_PER_STREAM", "8"}});
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(
+      both.err.find(message + " (--max-keys-per-request from the config file " + config.string() +
+                    "; --max-queued-per-stream from the environment variable "
+                    "SOLTEX_MAX_QUEUED_PER_STREAM)"),
+      std::string::npos)
+      << both.err;
+  const ToolRun typed =
+      run_tool(SOLTEXD_BINARY, {"--max-keys-per-request", "16", "--max-queued-per-stream", "8"});
+  EXPECT_EQ(typed.exit_code, 2);
+  EXPECT_NE(typed.err.find(message + "\n"), std::string::npos) << typed.err;
+}
+
 TEST_F(SoltexdCli, AnAddressOutsideHostPortExits2NamingTheBound) {
   for (const std::string option : {"--listen", "--metrics-listen", "--http-listen"}) {
     for (const std::string address : {"127.0.0.1:70000", "127.0.0.1", "127.0.0.1:-1"}) {
@@ -643,6 +671,31 @@ TEST_F(LoadCliConventions, ADurationFromTheEnvironmentIsChecked) {
       run_tool(SOLTEX_LOAD_BINARY, {"--server", "127.0.0.1:1", "--duration-s", "0"});
   EXPECT_EQ(typed.exit_code, 2);
   EXPECT_EQ(typed.err.find("environment"), std::string::npos) << typed.err;
+}
+
+// Two tokens typed for one run are refused; a --token-file given while SOLTEX_TOKEN is kept in
+// the environment for other runs takes its place.
+TEST_F(LoadCliConventions, ATokenFileTakesTheEnvironmentTokensPlaceNotATypedOnes) {
+  const std::filesystem::path tokens = directory_ / "token";
+  std::ofstream(tokens) << "the-right-token\n";
+  testing::SoltexdProcess soltexd({"--token-file", tokens.string()});
+  const std::vector<std::string> args = {
+      "--server",      soltexd.grpc_address(), "--count",      "5",
+      "--no-progress", "--token-file",         tokens.string()};
+  std::vector<std::string> typed = args;
+  typed.insert(typed.end(), {"--token", "another-token"});
+  const ToolRun refused = run_tool(SOLTEX_LOAD_BINARY, typed);
+  EXPECT_EQ(refused.exit_code, 2) << refused.err;
+  EXPECT_NE(refused.err.find("--token and --token-file both name tokens: give one"),
+            std::string::npos)
+      << refused.err;
+  const ToolRun kept = run_tool(SOLTEX_LOAD_BINARY, args, {{"SOLTEX_TOKEN", "a-stale-token"}});
+  EXPECT_EQ(kept.exit_code, 0) << kept.err;
+  EXPECT_NE(kept.err.find("is sent, not SOLTEX_TOKEN's"), std::string::npos) << kept.err;
+  const ToolRun stale = run_tool(
+      SOLTEX_LOAD_BINARY, {"--server", soltexd.grpc_address(), "--count", "5", "--no-progress"},
+      {{"SOLTEX_TOKEN", "a-stale-token"}});
+  EXPECT_NE(stale.exit_code, 0) << "the environment's wrong token was accepted: " << stale.err;
 }
 
 TEST_F(LoadCliConventions, AServerAddressOutsideHostPortExits2) {

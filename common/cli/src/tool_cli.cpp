@@ -127,6 +127,44 @@ std::string with_source(const CLI::App& app, const CLI::ParseError& error, int a
   return with_value_source(app, message, argc, argv);
 }
 
+// Where `option`'s value came from when the command line did not give it: "from the
+// environment variable X", "from the config file F", both when either could have, or "".
+std::string value_source(const CLI::Option& option, const std::string& config_file) {
+  const std::string& variable = option.get_envname();
+  // CLI11 leaves an empty variable unread.
+  const char* set = variable.empty() ? nullptr : std::getenv(variable.c_str());
+  const bool from_environment = set != nullptr && *set != '\0';
+  // CLI11 reads a config file's value over the environment's: a value unlike the variable's
+  // came from the file, and one like it may be taken as the variable's.
+  const std::vector<std::string>& results = option.results();
+  if (from_environment && !config_file.empty() &&
+      !(results.size() == 1 && results.front() == set)) {
+    return "from the config file " + config_file;
+  }
+  if (from_environment) return "from the environment variable " + variable;
+  if (!config_file.empty() && option.count() > 0) return "from the config file " + config_file;
+  return {};
+}
+
+// "--name" when `message` names `option` after its start as a whole word (not the prefix of a
+// longer option's name), or "".
+std::string named_later(const std::string& message, const CLI::Option& option) {
+  const auto name_char = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_';
+  };
+  for (const std::string& name : option.get_lnames()) {
+    const std::string flag = "--" + name;
+    for (std::size_t at = message.find(flag, 1); at != std::string::npos;
+         at = message.find(flag, at + 1)) {
+      const std::size_t end = at + flag.size();
+      if (!name_char(message[at - 1]) && (end == message.size() || !name_char(message[end]))) {
+        return flag;
+      }
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
 std::string with_value_source(const CLI::App& app, const std::string& message, int argc,
@@ -134,20 +172,35 @@ std::string with_value_source(const CLI::App& app, const std::string& message, i
   const std::string config_file = config_file_of(app);
   std::vector<const CLI::Option*> options;
   collect_options(app, options);
+  // The option the message is about, named first, gets "(from ...)"; others it names further
+  // on ("--a (8) must not exceed --b (4)") get "--b from ..." in the same parentheses.
+  std::string subject_source;
+  std::vector<std::string> others;
   for (const CLI::Option* option : options) {
-    if (!message_names(message, *option) || on_command_line(*option, argc, argv)) continue;
-    const std::string& variable = option->get_envname();
-    // CLI11 leaves an empty variable unread.
-    const char* set = variable.empty() ? nullptr : std::getenv(variable.c_str());
-    const bool from_environment = set != nullptr && *set != '\0';
-    if (from_environment && !config_file.empty()) {
-      return message + " (from the config file " + config_file + " or the environment variable " +
-             variable + ")";
+    if (on_command_line(*option, argc, argv)) continue;
+    if (message_names(message, *option)) {
+      subject_source = value_source(*option, config_file);
+    } else if (const std::string name = named_later(message, *option); !name.empty()) {
+      if (const std::string source = value_source(*option, config_file); !source.empty()) {
+        others.push_back(name + " " + source);
+      }
     }
-    if (from_environment) return message + " (from the environment variable " + variable + ")";
-    if (!config_file.empty()) return message + " (from the config file " + config_file + ")";
   }
-  return message;
+  if (others.empty())
+    return subject_source.empty() ? message : message + " (" + subject_source + ")";
+  std::string note = subject_source.empty() ? ""
+                                            : message.substr(0, message.find_first_of(" :")) + " " +
+                                                  subject_source + "; ";
+  for (std::size_t i = 0; i < others.size(); ++i) note += (i > 0 ? "; " : "") + others[i];
+  return message + " (" + note + ")";
+}
+
+bool value_from_environment(const CLI::Option& option, int argc, char** argv) {
+  const std::string& variable = option.get_envname();
+  const char* set = variable.empty() ? nullptr : std::getenv(variable.c_str());
+  if (set == nullptr || *set == '\0' || on_command_line(option, argc, argv)) return false;
+  const std::vector<std::string>& results = option.results();
+  return results.size() == 1 && results.front() == set;
 }
 
 bool on_command_line(const CLI::Option& option, int argc, char** argv) {

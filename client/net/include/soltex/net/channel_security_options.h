@@ -1,5 +1,7 @@
 #pragma once
 
+#include <spdlog/spdlog.h>
+
 #include <CLI/CLI.hpp>
 #include <stdexcept>
 #include <string>
@@ -33,9 +35,15 @@ inline void add_channel_security_options(CLI::App& app, ChannelSecurityOptions& 
       ->envname("SOLTEX_TOKEN");
 }
 
+// Where --token's value came from. The command line or a config file names a token for this
+// run; SOLTEX_TOKEN may be kept in the environment for other runs, so a --token-file given with
+// it takes its place (the more specific source wins) where two typed tokens are refused.
+enum class TokenOrigin { typed, environment };
+
 // Throws std::runtime_error when the token file cannot be read, std::invalid_argument for a
-// token that cannot travel in a header (check_token).
-inline ChannelSecurity finish_channel_security(const ChannelSecurityOptions& options) {
+// token that cannot travel in a header (check_token) or for two tokens typed for one run.
+inline ChannelSecurity finish_channel_security(const ChannelSecurityOptions& options,
+                                               TokenOrigin token_origin = TokenOrigin::typed) {
   ChannelSecurity security = options.security;
   // Options that cannot work together are the command line's fault (exit 2), not the
   // connection's, where channel_credentials() would find them.
@@ -48,6 +56,12 @@ inline ChannelSecurity finish_channel_security(const ChannelSecurityOptions& opt
     throw std::invalid_argument(
         "--tls-cert and --tls-key need --tls-ca: a client certificate "
         "needs TLS, which the server's CA turns on");
+  }
+  if (!options.token_file.empty() && !security.token.empty()) {
+    if (token_origin == TokenOrigin::typed) {
+      throw std::invalid_argument("--token and --token-file both name tokens: give one");
+    }
+    spdlog::info("the token of --token-file {} is sent, not SOLTEX_TOKEN's", options.token_file);
   }
   if (!options.token_file.empty()) {
     security.token = read_token_file(options.token_file);

@@ -49,9 +49,14 @@ CLI::Validator NumberIn(double min, double max);
 // to the environment or a config file.
 bool on_command_line(const CLI::Option& option, int argc, char** argv);
 
+// Whether `option`'s value is its environment variable's: not given on the command line, and
+// the variable set to what the option holds (a config file's value would differ or be alone).
+bool value_from_environment(const CLI::Option& option, int argc, char** argv);
+
 // `message` ("--name VALUE: ..." or "--name: ...", about one of app's options), with where the
 // value came from when the command line did not give it: " (from the environment variable X)"
-// or the config file. For a tool's own checks after parsing, which CLI11 cannot annotate.
+// or the config file; other options it names further on get "--other from ..." in the same
+// parentheses. For a tool's own checks after parsing, which CLI11 cannot annotate.
 std::string with_value_source(const CLI::App& app, const std::string& message, int argc,
                               char** argv);
 
