@@ -1,5 +1,7 @@
 #include "headless_run.h"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -7,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <set>
 #include <stdexcept>
 
 #include "headless_session.h"
@@ -19,12 +22,36 @@
 namespace soltex::view {
 namespace {
 
+// The finest level the scene's objects refine to: the client's choice, and the levels of
+// materials that set their own ("2^8, set by every material", "2^12; 2^8 where a material
+// sets its own").
+std::string finest_levels_text(const Scene& scene, int chosen_log2) {
+  std::set<int> own;
+  std::size_t chosen_objects = 0;
+  for (const SceneObject& object : scene.objects) {
+    if (object.material.volume.finest_level_log2) {
+      own.insert(*object.material.volume.finest_level_log2);
+    } else {
+      ++chosen_objects;
+    }
+  }
+  std::string own_text;
+  for (const int level : own)
+    own_text += (own_text.empty() ? "" : ", ") + fmt::format("2^{}", level);
+  if (own.empty()) return fmt::format("2^{}", chosen_log2);
+  if (chosen_objects == 0) {
+    return fmt::format("{}, set by every material", own_text);
+  }
+  return fmt::format("2^{}; {} where a material sets its own", chosen_log2, own_text);
+}
+
 void print_outcome(const ViewOptions& options, const Scene& scene, const ViewSetup& setup,
                    const HeadlessResult& result, const net::SourceStats& fetched) {
   const capability::Choice& choice = setup.choice;
-  std::printf("scene:      %s, %zu objects, %dx%d, finest level 2^%d, %s filter\n",
+  std::printf("scene:      %s, %zu objects, %dx%d, finest level %s, %s filter\n",
               scene.name.c_str(), scene.objects.size(), choice.width, choice.height,
-              choice.finest_level_log2, options.filter_name.c_str());
+              finest_levels_text(scene, choice.finest_level_log2).c_str(),
+              options.filter_name.c_str());
   if (result.start_level_log2 < choice.finest_level_log2) {
     std::printf("levels:     started at 2^%d (converged there after %.1f ms), refined to 2^%d%s\n",
                 result.start_level_log2, result.start_converged_ms, result.refined_level_log2,

@@ -104,6 +104,21 @@ void warn_of_unused_options(const CLI::App& app, const view::ViewOptions& option
   }
 }
 
+// A material's own finest_level_log2 is the scene author's, so --finest-level does not move
+// it; where every material sets one, the option changes nothing and says so.
+void warn_if_every_material_sets_its_level(const view::ViewOptions& options, const Scene& scene) {
+  if (options.finest_level == 0 || scene.objects.empty()) return;
+  const bool every = std::all_of(scene.objects.begin(), scene.objects.end(), [](const auto& o) {
+    return o.material.volume.finest_level_log2.has_value();
+  });
+  if (every) {
+    spdlog::warn(
+        "--finest-level {} is not used: every material of the scene sets its own "
+        "finest_level_log2",
+        options.finest_level);
+  }
+}
+
 // A command line that parsed but cannot run: which option is missing, or why a window cannot
 // open; nullopt when it can run.
 std::optional<int> refuse(const view::ViewOptions& options) {
@@ -176,9 +191,10 @@ void check_frame_sizes(const view::ViewOptions& options, const capability::Choic
 }
 
 int run(const view::ViewOptions& options, const CLI::App& app,
-        const net::ChannelSecurityOptions& security, view::StartupTimeline& timeline) {
+        const net::ChannelSecurityOptions& security, net::TokenOrigin token_origin,
+        view::StartupTimeline& timeline) {
   net::FetcherOptions fetcher_options;
-  fetcher_options.security = net::finish_channel_security(security);
+  fetcher_options.security = net::finish_channel_security(security, token_origin);
   fetcher_options.register_timeout = options.server_wait(fetcher_options.register_timeout);
   // Null marks nothing: the timeline costs only where it is printed.
   view::StartupTimeline* const marks =
@@ -186,6 +202,7 @@ int run(const view::ViewOptions& options, const CLI::App& app,
   if (marks != nullptr) fetcher_options.on_event = view::fetch_marks(*marks);
   view::mark_on(marks, "command line read");
   const Scene scene = options.scene_path.empty() ? default_scene() : load_scene(options.scene_path);
+  warn_if_every_material_sets_its_level(options, scene);
   view::ViewSetup setup = view::set_up_view(options, scene, fetcher_options, marks);
   check_frame_sizes(options, setup.choice);
 #ifdef SOLTEX_HAVE_SDL2
@@ -221,7 +238,11 @@ int main(int argc, char** argv) {
   if (const auto exit_code = refuse(options)) return *exit_code;
   warn_of_unused_options(app, options, argc, argv);
   try {
-    return run(options, app, security_options, timeline);
+    const net::TokenOrigin token_origin =
+        cli::value_from_environment(*app.get_option("--token"), argc, argv)
+            ? net::TokenOrigin::environment
+            : net::TokenOrigin::typed;
+    return run(options, app, security_options, token_origin, timeline);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "soltex-view: %s\n", e.what());
     return kExitBadInput;

@@ -51,7 +51,7 @@ void add_source_options(CLI::App& app, ViewOptions& o) {
 // How the run ends and what it writes: headless until converged, or a window.
 void add_run_options(CLI::App& app, ViewOptions& o) {
   app.add_flag("--headless", o.headless, "render until converged, write --out, print statistics");
-  app.add_option("--out", o.out, "PNG to write (headless)")
+  app.add_option("--out", o.out, "PNG to write (headless; missing folders are made)")
       ->check(CLI::Validator(
           [](std::string& path) -> std::string {
             std::string extension = std::filesystem::path(path).extension().string();

@@ -192,6 +192,40 @@ TEST_F(ViewCli, TheLogSaysTheFinestLevelTheRunUses) {
       << run.output;
 }
 
+// A material's own finest level is the scene's: the summary names it beside the client's, and
+// --finest-level says it is not used where every material sets one.
+TEST_F(ViewCli, LevelsTheSceneSetsAreNamedAndKept) {
+  const auto scene_with = [&](const std::string& name, const std::string& second_volume) {
+    const std::filesystem::path scene = directory_ / (name + ".json");
+    std::ofstream(scene) << R"({"camera": {"position": [0, 1, 4], "target": [0, 0, 0]},
+      "objects": [
+        {"mesh": {"sphere": {}}, "transform": {"translate": [-1.2, 0, 0]},
+         "material": {"texture": {"marble": {}}, "volume": {"finest_level_log2": 6}}},
+        {"mesh": {"sphere": {}}, "transform": {"translate": [1.2, 0, 0]},
+         "material": {"texture": {"checker": {}})"
+                         << second_volume << "}}]}";
+    return scene.string();
+  };
+  const std::vector<std::string> small = {"--headless", "--local", "--width",        "96",
+                                          "--height",   "64",      "--finest-level", "7"};
+  std::vector<std::string> every = small;
+  every.insert(every.end(),
+               {"--scene", scene_with("every", R"(, "volume": {"finest_level_log2": 5})")});
+  const ViewRun pinned = view("every", every);
+  EXPECT_EQ(pinned.exit_code, 0) << pinned.output;
+  EXPECT_NE(pinned.output.find("finest level 2^5, 2^6, set by every material"), std::string::npos)
+      << pinned.output;
+  EXPECT_NE(pinned.output.find("--finest-level 7 is not used"), std::string::npos) << pinned.output;
+  std::vector<std::string> one = small;
+  one.insert(one.end(), {"--scene", scene_with("one", "")});
+  const ViewRun mixed = view("one", one);
+  EXPECT_EQ(mixed.exit_code, 0) << mixed.output;
+  EXPECT_NE(mixed.output.find("finest level 2^7; 2^6 where a material sets its own"),
+            std::string::npos)
+      << mixed.output;
+  EXPECT_EQ(mixed.output.find("is not used"), std::string::npos) << mixed.output;
+}
+
 // Options typed for a run that does not read them are named in a warning; the run goes on.
 TEST_F(ViewCli, OptionsThisRunDoesNotReadAreNamed) {
   const ViewRun run = view("unused", {"--headless", "--local", "--width", "64", "--height", "48",
