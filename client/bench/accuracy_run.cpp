@@ -116,12 +116,12 @@ AccuracyRun run_accuracy_sweep(const Scene& scene, const std::string& scene_name
     if (frame == frames.size()) {
       frames.push_back(std::make_unique<FrameUnderTest>(scene, setting, options.size,
                                                         options.threads, options.max_converge));
-      if (!options.images.empty()) {
-        write_png(options.images / image_name(run.results.size(), setting.label()),
-                  frames.back()->image());
-      }
     }
     const FrameUnderTest& drawn = *frames[frame];
+    // Every row has its PNG; rows that share a frame (codec alone differs) the same pixels.
+    if (!options.images.empty()) {
+      write_png(options.images / image_name(run.results.size(), setting.label()), drawn.image());
+    }
     result.error = image_error(drawn.image(), reference);
     result.resident_bytes = drawn.resident_bytes();
     result.covered_pixels = drawn.covered_pixels();
