@@ -111,6 +111,12 @@ void BrickStream::on_read_done(bool ok) {
     reading_ = false;
     if (!ok) {
       reads_done_ = true;  // the client half-closed (or the call is over)
+    } else if (draining_) {
+      // A read started before the shutdown and completed after it: the message came after
+      // the shutdown began, so it is not read (its bricks are not owed).
+      ++requests_after_drain_;
+      pump();
+      return;
     } else {
       context_.metrics.stream_messages.fetch_add(1, std::memory_order_relaxed);
       unhandled_request_.Swap(&request_bytes_);
@@ -281,14 +287,19 @@ std::optional<BrickKey> BrickStream::admitted_key(const v1::BrickKey& k,
   // the room its first copy took.
   const BrickKey key{k.texture_id(), level, {k.x(), k.y(), k.z()}};
   if (!first_in_request(key)) return std::nullopt;
-  if (lease_->usage().queued.load(std::memory_order_relaxed) >=
-      static_cast<int64_t>(limits.max_queued_per_client)) {
+  const bool client_full = lease_->usage().queued.load(std::memory_order_relaxed) >=
+                           static_cast<int64_t>(limits.max_queued_per_client);
+  const bool stream_full = owed() >= limits.max_queued_per_stream;
+  // Asked again while still queued: merged with the first ask (its priority raised), which
+  // takes no more room, so no queue bound refuses it.
+  if ((client_full || stream_full) && queue_.queued(key)) return key;
+  if (client_full) {
     refuse_over_queue_bound(k, "client " + lease_->usage().client + " has " +
                                    std::to_string(limits.max_queued_per_client) +
                                    " bricks queued over its streams (max_queued_per_client)");
     return std::nullopt;
   }
-  if (owed() >= limits.max_queued_per_stream) {
+  if (stream_full) {
     refuse_over_queue_bound(k, "stream queue is full (" +
                                    std::to_string(limits.max_queued_per_stream) +
                                    " bricks, max_queued_per_stream)");
@@ -570,8 +581,12 @@ void BrickStream::pump() {
     finish = true;
   } else if (draining_ && idle) {
     finish = true;
-    status = grpc::Status(grpc::StatusCode::UNAVAILABLE,
-                          "soltexd is shutting down; every brick asked for was sent");
+    status = grpc::Status(
+        grpc::StatusCode::UNAVAILABLE,
+        requests_after_drain_ == 0
+            ? "soltexd is shutting down; every brick asked for was sent"
+            : "soltexd is shutting down; every brick asked for before then was sent, and " +
+                  std::to_string(requests_after_drain_) + " later request(s) were not read");
   }
   if (finish) {
     finished_ = true;

@@ -181,8 +181,9 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   bool reads_done_ = false;
   bool writing_ = false;
   bool finished_ = false;
-  bool draining_ = false;       // drain(): no more reads
-  bool shutting_down_ = false;  // shut_down(): no more bricks
+  bool draining_ = false;         // drain(): no more reads
+  int requests_after_drain_ = 0;  // messages that arrived after drain(), dropped unread
+  bool shutting_down_ = false;    // shut_down(): no more bricks
   bool cancelled_ = false;
   // Keys of the request being accepted (a key wanted twice in one message is sent once): the
   // first few in a vector, all of them in the set past that. Both kept to reuse their memory.

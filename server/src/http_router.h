@@ -35,8 +35,11 @@ struct Route {
   std::string allow;
 };
 
-// The bound on ?spec= (base64url text): a registration is a few hundred bytes.
-inline constexpr std::size_t kMaxSpecParameterBytes = 6144;
+// The bound on ?spec= (base64url text): a built-in pattern's registration is a few hundred
+// bytes, a node graph's about 140 a node. With the path it stays within the 16 KiB the request
+// line and headers may take (HttpLimits::max_header_bytes, and nginx's buffers in deploy/).
+// POST /v1/textures refuses a registration whose handle would carry more.
+inline constexpr std::size_t kMaxSpecParameterBytes = 12288;
 // The bound on a brick coordinate or level as written in a path: anything larger cannot be a
 // brick of any texture (levels and coordinates are below 2^14 there).
 inline constexpr uint32_t kMaxPathInteger = 1u << 30;

@@ -54,6 +54,11 @@ void WorkQueue::finished() {
   if (taken_ > 0) --taken_;
 }
 
+bool WorkQueue::queued(const BrickKey& key) const {
+  std::lock_guard lock(mutex_);
+  return by_key_.contains(key);
+}
+
 std::size_t WorkQueue::size() const {
   std::lock_guard lock(mutex_);
   return items_.size();

@@ -42,6 +42,7 @@ class WorkQueue {
   // A taken item goes back unmade, in its old place (its sequence); if its key was asked for
   // again meanwhile, the queued one stands. Returns whether it was queued again.
   bool give_back(WorkItem item);
+  bool queued(const BrickKey& key) const;
   std::size_t size() const;         // queued
   std::size_t taken() const;        // taken and not finished
   std::size_t outstanding() const;  // queued + taken, read together

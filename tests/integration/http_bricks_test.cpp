@@ -274,6 +274,63 @@ TEST(HttpBricks, UrlsCarryTheirTextureToAnyReplica) {
   EXPECT_EQ(http_request(third.http_port(), "GET", "/v1/textures/" + id).status, 404);
 }
 
+// A graph texture of about 2 * `leaves` nodes, every one distinct and used: a sum over
+// `leaves` position components each offset by its own constant, added in a balanced tree.
+std::string graph_registration(int leaves) {
+  std::string list = R"({"name": "p", "category": "position"})";
+  for (int axis = 0; axis < 3; ++axis) {
+    list += R"(, {"name": "e)" + std::to_string(axis) +
+            R"(", "category": "extract", "inputs": {"in": {"node": "p"}, "index": )" +
+            std::to_string(axis) + "}}";
+  }
+  std::vector<std::string> level;
+  for (int i = 0; i < leaves; ++i) {
+    level.push_back("a" + std::to_string(i));
+    list += R"(, {"name": ")" + level.back() +
+            R"(", "category": "add", "inputs": {"in1": {"node": "e)" + std::to_string(i % 3) +
+            R"("}, "in2": )" + std::to_string(0.001 * (i + 1)) + "}}";
+  }
+  for (int round = 0; level.size() > 1; ++round) {
+    std::vector<std::string> next;
+    for (std::size_t i = 0; i + 1 < level.size(); i += 2) {
+      next.push_back("s" + std::to_string(round) + "_" + std::to_string(i / 2));
+      list += R"(, {"name": ")" + next.back() +
+              R"(", "category": "add", "inputs": {"in1": {"node": ")" + level[i] +
+              R"("}, "in2": {"node": ")" + level[i + 1] + R"("}}})";
+    }
+    if (level.size() % 2 == 1) next.push_back(level.back());
+    level = next;
+  }
+  list +=
+      R"(, {"name": "c", "category": "combine3", "type": "color3", "inputs": {"in1": {"node": ")" +
+      level.front() + R"("}, "in2": {"node": "e1"}, "in3": {"node": "e2"}}})";
+  return R"({"texture": {"graph": {"nodes": [)" + list +
+         R"(], "outputs": {"colour": "c"}}}, "brick_size": 8,
+             "volume": {"min": [-1, -1, -1], "max": [1, 1, 1], "finest_level_log2": 6}})";
+}
+
+// Every handle POST /v1/textures gives out works on any replica: a graph whose spec fits the
+// URL bound is served through its template by a replica that never saw it, and one whose spec
+// would not fit is refused at the POST, naming both sizes.
+TEST(HttpBricks, EveryHandleGivenOutFitsItsUrlBound) {
+  SoltexdProcess first(http_args());
+  SoltexdProcess second(http_args());
+  const nlohmann::json handle = register_over_http(first.http_port(), graph_registration(40));
+  const std::string spec = handle["spec"];
+  EXPECT_GT(spec.size(), 6144u) << "the graph no longer tests a spec of several KB";
+  std::string url = handle["bricks"];
+  url.replace(url.find("{level}/{x}/{y}/{z}"), 19, "0/1/1/1");
+  const HttpReply brick = http_request(second.http_port(), "GET", url);
+  EXPECT_EQ(brick.status, 200) << brick.body;
+  EXPECT_EQ(brick.body, http_request(first.http_port(), "GET", url).body);
+
+  const HttpReply large =
+      http_request(first.http_port(), "POST", "/v1/textures", {}, graph_registration(120));
+  EXPECT_EQ(large.status, 413) << large.body;
+  EXPECT_NE(large.body.find("at most 12288"), std::string::npos) << large.body;
+  EXPECT_NE(large.body.find("register it over gRPC"), std::string::npos) << large.body;
+}
+
 TEST(HttpBricks, BodiesOverTheLimitAreRefused) {
   SoltexdProcess server(http_args({"--max-message-bytes", "2048"}));
   const std::string big =

@@ -124,6 +124,36 @@ TEST(Soltexd, AKeyWantedTwiceInOneMessageIsSentOnce) {
   }
 }
 
+// A key asked for again in a later message while still queued is merged with the first ask,
+// even with the stream's queue at its bound: not refused, and sent once.
+TEST(Soltexd, AKeyAskedAgainWhileQueuedIsMergedEvenAtTheQueueBound) {
+  SoltexdProcess server({"--threads", "1", "--fault-delay-ms", "300", "--max-queued-per-stream",
+                         "8", "--max-keys-per-request", "8"});
+  auto stub = connect(server);
+  const v1::TextureHandle handle = register_texture(*stub, marble_request(6, 8));
+  std::vector<v1::BrickKey> keys = level_keys(handle.id(), 0, 8);
+  keys.resize(8);
+  grpc::ClientContext context;
+  auto stream = stub->StreamBricks(&context);
+  ASSERT_TRUE(stream->Write(want(keys)));
+  // One brick in the making (300 ms each), seven queued: the stream owes its bound of 8. The
+  // last four are made last, so they are still queued when asked for again.
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  ASSERT_TRUE(stream->Write(want({keys.begin() + 4, keys.end()})));
+  stream->WritesDone();
+  std::multiset<std::string> received;
+  std::size_t refused = 0;
+  v1::BrickBatch batch;
+  while (stream->Read(&batch)) {
+    for (const v1::Brick& brick : batch.bricks()) received.insert(brick.key().SerializeAsString());
+    refused += static_cast<std::size_t>(batch.errors_size());
+  }
+  EXPECT_TRUE(stream->Finish().ok());
+  EXPECT_EQ(refused, 0u) << "a merged ask was refused over the queue bound";
+  EXPECT_EQ(received.size(), keys.size()) << "a brick was sent twice or not at all";
+  for (const v1::BrickKey& key : keys) EXPECT_EQ(received.count(key.SerializeAsString()), 1u);
+}
+
 TEST(Soltexd, CoarseLevelsAreServedFirst) {
   SoltexdProcess server({"--threads", "1"});
   auto stub = connect(server);
@@ -600,6 +630,45 @@ TEST(Soltexd, AHalfClosedStreamGetsEveryBrickItAskedForOnShutdown) {
   const grpc::Status status = stream->Finish();
   EXPECT_TRUE(status.ok()) << status.error_message();
   EXPECT_EQ(received, keys.size());
+  EXPECT_EQ(server.wait_for_exit(), 0) << server.log();
+}
+
+// Once shutdown begins a stream reads no more requests: a message sent after SIGTERM is not
+// read (its bricks are not made), the bricks asked for before it are sent, and the stream's
+// status says a request went unread.
+TEST(Soltexd, ARequestSentAfterShutdownBeganIsNotRead) {
+  SoltexdProcess server({"--threads", "1", "--shutdown-grace-s", "20", "--fault-delay-ms", "100"});
+  auto stub = connect(server);
+  const v1::TextureHandle handle = register_texture(*stub, marble_request(6, 8));
+  const std::vector<v1::BrickKey> keys = level_keys(handle.id(), 0, 8);
+  const std::vector<v1::BrickKey> before(keys.begin(), keys.begin() + 8);
+  const std::vector<v1::BrickKey> after(keys.begin() + 8, keys.begin() + 12);
+  grpc::ClientContext context;
+  auto stream = stub->StreamBricks(&context);
+  ASSERT_TRUE(stream->Write(want(before)));
+  v1::BrickBatch batch;
+  ASSERT_TRUE(stream->Read(&batch));
+  std::size_t received = static_cast<std::size_t>(batch.bricks_size());
+  server.send_signal(SIGTERM);
+  for (int i = 0; i < 100 && health_status(server) == 1; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_TRUE(stream->Write(want(after)));
+  std::set<std::string> asked_after;
+  for (const v1::BrickKey& key : after) asked_after.insert(key.SerializeAsString());
+  std::size_t made_after = 0;
+  while (stream->Read(&batch)) {
+    received += static_cast<std::size_t>(batch.bricks_size());
+    for (const v1::Brick& brick : batch.bricks()) {
+      made_after += asked_after.count(brick.key().SerializeAsString());
+    }
+  }
+  const grpc::Status status = stream->Finish();
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::UNAVAILABLE) << status.error_message();
+  EXPECT_NE(status.error_message().find("1 later request(s) were not read"), std::string::npos)
+      << status.error_message();
+  EXPECT_EQ(made_after, 0u) << "a request sent after SIGTERM was read and served";
+  EXPECT_EQ(received, before.size());
   EXPECT_EQ(server.wait_for_exit(), 0) << server.log();
 }
 

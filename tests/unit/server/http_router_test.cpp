@@ -68,7 +68,7 @@ TEST(HttpRouter, RefusesWithTheStatusAndWhatWasWrong) {
       {"GET", brick + "0/0/0/0?codec=lz4&codec=raw", 400, "given twice"},
       {"GET", brick + "0/0/0/0?spec=a+b", 400, "base64url"},
       {"GET", brick + "0/0/0/0?spec=" + std::string(kMaxSpecParameterBytes + 1, 'A'), 414,
-       "at most 6144"},
+       "at most 12288"},
       {"GET", brick + "0/0/0/0?cachebust=1", 400, "unknown query parameter 'cachebust'"},
       {"POST", brick + "0/0/0/0", 405, "'POST' is not allowed here; use GET, HEAD"},
       {"GET", "/v1/textures", 405, "use POST"},
