@@ -34,6 +34,9 @@ graph::InputValue read_input(const JsonValue& value, bool boolean) {
                  "false are for true/false inputs)");
     return value.boolean() ? 1.0 : 0.0;
   }
+  // A true/false input takes true or false, as the built-in patterns' do: 1 or "yes" would be
+  // words the format does not have for it.
+  if (boolean) return value.boolean() ? 1.0 : 0.0;
   if (j.is_number()) return value.number(-kAny, kAny);
   if (j.is_string()) return value.string();
   if (j.is_object()) {

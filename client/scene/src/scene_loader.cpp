@@ -235,8 +235,12 @@ MeshRequest read_mesh(const JsonValue& value, const std::filesystem::path& obj_d
   JsonObject obj(inner);
   const JsonValue path = obj.get("path");
   ObjFile file;
-  const std::filesystem::path named = path.string();
-  if (named.empty()) path.fail("must not be empty");
+  const std::string text = path.string();
+  if (text.empty()) path.fail("must not be empty");
+  // The file system reads a path up to its first NUL: the file opened would not be the one
+  // named.
+  if (text.find('\0') != std::string::npos) path.fail("must not hold a NUL character");
+  const std::filesystem::path named = text;
   file.path = named.is_absolute() ? named : obj_directory / named;
   file.normalize = obj.boolean("normalize", true);
   if (const auto crease = obj.find("crease_angle"))
@@ -321,7 +325,13 @@ void read_clip_plane(const JsonValue& value, Scene& scene,
   if (point) plane.offset = glm::dot(plane.normal, point->vec3(-kMaxCoordinate, kMaxCoordinate));
   if (offset) plane.offset = offset->number(-kMaxCoordinate, kMaxCoordinate);
   std::vector<std::size_t> targets;
-  if (const auto names = object.find("objects")) {
+  const auto names = object.find("objects");
+  if (names) {
+    // An empty list would read as "no object" but the absent key means "every object":
+    // neither may be guessed.
+    if (names->json().is_array() && names->json().empty()) {
+      names->fail("names no object: leave \"objects\" out to cut every object");
+    }
     for (const JsonValue& name : names->elements(scene.objects.size())) {
       const auto found = object_by_name.find(name.string());
       if (found == object_by_name.end()) name.fail("no object is named \"" + name.string() + "\"");
@@ -332,7 +342,7 @@ void read_clip_plane(const JsonValue& value, Scene& scene,
     }
   }
   object.reject_unknown_keys();
-  if (targets.empty()) {
+  if (!names) {
     for (SceneObject& target : scene.objects) target.clip_planes.push_back(plane);
   } else {
     for (std::size_t index : targets) scene.objects[index].clip_planes.push_back(plane);

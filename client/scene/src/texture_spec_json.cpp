@@ -68,13 +68,26 @@ NoiseBasis read_basis(JsonObject& object, NoiseBasis fallback) {
                : fallback;
 }
 
+// An octave number: any int goes on to validated(), which names the bound; one past an int's
+// range cannot be carried there, and is refused here with that same bound.
+int read_octave(JsonObject& object, const char* key, int fallback) {
+  const std::optional<JsonValue> found = object.find(key);
+  if (!found) return fallback;
+  const double value = found->number(kAnyLow, kAnyHigh);
+  if (value < kAnyIntLow || value > kAnyIntHigh) {
+    found->fail(format_number(value) + " is out of range: must be in [0, " +
+                std::to_string(SpecLimits::kMaxOctave) + "]");
+  }
+  return found->integer(kAnyIntLow, kAnyIntHigh);
+}
+
 FractalParams read_fractal(const std::optional<JsonValue>& value) {
   FractalParams f;
   if (!value) return f;
   JsonObject object(*value);
   f.scale = object.number("scale", f.scale, kAnyLow, kAnyHigh);
-  f.octave_min = object.integer("octave_min", f.octave_min, kAnyIntLow, kAnyIntHigh);
-  f.octave_max = object.integer("octave_max", f.octave_max, kAnyIntLow, kAnyIntHigh);
+  f.octave_min = read_octave(object, "octave_min", f.octave_min);
+  f.octave_max = read_octave(object, "octave_max", f.octave_max);
   f.basis = read_basis(object, f.basis);
   f.signed_octaves = object.boolean("signed_octaves", f.signed_octaves);
   object.reject_unknown_keys();

@@ -203,6 +203,7 @@ class TypeInference {
         if (input.name == d->name) check_input_type(node, def, *d, input.value, t, type);
       }
     }
+    check_vectors_alike(node, got);
     state_[i] = 2;
     types_[i] = type;
     return type;
@@ -225,6 +226,28 @@ class TypeInference {
       if (!from_constant) from_constant = t;
     }
     return from_constant.value_or(fallback);
+  }
+
+  // A node taking two vectors of either kind (dotproduct) takes two of one kind: vector3 and
+  // color3 do not mix. A constant [x, y, z] is either, as elsewhere.
+  static void check_vectors_alike(const Node& node,
+                                  const std::vector<std::pair<const InputDef*, ValueType>>& got) {
+    const std::pair<const InputDef*, ValueType>* first = nullptr;
+    for (const auto& entry : got) {
+      const InputValue* value = find_input(node, entry.first->name);
+      if (entry.first->slot != Slot::any_vector || value == nullptr ||
+          !std::holds_alternative<NodeRef>(*value)) {
+        continue;
+      }
+      if (first == nullptr) {
+        first = &entry;
+      } else if (entry.second != first->second) {
+        throw SpecError(input_field(node, entry.first->name),
+                        describe(*value) + " (" + type_name(entry.second) + ")",
+                        std::string("must be ") + type_name(first->second) + " like " +
+                            first->first->name + ": vector3 and color3 do not mix");
+      }
+    }
   }
 
   void check_input_type(const Node& node, const NodeDef& def, const InputDef& d,
@@ -267,7 +290,12 @@ class TypeInference {
       default:
         return;
     }
-    throw SpecError(input_field(node, d.name), describe(value) + " (" + type_name(got) + ")", need);
+    // A constant [x, y, z] has no kind of its own (vector3 or color3 alike): its shape is
+    // what the slot refuses.
+    const std::string kind = !is_ref && std::holds_alternative<glm::dvec3>(value)
+                                 ? std::string("three components")
+                                 : std::string(type_name(got));
+    throw SpecError(input_field(node, d.name), describe(value) + " (" + kind + ")", need);
   }
 
   const TextureGraph& graph_;

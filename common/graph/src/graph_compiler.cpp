@@ -388,6 +388,41 @@ int longest_chain(const Program& program) {
   return longest;
 }
 
+// Nodes on the longest chain from an output back along its inputs, every node counted (the
+// position and constants too), as the user wrote the graph: lowering may fold or share nodes,
+// which the bound on what a user writes must not depend on. The graph is acyclic by now.
+int longest_node_chain(const TextureGraph& graph, const NodeIndex& index) {
+  std::vector<int> depth(graph.nodes.size(), 0);    // 0: not yet known
+  std::vector<std::pair<std::size_t, bool>> stack;  // node, inputs pushed
+  int longest = 0;
+  for (const GraphOutput& output : graph.outputs) {
+    stack.emplace_back(index.at(output.node), false);
+    while (!stack.empty()) {
+      const auto [at, expanded] = stack.back();
+      stack.pop_back();
+      if (depth[at] != 0) continue;
+      const Node& node = graph.nodes[at];
+      int deepest = 0;
+      bool ready = true;
+      for (const NodeInput& input : node.inputs) {
+        const auto* ref = std::get_if<NodeRef>(&input.value);
+        if (ref == nullptr) continue;
+        const std::size_t from = index.at(ref->node);
+        if (depth[from] == 0) {
+          SOLTEX_DCHECK(!expanded);  // acyclic: its inputs are known once pushed
+          if (ready) stack.emplace_back(at, true);
+          ready = false;
+          stack.emplace_back(from, false);
+        }
+        deepest = std::max(deepest, depth[from]);
+      }
+      if (ready) depth[at] = deepest + 1;
+    }
+    longest = std::max(longest, depth[index.at(output.node)]);
+  }
+  return longest;
+}
+
 }  // namespace
 
 std::shared_ptr<const CompiledGraph> compile(TextureGraph graph) {
@@ -395,14 +430,14 @@ std::shared_ptr<const CompiledGraph> compile(TextureGraph graph) {
   const std::vector<ValueType> types = infer_types(graph, index);
   check_parameters(graph);
   check_outputs(graph, index, types);
+  if (const int chain = longest_node_chain(graph, index); chain > GraphLimits::kMaxDepth) {
+    throw SpecError(
+        "graph.nodes", "a chain of " + std::to_string(chain) + " nodes",
+        "at most " + std::to_string(GraphLimits::kMaxDepth) + " nodes on a chain from an output");
+  }
   Lowering lowering(graph, index, types);
   std::unique_ptr<Program> program = lowering.run();
   program->depth = longest_chain(*program);
-  if (program->depth > GraphLimits::kMaxDepth) {
-    throw SpecError("graph.nodes", "depth " + std::to_string(program->depth),
-                    "at most " + std::to_string(GraphLimits::kMaxDepth) +
-                        " nodes from an output to the position");
-  }
   if (program->cost_per_sample > GraphLimits::kMaxCostPerSample) {
     char value[64];
     std::snprintf(value, sizeof value, "estimated cost %.4g octaves per sample",

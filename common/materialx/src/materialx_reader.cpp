@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <iterator>
 #include <map>
 #include <pugixml.hpp>
 #include <sstream>
@@ -145,6 +146,12 @@ graph::InputValue input_value(const Document& doc, const pugi::xml_node& node,
   if (!value) doc.fail(offset, where + ": needs a value or a nodename");
   const std::string type = input.attribute("type").value();
   const std::string text = value.value();
+  constexpr std::string_view kInputTypes[] = {"",        "float",  "integer", "boolean",
+                                              "vector3", "color3", "string"};
+  if (std::find(std::begin(kInputTypes), std::end(kInputTypes), type) == std::end(kInputTypes)) {
+    doc.fail(offset, where + ": type " + quoted_text(type) +
+                         " is not supported (float, integer, boolean, vector3, color3, string)");
+  }
   if (type == "boolean") {
     if (!graph::takes_boolean(node.name(), input.attribute("name").value())) {
       doc.fail(offset, where + ": takes a number, not a boolean");

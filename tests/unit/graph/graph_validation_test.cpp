@@ -191,6 +191,47 @@ TEST(GraphValidation, OutputTypes) {
   EXPECT_EQ(error_of(opacity).bound(), "must be float");
 }
 
+// The depth bound counts every node on a chain as written, whatever it starts from (the
+// position, a constant) and whatever lowering makes of it.
+TEST(GraphValidation, TheDepthBoundCountsEveryNodeOnTheChain) {
+  for (const char* start : {"position", "constant"}) {
+    for (const int nodes : {GraphLimits::kMaxDepth, GraphLimits::kMaxDepth + 1}) {
+      std::vector<Node> chain{start == std::string("position")
+                                  ? node("n0", "position")
+                                  : node("n0", "constant", {{"value", glm::dvec3(0.5)}})};
+      for (int i = 1; i < nodes - 1; ++i) {
+        chain.push_back(
+            node("n" + std::to_string(i), "absval", {{"in", ref("n" + std::to_string(i - 1))}}));
+      }
+      chain.push_back(node("c", "convert", {{"in", ref(chain.back().name)}}, "color3"));
+      ASSERT_EQ(static_cast<int>(chain.size()), nodes);
+      if (nodes <= GraphLimits::kMaxDepth) {
+        EXPECT_NO_THROW(compile(grey(chain, "c"))) << start << ", " << nodes << " nodes";
+        continue;
+      }
+      const SpecError e = error_of(grey(chain, "c"));
+      EXPECT_EQ(e.value(), "a chain of " + std::to_string(nodes) + " nodes") << start;
+      EXPECT_EQ(e.bound(), "at most 64 nodes on a chain from an output") << start;
+    }
+  }
+}
+
+// dotproduct takes vectors of either kind, but two of one kind, as every other node does.
+TEST(GraphValidation, DotproductTakesTwoVectorsOfOneKind) {
+  const glm::dvec3 blue(0.0, 0.0, 1.0);
+  const auto graph_with = [&](InputValue in2) {
+    return grey({node("p", "position"), node("k", "constant", {{"value", blue}}, "color3"),
+                 node("d", "dotproduct", {{"in1", ref("p")}, {"in2", std::move(in2)}}),
+                 node("c", "convert", {{"in", ref("d")}}, "color3")},
+                "c");
+  };
+  const SpecError e = error_of(graph_with(ref("k")));
+  EXPECT_EQ(e.field(), "graph.nodes[d].in2");
+  EXPECT_EQ(e.bound(), "must be vector3 like in1: vector3 and color3 do not mix");
+  EXPECT_NO_THROW(compile(graph_with(blue)));  // a constant [x, y, z] is either kind
+  EXPECT_NO_THROW(compile(graph_with(ref("p"))));
+}
+
 TEST(GraphValidation, NodeCountDepthAndCostBounds) {
   std::vector<Node> chain{node("n0", "constant", {{"value", 0.5}})};
   for (int i = 1; i <= GraphLimits::kMaxDepth + 1; ++i) {
@@ -200,7 +241,7 @@ TEST(GraphValidation, NodeCountDepthAndCostBounds) {
   chain.push_back(node("c", "convert", {{"in", ref(chain.back().name)}}, "color3"));
   const SpecError depth = error_of(grey(chain, "c"));
   EXPECT_EQ(depth.field(), "graph.nodes");
-  EXPECT_NE(depth.value().find("depth"), std::string::npos);
+  EXPECT_NE(depth.value().find("a chain of"), std::string::npos) << depth.value();
 
   std::vector<Node> many;
   for (int i = 0; i <= GraphLimits::kMaxNodes; ++i) {

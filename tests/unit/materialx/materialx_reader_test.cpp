@@ -18,6 +18,7 @@ namespace {
 
 using ::testing::AllOf;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 MaterialxSource source(std::string text, std::string graph = "g", std::string output = "out") {
   return {std::move(text), "hand.mtlx", std::move(graph), std::move(output)};
@@ -128,6 +129,22 @@ TEST(MaterialxReader, AnInputIsAValueOrANodeOfItsOwnType) {
   constant_output.replace(constant_output.find(R"(nodename="c" />)"), 15, R"(value="1, 0, 0" />)");
   EXPECT_THAT(error_of(source(constant_output)),
               AllOf(HasSubstr("hand.mtlx:"), HasSubstr("\"out\" needs a nodename")));
+  // A type the graphs do not have is named as such, not as a value that fails to parse.
+  for (const std::string type : {"vector2", "filename", "color4"}) {
+    std::string unsupported = kNoise;
+    unsupported.replace(unsupported.find(R"(type="float" value="0.5" />)"), 27,
+                        R"(type=")" + type + R"(" value="1, 1" />)");
+    EXPECT_THAT(error_of(source(unsupported)),
+                AllOf(HasSubstr("hand.mtlx:"),
+                      HasSubstr("type \"" + type + "\" is not supported (float, integer")))
+        << type;
+  }
+  // A colour constant where a float belongs is described by its shape, not as a vector3.
+  std::string colour_amplitude = kNoise;
+  colour_amplitude.replace(colour_amplitude.find(R"(type="float" value="0.5" />)"), 27,
+                           R"(type="color3" value="1, 1, 1" />)");
+  EXPECT_THAT(error_of(source(colour_amplitude)),
+              AllOf(HasSubstr("(three components): must be"), Not(HasSubstr("(vector3)"))));
 }
 
 // Attributes that change what an input means are honoured or refused, never ignored.

@@ -94,6 +94,19 @@ TEST(GraphJson, ABooleanIsOnlyForATrueFalseInput) {
                  "inputs": {"fg": [1, 1, 1], "bg": [0, 0, 0], "mix": {"node": "c"}}}],
       "outputs": {"colour": "m"}}})");
   EXPECT_NO_THROW((void)texture_spec_from_json(flag, "scene.json", "texture"));
+  // ... and only true or false: a number or a word is refused, as the built-in checker's is.
+  for (const char* value : {"1", "0", "\"yes\""}) {
+    json other = flag;
+    other["graph"]["nodes"][0]["inputs"]["three_d"] = json::parse(value);
+    try {
+      (void)texture_spec_from_json(other, "scene.json", "texture");
+      ADD_FAILURE() << "accepted three_d = " << value;
+    } catch (const SceneError& e) {
+      EXPECT_EQ(e.field(), "texture.graph.nodes[0].inputs.three_d") << e.what();
+      EXPECT_NE(std::string(e.what()).find("expected true or false"), std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 }  // namespace

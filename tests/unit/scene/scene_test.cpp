@@ -265,6 +265,17 @@ INSTANTIATE_TEST_SUITE_P(
                  "objects[0].transform.rotate", "expected 3 numbers"},
         BadScene{"DoubleSidedNotABoolean", [](json& s) { first_object(s)["double_sided"] = "no"; },
                  "objects[0].double_sided", "expected true or false, found a string"},
+        BadScene{
+            "ObjPathWithANul",
+            [](json& s) {
+              first_object(s)["mesh"] = {{"obj", {{"path", std::string("quads.obj\0.txt", 14)}}}};
+            },
+            "objects[0].mesh.obj.path", "must not hold a NUL character"},
+        BadScene{"ClipPlaneNamingNoObject",
+                 [](json& s) {
+                   s["clip_planes"] = {{{"normal", {0, 1, 0}}, {"objects", json::array()}}};
+                 },
+                 "clip_planes[0].objects", "names no object"},
         BadScene{"SolidNotABoolean", [](json& s) { first_object(s)["solid"] = 1; },
                  "objects[0].solid", "expected true or false, found a number"},
         BadScene{"MissingMaterial", [](json& s) { first_object(s).erase("material"); },
@@ -339,6 +350,12 @@ INSTANTIATE_TEST_SUITE_P(
                    texture(s)["marble"]["turbulence"] = {{"octave_max", 40}};
                  },
                  "objects[0].material.texture.marble.turbulence.octave_max", "[0, 24]"},
+        BadScene{"SpecBoundPastAnInt",
+                 [](json& s) {
+                   texture(s)["marble"]["turbulence"] = {{"octave_max", 4294967301.0}};
+                 },
+                 "objects[0].material.texture.marble.turbulence.octave_max",
+                 "4294967301 is out of range: must be in [0, 24]"},
         BadScene{"RampBound",
                  [](json& s) {
                    texture(s)["ramp"] = {{"keys",
