@@ -72,8 +72,12 @@ float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept {
   return noise_kernels::fractal_sum_point(plan, p);
 }
 
-FractalRows::FractalRows(const OctavePlan& plan, std::span<const double> x)
-    : plan_(plan), size_(x.size()), octaves_(static_cast<std::size_t>(plan.count)) {
+FractalRows::FractalRows(const OctavePlan& plan, std::span<const double> x,
+                         std::size_t rows_at_once)
+    : plan_(plan),
+      size_(x.size()),
+      rows_at_once_(std::max<std::size_t>(rows_at_once, 1)),
+      octaves_(static_cast<std::size_t>(plan.count)) {
   const std::size_t points = noise_kernels::padded(size_);
   for (int k = 0; k < plan_.count; ++k) {
     OctaveColumns& columns = octaves_[static_cast<std::size_t>(k)];
@@ -108,7 +112,26 @@ FractalRows::FractalRows(const OctavePlan& plan, std::span<const double> x)
     while (columns.face_x.size() < noise_kernels::padded(columns.faces)) {
       columns.face_x.push_back(std::min(columns.face_x.back() + 1, kLatticePeriod));
     }
+    if (rows_at_once_ > 1) pack_rows(columns);
   }
+}
+
+void FractalRows::pack_rows(OctaveColumns& columns) const {
+  const std::size_t points = size_ * rows_at_once_;
+  columns.rows_frac.resize(noise_kernels::padded(points));
+  columns.rows_face_lo.resize(noise_kernels::padded(points));
+  for (std::size_t r = 0; r < rows_at_once_; ++r) {
+    const auto offset = static_cast<int32_t>(r * columns.faces);
+    for (std::size_t i = 0; i < size_; ++i) {
+      columns.rows_frac[r * size_ + i] = columns.frac[i];
+      columns.rows_face_lo[r * size_ + i] = columns.face_lo[i] + offset;
+    }
+  }
+  // As in one row: padding repeats the last point, so a final partial vector stays local.
+  std::fill(columns.rows_frac.begin() + static_cast<std::ptrdiff_t>(points),
+            columns.rows_frac.end(), columns.rows_frac[points - 1]);
+  std::fill(columns.rows_face_lo.begin() + static_cast<std::ptrdiff_t>(points),
+            columns.rows_face_lo.end(), columns.rows_face_lo[points - 1]);
 }
 
 void FractalRows::sum(double y, double z, std::span<float> out) const {
@@ -120,6 +143,23 @@ void FractalRows::sum(double y, double z, std::span<float> out) const {
     views[k] = {c.frac.data(), c.face_lo.data(), c.face_x.data(), c.faces};
   }
   noise_kernels::fractal_row({&plan_, views.data(), size_, y, z, out.data()});
+}
+
+void FractalRows::sum_rows(std::span<const double> y, std::span<const double> z,
+                           std::span<float> out) const {
+  SOLTEX_DCHECK(y.size() == z.size() && y.size() <= rows_at_once_);
+  SOLTEX_DCHECK(out.size() >= y.size() * size_);
+  if (y.size() == 1 || rows_at_once_ == 1) {
+    for (std::size_t r = 0; r < y.size(); ++r) sum(y[r], z[r], out.subspan(r * size_, size_));
+    return;
+  }
+  std::array<noise_kernels::OctaveColumnsView, SpecLimits::kMaxOctaveCount> views;
+  for (std::size_t k = 0; k < octaves_.size(); ++k) {
+    const OctaveColumns& c = octaves_[k];
+    views[k] = {c.rows_frac.data(), c.rows_face_lo.data(), c.face_x.data(), c.faces};
+  }
+  noise_kernels::fractal_rows(
+      {&plan_, views.data(), size_, y.size(), y.data(), z.data(), out.data()});
 }
 
 void fractal_sum_row(const OctavePlan& plan, std::span<const double> x, double y, double z,

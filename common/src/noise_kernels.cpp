@@ -178,54 +178,91 @@ void GradientPoints(const OctaveColumnsView& c, std::size_t n, const float* HWY_
   }
 }
 
-// One evaluated octave along the row, added into acc (padded length).
-void AddOctave(const OctavePlan& plan, const Octave& octave, const OctaveColumnsView& c,
-               std::size_t n, double y, double z, float* HWY_RESTRICT acc,
-               float* HWY_RESTRICT face_a, float* HWY_RESTRICT face_b) {
+// One octave's y-z noise on one row's faces: value noise into face_a, or gradient noise's
+// slope and offset into face_a and face_b.
+void OctaveFaces(const OctavePlan& plan, const Octave& octave, const OctaveColumnsView& c, double y,
+                 double z, float* HWY_RESTRICT face_a, float* HWY_RESTRICT face_b) {
   const NoiseTables& tables = noise_tables();
   const LatticeSplit sy = split_lattice_in_kernel(y * octave.frequency);
   const LatticeSplit sz = split_lattice_in_kernel(z * octave.frequency);
-  const float weight = octave.noise_weight, mean = octave.mean_term;
   if (plan.basis == NoiseBasis::value) {
     const RowHashes hashes = row_hashes(tables, sy.cell, sz.cell);
     WithFaceWidth(c.faces, [&](auto d) {
       ValueFaces(d, tables, c.face_x, c.faces, hashes, sy.frac, sz.frac, face_a);
     });
-    if (plan.absolute) {
-      ValuePoints<true>(c, n, face_a, weight, mean, acc);
-    } else {
-      ValuePoints<false>(c, n, face_a, weight, mean, acc);
-    }
     return;
   }
   const GradientRow row = gradient_row(tables, sy, sz);
   WithFaceWidth(c.faces,
                 [&](auto d) { GradientFaces(d, tables, c.face_x, c.faces, row, face_a, face_b); });
-  if (plan.absolute) {
+}
+
+// One octave finished at n points (padded length) from their faces, added into acc.
+void OctavePoints(const OctavePlan& plan, const Octave& octave, const OctaveColumnsView& c,
+                  std::size_t n, const float* HWY_RESTRICT face_a, const float* HWY_RESTRICT face_b,
+                  float* HWY_RESTRICT acc) {
+  const float weight = octave.noise_weight, mean = octave.mean_term;
+  if (plan.basis == NoiseBasis::value) {
+    if (plan.absolute) {
+      ValuePoints<true>(c, n, face_a, weight, mean, acc);
+    } else {
+      ValuePoints<false>(c, n, face_a, weight, mean, acc);
+    }
+  } else if (plan.absolute) {
     GradientPoints<true>(c, n, face_a, face_b, weight, mean, acc);
   } else {
     GradientPoints<false>(c, n, face_a, face_b, weight, mean, acc);
   }
 }
 
+// A faded octave's mean, added at n points (padded length).
+void AddMean(float mean_term, std::size_t n, float* HWY_RESTRICT acc) {
+  const DF df;
+  const VF mean = hn::Set(df, mean_term);
+  for (std::size_t i = 0; i < n; i += hn::Lanes(df)) {
+    hn::StoreU(hn::Add(hn::LoadU(df, acc + i), mean), df, acc + i);
+  }
+}
+
 // acc holds padded(size) entries, face_a and face_b padded(faces) + kPad for the widest octave.
 void FractalRowKernel(const RowRequest& r, float* HWY_RESTRICT acc, float* HWY_RESTRICT face_a,
                       float* HWY_RESTRICT face_b) {
-  const DF df;
   const std::size_t n = padded(r.size);
   std::fill(acc, acc + n, 0.0f);
   for (int k = 0; k < r.plan->count; ++k) {
     const Octave& octave = r.plan->octaves[k];
     if (octave.noise_weight == 0.0f) {
-      const VF mean = hn::Set(df, octave.mean_term);
-      for (std::size_t i = 0; i < n; i += hn::Lanes(df)) {
-        hn::StoreU(hn::Add(hn::LoadU(df, acc + i), mean), df, acc + i);
-      }
+      AddMean(octave.mean_term, n, acc);
       continue;
     }
-    AddOctave(*r.plan, octave, r.octaves[k], n, r.y, r.z, acc, face_a, face_b);
+    OctaveFaces(*r.plan, octave, r.octaves[k], r.y, r.z, face_a, face_b);
+    OctavePoints(*r.plan, octave, r.octaves[k], n, face_a, face_b, acc);
   }
   std::copy(acc, acc + r.size, r.out);
+}
+
+// As FractalRowKernel for r.rows rows at once: each row's faces at r * faces, then every
+// row's points in one pass. face_a and face_b hold rows * faces + kPad for the widest octave.
+void FractalRowsKernel(const RowsRequest& r, float* HWY_RESTRICT acc, float* HWY_RESTRICT face_a,
+                       float* HWY_RESTRICT face_b) {
+  const std::size_t n = padded(r.size * r.rows);
+  std::fill(acc, acc + n, 0.0f);
+  for (int k = 0; k < r.plan->count; ++k) {
+    const Octave& octave = r.plan->octaves[k];
+    if (octave.noise_weight == 0.0f) {
+      AddMean(octave.mean_term, n, acc);
+      continue;
+    }
+    const OctaveColumnsView& c = r.octaves[k];
+    // Ascending rows: a row's faces pass may write past its faces into the next row's,
+    // which that row's pass then overwrites.
+    for (std::size_t row = 0; row < r.rows; ++row) {
+      OctaveFaces(*r.plan, octave, c, r.y[row], r.z[row], face_a + row * c.faces,
+                  face_b + row * c.faces);
+    }
+    OctavePoints(*r.plan, octave, c, n, face_a, face_b, acc);
+  }
+  std::copy(acc, acc + r.size * r.rows, r.out);
 }
 
 float GradientFractalSumKernel(const OctavePlan& plan, const glm::dvec3& point) {
@@ -247,6 +284,7 @@ HWY_AFTER_NAMESPACE();
 namespace soltex::noise_kernels {
 
 HWY_EXPORT(FractalRowKernel);
+HWY_EXPORT(FractalRowsKernel);
 HWY_EXPORT(TargetOfKernel);
 HWY_EXPORT(GradientFractalSumKernel);
 HWY_EXPORT(FractalSumKernel);
@@ -274,6 +312,26 @@ void fractal_row(const RowRequest& request) {
     scratch.face_b.resize(face_room);
   }
   HWY_DYNAMIC_DISPATCH(FractalRowKernel)
+  (request, scratch.acc.data(), scratch.face_a.data(), scratch.face_b.data());
+}
+
+void fractal_rows(const RowsRequest& request) {
+  if (request.size == 0 || request.rows == 0) return;
+  std::size_t faces = 0;
+  for (int k = 0; k < request.plan->count; ++k) {
+    if (request.plan->octaves[k].noise_weight != 0.0f) {
+      faces = std::max(faces, request.octaves[k].faces);
+    }
+  }
+  thread_local RowScratch scratch;
+  const std::size_t points = padded(request.size * request.rows);
+  const std::size_t face_room = request.rows * faces + padded(faces) + kPad;
+  if (scratch.acc.size() < points) scratch.acc.resize(points);
+  if (scratch.face_a.size() < face_room) {
+    scratch.face_a.resize(face_room);
+    scratch.face_b.resize(face_room);
+  }
+  HWY_DYNAMIC_DISPATCH(FractalRowsKernel)
   (request, scratch.acc.data(), scratch.face_a.data(), scratch.face_b.data());
 }
 

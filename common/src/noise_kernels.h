@@ -53,6 +53,22 @@ struct RowRequest {
 // out[i] = fractal_sum(plan, (x[i], y, z)) bit for bit.
 void fractal_row(const RowRequest& request);
 
+// Rows that share their x columns, their points end to end in the lanes: the octave views'
+// frac and face_lo hold rows * size points, row r's reading faces r * faces on (face_x is one
+// row's).
+struct RowsRequest {
+  const OctavePlan* plan;
+  const OctaveColumnsView* octaves;
+  std::size_t size;  // points per row
+  std::size_t rows;
+  const double* y;  // rows entries
+  const double* z;  // rows entries
+  float* out;       // rows * size entries
+};
+
+// out[r * size + i] = fractal_sum(plan, (x[i], y[r], z[r])) bit for bit.
+void fractal_rows(const RowsRequest& request);
+
 // fractal_sum(plan, p) at one point, through run-time dispatch: one indirect call per point,
 // next to the 50-100 ns of a few octaves (measured in docs/PERFORMANCE.md, "Generic and native
 // builds"), so that a generic build runs the gradient basis one octave per vector lane and the

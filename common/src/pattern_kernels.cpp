@@ -140,6 +140,7 @@ struct RowScratch {
   std::vector<float> cube_red;
   std::vector<double> wood;                          // WoodRow's scratch, 3 per point of a row
   std::vector<fields::WoodRotation> wood_rotations;  // per y index: wood's rotation about y
+  std::vector<double> plane_y, plane_z;              // a plane's rows' y and z, for sum_rows
 };
 
 // One row's field (and the colour cube's colours, and marble's spreads) at (xs[i], y, z).
@@ -156,6 +157,7 @@ struct RowFields {
   double* wood_scratch;     // 3 * xs.size() doubles, for wood
   const fields::WoodRotation* wood_rotations;   // by the row's y index, for wood
   const fields::MarbleAxisFilter* marble_axis;  // for marble rippling along an axis
+  bool fractal_in_field;  // `field` already holds the row's fractal sums (a plane's at once)
 
   // The row at y index j, (xs[i], y, z), into the row's `field` and (for marble) `spread`.
   void operator()(int j, double y, double z, float* field, float* spread) const {
@@ -163,8 +165,11 @@ struct RowFields {
     const auto each_point = [&](auto&& fn) {
       for (std::size_t i = 0; i < nx; ++i) field[i] = fn(glm::dvec3(xs[i], y, z));
     };
+    const auto fractal_sums = [&] {
+      if (!fractal_in_field) fractal_rows->sum(y, z, {field, nx});
+    };
     const auto fractal_field = [&] {
-      fractal_rows->sum(y, z, {field, nx});
+      fractal_sums();
       for (std::size_t i = 0; i < nx; ++i) field[i] = fields::normalise_fractal(plan, field[i]);
     };
     std::visit(Overloaded{
@@ -196,7 +201,7 @@ struct RowFields {
                    [&](const NoiseParams&) { fractal_field(); },
                    [&](const TurbulenceParams&) { fractal_field(); },
                    [&](const MarbleParams& m) {
-                     fractal_rows->sum(y, z, {field, nx});
+                     fractal_sums();
                      if (m.ripple == Ripple::axis) {
                        MarbleAxisRow(m, *marble_axis, xs.data(), y, z, field, spread, nx);
                        return;
@@ -292,8 +297,15 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
   if (const auto* m = std::get_if<MarbleParams>(&spec.pattern)) {
     marble_axis = fields::marble_axis_filter(*m, box, plan.unresolved_variance);
   }
+  // The fractal patterns sum a plane's rows in one call (FractalRows::sum_rows).
+  const bool fractal_pattern =
+      plan.count > 0 && (std::holds_alternative<NoiseParams>(spec.pattern) ||
+                         std::holds_alternative<TurbulenceParams>(spec.pattern) ||
+                         std::holds_alternative<MarbleParams>(spec.pattern));
   std::optional<FractalRows> fractal_rows;
-  if (plan.count > 0) fractal_rows.emplace(plan, xs);
+  if (plan.count > 0) {
+    fractal_rows.emplace(plan, xs, fractal_pattern ? static_cast<std::size_t>(grid.count.y) : 1);
+  }
   const RowFields row_field{spec.pattern,
                             plan,
                             {source.wood_cos_tilt_z, source.wood_sin_tilt_z},
@@ -305,7 +317,8 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
                             scratch.cube_red.data(),
                             scratch.wood.data(),
                             scratch.wood_rotations.data(),
-                            &marble_axis};
+                            &marble_axis,
+                            fractal_pattern};
 
   const ChannelSet& wanted = spec.channels;
   // A fractal's spread is the grid's (one plan); marble's is each point's; the other fields
@@ -315,7 +328,18 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
   if (fractal_spread > 0.0f) std::fill_n(scratch.spread.begin(), n, fractal_spread);
   const bool has_spread = is_marble || fractal_spread > 0.0f;
   std::size_t row_start = 0;
+  const auto ny = static_cast<std::size_t>(grid.count.y);
+  scratch.plane_y.resize(ny);
+  scratch.plane_z.resize(ny);
   for (int k = 0; k < grid.count.z; ++k) {
+    if (fractal_pattern) {
+      for (std::size_t j = 0; j < ny; ++j) {
+        const glm::dvec3 row_origin = grid.point(0, static_cast<int>(j), k);
+        scratch.plane_y[j] = row_origin.y;
+        scratch.plane_z[j] = row_origin.z;
+      }
+      fractal_rows->sum_rows(scratch.plane_y, scratch.plane_z, {field + row_start, ny * nx});
+    }
     for (int j = 0; j < grid.count.y; ++j, row_start += nx) {
       const glm::dvec3 row_origin = grid.point(0, j, k);
       row_field(j, row_origin.y, row_origin.z, field + row_start,

@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <string>
@@ -116,6 +117,42 @@ TEST(NoiseKernels, EveryTargetMatchesTheScalarPathBitForBit) {
                 ASSERT_TRUE(same_bits(point, expected))
                     << "point " << hwy::TargetName(target) << " basis " << int(basis) << " x "
                     << x[i] << " y " << y << " z " << z << ": " << point << " != " << expected;
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+// Several rows in one call, their points end to end in the lanes: each row's sums are the
+// scalar path's, whatever the row count (a partial plane, rows of one point, rows whose
+// points reach many faces and so gather across rows).
+TEST(NoiseKernels, RowsAtOnceMatchTheScalarPathBitForBit) {
+  const std::vector<std::vector<double>> rows = rows_to_check();
+  const double yz[][2] = {{0.3, -2.7},  {-1e9, 1e9 + 0.5}, {kNan, 4.0},   {kInf, -kInf},
+                          {0.31, -2.7}, {0.3, -2.69},      {-7.25, 0.125}};
+  constexpr std::size_t kRows = std::size(yz);
+  for (const int64_t target : targets_to_run()) {
+    const test::ForcedTarget forced(target);
+    for (NoiseBasis basis : {NoiseBasis::value, NoiseBasis::gradient}) {
+      for (double width : {0.0, 0.05}) {
+        const OctavePlan plan = plan_octaves(params(basis, false, 0, 7), width);
+        for (const std::vector<double>& x : rows) {
+          const FractalRows fractal_rows(plan, x, kRows);
+          for (std::size_t count : {kRows, std::size_t{2}, std::size_t{1}}) {
+            std::vector<double> ys(count), zs(count);
+            for (std::size_t r = 0; r < count; ++r) ys[r] = yz[r][0], zs[r] = yz[r][1];
+            std::vector<float> out(count * x.size());
+            fractal_rows.sum_rows(ys, zs, out);
+            for (std::size_t r = 0; r < count; ++r) {
+              for (std::size_t i = 0; i < x.size(); ++i) {
+                const float expected = scalar_fractal_sum(plan, {x[i], ys[r], zs[r]});
+                ASSERT_TRUE(same_bits(out[r * x.size() + i], expected))
+                    << hwy::TargetName(target) << " basis " << int(basis) << " rows " << count
+                    << " row " << r << " x " << x[i] << ": " << out[r * x.size() + i]
+                    << " != " << expected;
               }
             }
           }

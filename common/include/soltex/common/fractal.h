@@ -81,14 +81,22 @@ float fractal_sum(const OctavePlan& plan, const glm::dvec3& p) noexcept;
 // y-z noise once per face and the finish once per point, in vector kernels chosen at run time
 // for the CPU (common/src/noise_kernels.h). The results equal fractal_sum at (x[i], y, z) bit
 // for bit on every target.
+//
+// sum_rows() evaluates up to `rows_at_once` rows in one call with their points end to end in
+// the vector lanes: a brick's row of 17 points fills one vector of 16 and one lane of the next,
+// and a whole plane of rows at once wastes no more than the last vector's tail.
 class FractalRows {
  public:
-  FractalRows(const OctavePlan& plan, std::span<const double> x);
+  FractalRows(const OctavePlan& plan, std::span<const double> x, std::size_t rows_at_once = 1);
 
   std::size_t size() const { return size_; }
 
   // out[i] = fractal_sum(plan, (x[i], y, z)); out.size() must be at least size().
   void sum(double y, double z, std::span<float> out) const;
+
+  // out[r * size() + i] = fractal_sum(plan, (x[i], y[r], z[r])) for r < y.size(), which must
+  // be at most rows_at_once and equal z.size(); out.size() at least y.size() * size().
+  void sum_rows(std::span<const double> y, std::span<const double> z, std::span<float> out) const;
 
  private:
   // Arrays padded with valid entries to the widest vector (see noise_kernels.h).
@@ -97,10 +105,16 @@ class FractalRows {
     std::vector<int32_t> face_lo;  // per point: its cell's left face; the right one is next
     std::vector<int32_t> face_x;   // per face: lattice x in [0, 256]
     std::size_t faces = 0;         // unpadded face count
+    // The same for rows_at_once rows end to end: row r's points read faces r * faces on.
+    std::vector<float> rows_frac;
+    std::vector<int32_t> rows_face_lo;
   };
+
+  void pack_rows(OctaveColumns& columns) const;
 
   OctavePlan plan_;
   std::size_t size_;
+  std::size_t rows_at_once_;
   std::vector<OctaveColumns> octaves_;
 };
 
