@@ -82,6 +82,34 @@ void ValueFaces(D df, const NoiseTables& tables, const int32_t* HWY_RESTRICT fac
   }
 }
 
+// ValueFaces for every row of a rows request, for an octave whose faces fit one vector: the
+// corner loads are shared by consecutive rows in one lattice cell in y and z (at the coarse
+// octaves, all of a plane's rows), and each row adds only its three lerps, as ValueFaces
+// makes them. Row r's faces go to face_a + r * faces, in ascending rows (each store may run
+// past its row's faces into the next row's, which that row's store then overwrites).
+template <class D>
+void ValueFacesRows(D df, const NoiseTables& tables, const OctaveColumnsView& c, double frequency,
+                    const RowsRequest& r, float* HWY_RESTRICT face_a) {
+  const FaceTable corner(df, tables.value_at.data(), c.face_x);
+  hn::Vec<D> c00 = hn::Zero(df), c10 = c00, c01 = c00, c11 = c00;
+  int32_t cell_y = 0, cell_z = 0;
+  for (std::size_t row = 0; row < r.rows; ++row) {
+    const LatticeSplit sy = split_lattice_in_kernel(r.y[row] * frequency);
+    const LatticeSplit sz = split_lattice_in_kernel(r.z[row] * frequency);
+    if (row == 0 || sy.cell != cell_y || sz.cell != cell_z) {
+      const RowHashes h = row_hashes(tables, sy.cell, sz.cell);
+      c00 = corner(h.h00);
+      c10 = corner(h.h10);
+      c01 = corner(h.h01);
+      c11 = corner(h.h11);
+      cell_y = sy.cell;
+      cell_z = sz.cell;
+    }
+    const auto vy = hn::Set(df, sy.frac), vz = hn::Set(df, sz.frac);
+    hn::StoreU(Lerp(Lerp(c00, c10, vy), Lerp(c01, c11, vy), vz), df, face_a + row * c.faces);
+  }
+}
+
 // gradient_cell_edges' face, one face per lane.
 template <class D>
 void GradientFaces(D df, const NoiseTables& tables, const int32_t* HWY_RESTRICT face_x,
@@ -98,6 +126,40 @@ void GradientFaces(D df, const NoiseTables& tables, const int32_t* HWY_RESTRICT 
                  perm(row.hashes.h11), face_slope, face_offset);
     hn::StoreU(face_slope, df, slope + f);
     hn::StoreU(face_offset, df, offset + f);
+  }
+}
+
+// GradientFaces for every row of a rows request, for an octave whose faces fit one vector,
+// the corners' hashes loaded once for consecutive rows in one lattice cell (as
+// ValueFacesRows); each row's slopes and offsets at r * faces.
+template <class D>
+void GradientFacesRows(D df, const NoiseTables& tables, const OctaveColumnsView& c,
+                       double frequency, const RowsRequest& r, float* HWY_RESTRICT slope,
+                       float* HWY_RESTRICT offset) {
+  const hn::RebindToSigned<D> di;
+  const FaceTable perm(di, tables.perm.data(), c.face_x);
+  hn::Vec<decltype(di)> p00 = hn::Zero(di), p10 = p00, p01 = p00, p11 = p00;
+  int32_t cell_y = 0, cell_z = 0;
+  for (std::size_t row = 0; row < r.rows; ++row) {
+    const LatticeSplit sy = split_lattice_in_kernel(r.y[row] * frequency);
+    const LatticeSplit sz = split_lattice_in_kernel(r.z[row] * frequency);
+    if (row == 0 || sy.cell != cell_y || sz.cell != cell_z) {
+      const RowHashes h = row_hashes(tables, sy.cell, sz.cell);
+      p00 = perm(h.h00);
+      p10 = perm(h.h10);
+      p01 = perm(h.h01);
+      p11 = perm(h.h11);
+      cell_y = sy.cell;
+      cell_z = sz.cell;
+    }
+    // gradient_row()'s fractions and fades, as GradientFaces takes them.
+    const GradientRowVec<D> v{hn::Set(df, sy.frac),       hn::Set(df, sy.frac - 1.0f),
+                              hn::Set(df, sz.frac),       hn::Set(df, sz.frac - 1.0f),
+                              hn::Set(df, fade(sy.frac)), hn::Set(df, fade(sz.frac))};
+    hn::Vec<D> face_slope, face_offset;
+    GradientFace(df, v, p00, p10, p01, p11, face_slope, face_offset);
+    hn::StoreU(face_slope, df, slope + row * c.faces);
+    hn::StoreU(face_offset, df, offset + row * c.faces);
   }
 }
 
@@ -254,9 +316,19 @@ void FractalRowsKernel(const RowsRequest& r, float* HWY_RESTRICT acc, float* HWY
       continue;
     }
     const OctaveColumnsView& c = r.octaves[k];
+    bool shared_corners = false;
+    WithFaceWidth(c.faces, [&](auto d) {
+      if (c.faces > hn::Lanes(d)) return;  // several face vectors: row by row below
+      if (r.plan->basis == NoiseBasis::value) {
+        ValueFacesRows(d, noise_tables(), c, octave.frequency, r, face_a);
+      } else {
+        GradientFacesRows(d, noise_tables(), c, octave.frequency, r, face_a, face_b);
+      }
+      shared_corners = true;
+    });
     // Ascending rows: a row's faces pass may write past its faces into the next row's,
     // which that row's pass then overwrites.
-    for (std::size_t row = 0; row < r.rows; ++row) {
+    for (std::size_t row = 0; row < r.rows && !shared_corners; ++row) {
       OctaveFaces(*r.plan, octave, c, r.y[row], r.z[row], face_a + row * c.faces,
                   face_b + row * c.faces);
     }

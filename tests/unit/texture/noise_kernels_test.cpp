@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <iterator>
@@ -131,9 +132,13 @@ TEST(NoiseKernels, EveryTargetMatchesTheScalarPathBitForBit) {
 // points reach many faces and so gather across rows).
 TEST(NoiseKernels, RowsAtOnceMatchTheScalarPathBitForBit) {
   const std::vector<std::vector<double>> rows = rows_to_check();
-  const double yz[][2] = {{0.3, -2.7},  {-1e9, 1e9 + 0.5}, {kNan, 4.0},   {kInf, -kInf},
-                          {0.31, -2.7}, {0.3, -2.69},      {-7.25, 0.125}};
-  constexpr std::size_t kRows = std::size(yz);
+  // Odd rows, then a plane's: 17 rows a step apart in y at one z, so that consecutive rows
+  // share their lattice cell at the coarse octaves and not at the fine ones.
+  std::vector<std::array<double, 2>> yz = {{0.3, -2.7},   {-1e9, 1e9 + 0.5}, {kNan, 4.0},
+                                           {kInf, -kInf}, {0.31, -2.7},      {0.3, -2.69},
+                                           {-7.25, 0.125}};
+  for (int j = 0; j < 17; ++j) yz.push_back({-0.4 + 0.0625 * j, 0.37});
+  const std::size_t kRows = yz.size();
   for (const int64_t target : targets_to_run()) {
     const test::ForcedTarget forced(target);
     for (NoiseBasis basis : {NoiseBasis::value, NoiseBasis::gradient}) {
@@ -141,9 +146,14 @@ TEST(NoiseKernels, RowsAtOnceMatchTheScalarPathBitForBit) {
         const OctavePlan plan = plan_octaves(params(basis, false, 0, 7), width);
         for (const std::vector<double>& x : rows) {
           const FractalRows fractal_rows(plan, x, kRows);
-          for (std::size_t count : {kRows, std::size_t{2}, std::size_t{1}}) {
+          for (std::size_t count : {kRows, std::size_t{17}, std::size_t{2}, std::size_t{1}}) {
+            // The last `count` rows: the plane's alone, or the odd rows before it too.
+            const std::size_t first = kRows - count;
             std::vector<double> ys(count), zs(count);
-            for (std::size_t r = 0; r < count; ++r) ys[r] = yz[r][0], zs[r] = yz[r][1];
+            for (std::size_t r = 0; r < count; ++r) {
+              ys[r] = yz[first + r][0];
+              zs[r] = yz[first + r][1];
+            }
             std::vector<float> out(count * x.size());
             fractal_rows.sum_rows(ys, zs, out);
             for (std::size_t r = 0; r < count; ++r) {
