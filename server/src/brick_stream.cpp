@@ -113,8 +113,8 @@ void BrickStream::on_read_done(bool ok) {
       reads_done_ = true;  // the client half-closed (or the call is over)
     } else if (draining_) {
       // A read started before the shutdown and completed after it: the message came after
-      // the shutdown began, so it is not read (its bricks are not owed).
-      ++requests_after_drain_;
+      // the shutdown began, so it is not read (its bricks are not owed), and no read follows.
+      request_after_drain_ = true;
       pump();
       return;
     } else {
@@ -232,7 +232,7 @@ std::size_t BrickStream::accept_request() {
                     "in the request's textures; an unused texture may have been evicted)");
       continue;
     }
-    const std::optional<BrickKey> key = admitted_key(k, texture->layout);
+    const std::optional<BrickKey> key = admitted_key(k, want.priority(), texture->layout);
     if (!key) continue;
     if (answer_from_cache(*key, now)) continue;
     WorkItem item;
@@ -265,7 +265,7 @@ bool BrickStream::first_in_request(const BrickKey& key) {
   return seen_set_.insert(key).second;
 }
 
-std::optional<BrickKey> BrickStream::admitted_key(const v1::BrickKey& k,
+std::optional<BrickKey> BrickStream::admitted_key(const v1::BrickKey& k, int32_t priority,
                                                   const BrickLayout& layout) {
   const StreamLimits& limits = context_.limits;
   if (k.level() > static_cast<uint32_t>(layout.coarsest_level())) {
@@ -291,8 +291,9 @@ std::optional<BrickKey> BrickStream::admitted_key(const v1::BrickKey& k,
                            static_cast<int64_t>(limits.max_queued_per_client);
   const bool stream_full = owed() >= limits.max_queued_per_stream;
   // Asked again while still queued: merged with the first ask (its priority raised), which
-  // takes no more room, so no queue bound refuses it.
-  if ((client_full || stream_full) && queue_.queued(key)) return key;
+  // takes no more room, so no queue bound refuses it. Merged here, under the queue's lock: a
+  // worker may take the key at any moment, and a later push would queue it again.
+  if ((client_full || stream_full) && queue_.merge(key, priority)) return std::nullopt;
   if (client_full) {
     refuse_over_queue_bound(k, "client " + lease_->usage().client + " has " +
                                    std::to_string(limits.max_queued_per_client) +
@@ -581,12 +582,11 @@ void BrickStream::pump() {
     finish = true;
   } else if (draining_ && idle) {
     finish = true;
-    status = grpc::Status(
-        grpc::StatusCode::UNAVAILABLE,
-        requests_after_drain_ == 0
-            ? "soltexd is shutting down; every brick asked for was sent"
-            : "soltexd is shutting down; every brick asked for before then was sent, and " +
-                  std::to_string(requests_after_drain_) + " later request(s) were not read");
+    status = grpc::Status(grpc::StatusCode::UNAVAILABLE,
+                          request_after_drain_
+                              ? "soltexd is shutting down; every brick asked for before then "
+                                "was sent, and what was sent since was not read"
+                              : "soltexd is shutting down; every brick asked for was sent");
   }
   if (finish) {
     finished_ = true;

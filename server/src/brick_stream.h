@@ -133,8 +133,10 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
 
   // All below: mutex_ held.
   std::size_t accept_request();  // returns how many keys were queued
-  // The key to queue or answer, or none: refused (an error added) or already in this request.
-  std::optional<BrickKey> admitted_key(const v1::BrickKey& k, const BrickLayout& layout);
+  // The key to queue or answer, or none: refused (an error added), already in this request, or
+  // merged with the same key still queued (at a queue bound, where a push could not be).
+  std::optional<BrickKey> admitted_key(const v1::BrickKey& k, int32_t priority,
+                                       const BrickLayout& layout);
   bool first_in_request(const BrickKey& key);  // false: the request named it before
   void register_textures();
   TexturePtr use_texture(uint64_t id);  // pinned for the stream's life; null: not registered
@@ -181,9 +183,9 @@ class BrickStream final : public WorkSource, public std::enable_shared_from_this
   bool reads_done_ = false;
   bool writing_ = false;
   bool finished_ = false;
-  bool draining_ = false;         // drain(): no more reads
-  int requests_after_drain_ = 0;  // messages that arrived after drain(), dropped unread
-  bool shutting_down_ = false;    // shut_down(): no more bricks
+  bool draining_ = false;             // drain(): no more reads
+  bool request_after_drain_ = false;  // a message arrived after drain(), dropped unread
+  bool shutting_down_ = false;        // shut_down(): no more bricks
   bool cancelled_ = false;
   // Keys of the request being accepted (a key wanted twice in one message is sent once): the
   // first few in a vector, all of them in the set past that. Both kept to reuse their memory.

@@ -293,7 +293,6 @@ void Daemon::finish_calls_within_grace() {
       std::chrono::duration<double>(config_.shutdown_grace_seconds));
   const auto now = std::chrono::system_clock::now();
   const auto cut = now + grace - std::min<std::chrono::milliseconds>(grace / 10, 500ms);
-  service_->drain_streams();
   std::mutex mutex;
   std::condition_variable calls_done;
   bool done = false;
@@ -326,6 +325,9 @@ void Daemon::shut_down() {
   if (watchdog_) watchdog_->stop();
   spdlog::info("shutting down: health NOT_SERVING, open streams get {} s to send what they owe",
                config_.shutdown_grace_seconds);
+  // Streams stop reading before health says so: a client that sees NOT_SERVING knows that
+  // nothing it sends from then on is read.
+  service_->drain_streams();
   server_->GetHealthCheckService()->SetServingStatus(false);
   if (http_) http_->stop_accepting();  // as gRPC takes no new calls during the grace
   finish_calls_within_grace();

@@ -246,16 +246,19 @@ void HttpRequestHandler::log_refusal(const std::string& client, const std::strin
 
 void HttpRequestHandler::answer_registration(Call& call, const std::string& body) {
   const v1::RegisterTextureRequest request = registration_from_json(body);
-  const TexturePin pin = register_texture(context_.registry, request, call.client);
+  // The handle's brick URLs must work on any replica, which reads ?spec= up to its bound:
+  // a registration whose spec would be longer is refused before it is registered.
+  const auto fits_a_url = [](const RegisteredTexture& texture) {
+    if (const std::size_t spec = registration_parameter(texture).size();
+        spec > kMaxSpecParameterBytes) {
+      throw HttpError{413, "the registration is " + std::to_string(spec) +
+                               " bytes as its brick URLs' ?spec=; at most " +
+                               std::to_string(kMaxSpecParameterBytes) +
+                               " fit in a URL: use fewer graph nodes, or register it over gRPC"};
+    }
+  };
+  const TexturePin pin = register_texture(context_.registry, request, call.client, fits_a_url);
   const nlohmann::json handle = handle_json(*pin.texture());
-  // The handle's brick URLs must work on any replica, which reads ?spec= up to its bound.
-  if (const std::size_t spec = handle["spec"].get_ref<const std::string&>().size();
-      spec > kMaxSpecParameterBytes) {
-    throw HttpError{413, "the registration is " + std::to_string(spec) +
-                             " bytes as its brick URLs' ?spec=; at most " +
-                             std::to_string(kMaxSpecParameterBytes) +
-                             " fit in a URL: use fewer graph nodes, or register it over gRPC"};
-  }
   HttpResponse response{http::status::ok, call.version};
   response.set(http::field::content_type, "application/json");
   response.set(http::field::cache_control, "no-store");

@@ -52,12 +52,12 @@ int brick_size_from(uint32_t size) {
 }  // namespace
 
 TexturePin register_texture(TextureRegistry& registry, const v1::RegisterTextureRequest& request,
-                            const std::string& client) {
+                            const std::string& client, const TextureRegistry::Check& check) {
   try {
     const TextureSpec spec = from_proto(request.spec());
     const Volume volume = from_proto(request.volume());
     const int brick_size = brick_size_from(request.brick_size());
-    return registry.register_texture(spec, volume, brick_size, mip_from(request), client);
+    return registry.register_texture(spec, volume, brick_size, mip_from(request), client, check);
   } catch (const SpecError& e) {
     throw RegistrationError(grpc::StatusCode::INVALID_ARGUMENT, e.what());
   } catch (const RegistryFull& e) {

@@ -25,7 +25,7 @@ class RegistrationError : public std::runtime_error {
 // Validates and registers one texture for `client`, whether it came as a RegisterTexture call
 // or inside a stream's BrickRequest, and returns it pinned. Throws RegistrationError.
 TexturePin register_texture(TextureRegistry& registry, const v1::RegisterTextureRequest& request,
-                            const std::string& client);
+                            const std::string& client, const TextureRegistry::Check& check = {});
 
 // The id register_texture() would give the texture, without registering it (or checking more
 // than the id needs). Throws RegistrationError.

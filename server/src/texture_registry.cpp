@@ -44,7 +44,7 @@ std::size_t TextureRegistry::charge_of(const RegisteredTexture& texture, const s
 
 TexturePin TextureRegistry::register_texture(const TextureSpec& spec, const Volume& volume,
                                              int brick_size, const MipSettings& mip,
-                                             const std::string& client) {
+                                             const std::string& client, const Check& check) {
   if (mip.mode == MipMode::supersampled &&
       (mip.supersample < 1 || mip.supersample > kMaxSupersample)) {
     throw SpecError("supersample", std::to_string(mip.supersample),
@@ -54,6 +54,7 @@ TexturePin TextureRegistry::register_texture(const TextureSpec& spec, const Volu
   auto texture = std::make_shared<const RegisteredTexture>(
       RegisteredTexture{texture_id(spec, volume, brick_size, mip), TextureEvaluator(spec),
                         BrickLayout(volume, brick_size), mip});
+  if (check) check(*texture);
   const std::size_t bytes = charge_of(*texture, client);
   std::lock_guard lock(mutex_);
   if (auto it = textures_.find(texture->id); it != textures_.end()) {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <list>
 #include <memory>
 #include <mutex>
@@ -96,8 +97,12 @@ class TextureRegistry {
   // same texture registered before; throws RegistryFull when every texture that could make
   // room is pinned. The texture comes pinned (before anything else could evict it): a caller
   // that does not use it lets go of the pin, which leaves it the most recently used.
+  // `check`, when given, sees the texture before it is registered and may refuse it by
+  // throwing, which leaves the registry as it was.
+  using Check = std::function<void(const RegisteredTexture&)>;
   TexturePin register_texture(const TextureSpec& spec, const Volume& volume, int brick_size,
-                              const MipSettings& mip, const std::string& client);
+                              const MipSettings& mip, const std::string& client,
+                              const Check& check = {});
 
   // A pin on the texture, or an empty pin when it is not registered (or was evicted).
   TexturePin pin(uint64_t id);

@@ -6,14 +6,7 @@ namespace soltex::server {
 
 WorkQueue::Push WorkQueue::push(WorkItem item) {
   std::lock_guard lock(mutex_);
-  if (auto it = by_key_.find(item.key); it != by_key_.end()) {
-    WorkItem updated = *it->second;
-    if (item.priority <= updated.priority) return Push::updated;
-    updated.priority = item.priority;
-    items_.erase(it->second);
-    it->second = items_.insert(std::move(updated)).first;
-    return Push::updated;
-  }
+  if (merge_locked(item.key, item.priority)) return Push::updated;
   item.sequence = next_sequence_++;
   const BrickKey key = item.key;
   by_key_.emplace(key, items_.insert(std::move(item)).first);
@@ -54,9 +47,20 @@ void WorkQueue::finished() {
   if (taken_ > 0) --taken_;
 }
 
-bool WorkQueue::queued(const BrickKey& key) const {
+bool WorkQueue::merge(const BrickKey& key, int32_t priority) {
   std::lock_guard lock(mutex_);
-  return by_key_.contains(key);
+  return merge_locked(key, priority);
+}
+
+bool WorkQueue::merge_locked(const BrickKey& key, int32_t priority) {
+  const auto it = by_key_.find(key);
+  if (it == by_key_.end()) return false;
+  if (priority <= it->second->priority) return true;
+  WorkItem updated = *it->second;
+  updated.priority = priority;
+  items_.erase(it->second);
+  it->second = items_.insert(std::move(updated)).first;
+  return true;
 }
 
 std::size_t WorkQueue::size() const {

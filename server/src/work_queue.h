@@ -42,7 +42,9 @@ class WorkQueue {
   // A taken item goes back unmade, in its old place (its sequence); if its key was asked for
   // again meanwhile, the queued one stands. Returns whether it was queued again.
   bool give_back(WorkItem item);
-  bool queued(const BrickKey& key) const;
+  // A key still queued takes `priority` if higher (as push() does) and true is returned;
+  // false, and nothing queued, when it is not queued.
+  bool merge(const BrickKey& key, int32_t priority);
   std::size_t size() const;         // queued
   std::size_t taken() const;        // taken and not finished
   std::size_t outstanding() const;  // queued + taken, read together
@@ -58,6 +60,8 @@ class WorkQueue {
     }
   };
   using Set = std::set<WorkItem, Order>;
+
+  bool merge_locked(const BrickKey& key, int32_t priority);
 
   mutable std::mutex mutex_;
   Set items_;

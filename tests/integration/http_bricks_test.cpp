@@ -324,11 +324,20 @@ TEST(HttpBricks, EveryHandleGivenOutFitsItsUrlBound) {
   EXPECT_EQ(brick.status, 200) << brick.body;
   EXPECT_EQ(brick.body, http_request(first.http_port(), "GET", url).body);
 
+  const auto registered = [&] {
+    const std::string page = testing::metrics(first);
+    const std::string name = "\nsoltex_textures_registered ";
+    const std::size_t at = page.find(name);
+    return at == std::string::npos ? -1 : std::stoi(page.substr(at + name.size()));
+  };
+  const int before = registered();
   const HttpReply large =
       http_request(first.http_port(), "POST", "/v1/textures", {}, graph_registration(120));
   EXPECT_EQ(large.status, 413) << large.body;
   EXPECT_NE(large.body.find("at most 12288"), std::string::npos) << large.body;
   EXPECT_NE(large.body.find("register it over gRPC"), std::string::npos) << large.body;
+  EXPECT_EQ(registered(), before) << "the refused registration took a registry place";
+  EXPECT_GE(before, 1);
 }
 
 TEST(HttpBricks, BodiesOverTheLimitAreRefused) {
