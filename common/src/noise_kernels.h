@@ -14,6 +14,9 @@
 //   points: one point per lane, gathering its cell's two faces and finishing along x.
 // A point in the cell whose left face is face f has its right face at f + 1: the face list is
 // built that way, so a point needs one index, and adjacent cells share the face between them.
+// fractal_rows() runs a grid plane's rows together: their faces one row after another (rows
+// in one lattice cell in y and z load their corners once), then one points pass over all of
+// them, so a row of 17 points does not leave most of a second vector empty.
 // Every target executes the scalar path's operations in the scalar path's order, so all give
 // the bits fractal_sum gives.
 // How a single-point entry point calls its kernel, in a file compiled under
