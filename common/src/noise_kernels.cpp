@@ -82,32 +82,47 @@ void ValueFaces(D df, const NoiseTables& tables, const int32_t* HWY_RESTRICT fac
   }
 }
 
-// ValueFaces for every row of a rows request, for an octave whose faces fit one vector: the
-// corner loads are shared by consecutive rows in one lattice cell in y and z (at the coarse
-// octaves, all of a plane's rows), and each row adds only its three lerps, as ValueFaces
-// makes them. Row r's faces go to face_a + r * faces, in ascending rows (each store may run
-// past its row's faces into the next row's, which that row's store then overwrites).
-template <class D>
-void ValueFacesRows(D df, const NoiseTables& tables, const OctaveColumnsView& c, double frequency,
-                    const RowsRequest& r, float* HWY_RESTRICT face_a) {
-  const FaceTable corner(df, tables.value_at.data(), c.face_x);
-  hn::Vec<D> c00 = hn::Zero(df), c10 = c00, c01 = c00, c11 = c00;
+// Walks a rows request's rows in order: load(hashes) for the first row and for each row whose
+// lattice cell in y or z differs from the row before's, then each_row(row, y split, z split).
+// Consecutive rows in one cell (at the coarse octaves, all of a plane's rows) share what load
+// made from the cell's corner hashes.
+template <class Load, class EachRow>
+HWY_INLINE void RowsByCell(const NoiseTables& tables, const RowsRequest& r, double frequency,
+                           const Load& load, const EachRow& each_row) {
   int32_t cell_y = 0, cell_z = 0;
   for (std::size_t row = 0; row < r.rows; ++row) {
     const LatticeSplit sy = split_lattice_in_kernel(r.y[row] * frequency);
     const LatticeSplit sz = split_lattice_in_kernel(r.z[row] * frequency);
     if (row == 0 || sy.cell != cell_y || sz.cell != cell_z) {
-      const RowHashes h = row_hashes(tables, sy.cell, sz.cell);
-      c00 = corner(h.h00);
-      c10 = corner(h.h10);
-      c01 = corner(h.h01);
-      c11 = corner(h.h11);
+      load(row_hashes(tables, sy.cell, sz.cell));
       cell_y = sy.cell;
       cell_z = sz.cell;
     }
-    const auto vy = hn::Set(df, sy.frac), vz = hn::Set(df, sz.frac);
-    hn::StoreU(Lerp(Lerp(c00, c10, vy), Lerp(c01, c11, vy), vz), df, face_a + row * c.faces);
+    each_row(row, sy, sz);
   }
+}
+
+// ValueFaces for every row of a rows request, for an octave whose faces fit one vector: the
+// corners loaded once per cell (RowsByCell), each row's three lerps as ValueFaces makes them.
+// Row r's faces go to face_a + r * faces, in ascending rows (each store may run past its
+// row's faces into the next row's, which that row's store then overwrites).
+template <class D>
+void ValueFacesRows(D df, const NoiseTables& tables, const OctaveColumnsView& c, double frequency,
+                    const RowsRequest& r, float* HWY_RESTRICT face_a) {
+  const FaceTable corner(df, tables.value_at.data(), c.face_x);
+  hn::Vec<D> c00 = hn::Zero(df), c10 = c00, c01 = c00, c11 = c00;
+  RowsByCell(
+      tables, r, frequency,
+      [&](const RowHashes& h) {
+        c00 = corner(h.h00);
+        c10 = corner(h.h10);
+        c01 = corner(h.h01);
+        c11 = corner(h.h11);
+      },
+      [&](std::size_t row, const LatticeSplit& sy, const LatticeSplit& sz) {
+        const auto vy = hn::Set(df, sy.frac), vz = hn::Set(df, sz.frac);
+        hn::StoreU(Lerp(Lerp(c00, c10, vy), Lerp(c01, c11, vy), vz), df, face_a + row * c.faces);
+      });
 }
 
 // gradient_cell_edges' face, one face per lane.
@@ -129,9 +144,9 @@ void GradientFaces(D df, const NoiseTables& tables, const int32_t* HWY_RESTRICT 
   }
 }
 
-// GradientFaces for every row of a rows request, for an octave whose faces fit one vector,
-// the corners' hashes loaded once for consecutive rows in one lattice cell (as
-// ValueFacesRows); each row's slopes and offsets at r * faces.
+// GradientFaces for every row of a rows request, for an octave whose faces fit one vector:
+// the corners' hashes loaded once per cell (RowsByCell); each row's slopes and offsets at
+// r * faces.
 template <class D>
 void GradientFacesRows(D df, const NoiseTables& tables, const OctaveColumnsView& c,
                        double frequency, const RowsRequest& r, float* HWY_RESTRICT slope,
@@ -139,28 +154,24 @@ void GradientFacesRows(D df, const NoiseTables& tables, const OctaveColumnsView&
   const hn::RebindToSigned<D> di;
   const FaceTable perm(di, tables.perm.data(), c.face_x);
   hn::Vec<decltype(di)> p00 = hn::Zero(di), p10 = p00, p01 = p00, p11 = p00;
-  int32_t cell_y = 0, cell_z = 0;
-  for (std::size_t row = 0; row < r.rows; ++row) {
-    const LatticeSplit sy = split_lattice_in_kernel(r.y[row] * frequency);
-    const LatticeSplit sz = split_lattice_in_kernel(r.z[row] * frequency);
-    if (row == 0 || sy.cell != cell_y || sz.cell != cell_z) {
-      const RowHashes h = row_hashes(tables, sy.cell, sz.cell);
-      p00 = perm(h.h00);
-      p10 = perm(h.h10);
-      p01 = perm(h.h01);
-      p11 = perm(h.h11);
-      cell_y = sy.cell;
-      cell_z = sz.cell;
-    }
-    // gradient_row()'s fractions and fades, as GradientFaces takes them.
-    const GradientRowVec<D> v{hn::Set(df, sy.frac),       hn::Set(df, sy.frac - 1.0f),
-                              hn::Set(df, sz.frac),       hn::Set(df, sz.frac - 1.0f),
-                              hn::Set(df, fade(sy.frac)), hn::Set(df, fade(sz.frac))};
-    hn::Vec<D> face_slope, face_offset;
-    GradientFace(df, v, p00, p10, p01, p11, face_slope, face_offset);
-    hn::StoreU(face_slope, df, slope + row * c.faces);
-    hn::StoreU(face_offset, df, offset + row * c.faces);
-  }
+  RowsByCell(
+      tables, r, frequency,
+      [&](const RowHashes& h) {
+        p00 = perm(h.h00);
+        p10 = perm(h.h10);
+        p01 = perm(h.h01);
+        p11 = perm(h.h11);
+      },
+      [&](std::size_t row, const LatticeSplit& sy, const LatticeSplit& sz) {
+        // gradient_row()'s fractions and fades, as GradientFaces takes them.
+        const GradientRowVec<D> v{hn::Set(df, sy.frac),       hn::Set(df, sy.frac - 1.0f),
+                                  hn::Set(df, sz.frac),       hn::Set(df, sz.frac - 1.0f),
+                                  hn::Set(df, fade(sy.frac)), hn::Set(df, fade(sz.frac))};
+        hn::Vec<D> face_slope, face_offset;
+        GradientFace(df, v, p00, p10, p01, p11, face_slope, face_offset);
+        hn::StoreU(face_slope, df, slope + row * c.faces);
+        hn::StoreU(face_offset, df, offset + row * c.faces);
+      });
 }
 
 // Runs a face pass on vectors no wider than the face count needs: a row's coarse octaves touch
