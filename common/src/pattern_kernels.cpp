@@ -157,7 +157,6 @@ struct RowFields {
   double* wood_scratch;     // 3 * xs.size() doubles, for wood
   const fields::WoodRotation* wood_rotations;   // by the row's y index, for wood
   const fields::MarbleAxisFilter* marble_axis;  // for marble rippling along an axis
-  bool fractal_in_field;  // `field` already holds the row's fractal sums (a plane's at once)
 
   // The row at y index j, (xs[i], y, z), into the row's `field` and (for marble) `spread`.
   void operator()(int j, double y, double z, float* field, float* spread) const {
@@ -165,11 +164,9 @@ struct RowFields {
     const auto each_point = [&](auto&& fn) {
       for (std::size_t i = 0; i < nx; ++i) field[i] = fn(glm::dvec3(xs[i], y, z));
     };
-    const auto fractal_sums = [&] {
-      if (!fractal_in_field) fractal_rows->sum(y, z, {field, nx});
-    };
+    // The fractal patterns' `field` holds the row's sums already: EvaluateGridKernel sums a
+    // plane's rows at once (FractalRows::sum_rows).
     const auto fractal_field = [&] {
-      fractal_sums();
       for (std::size_t i = 0; i < nx; ++i) field[i] = fields::normalise_fractal(plan, field[i]);
     };
     std::visit(Overloaded{
@@ -201,7 +198,6 @@ struct RowFields {
                    [&](const NoiseParams&) { fractal_field(); },
                    [&](const TurbulenceParams&) { fractal_field(); },
                    [&](const MarbleParams& m) {
-                     fractal_sums();
                      if (m.ripple == Ripple::axis) {
                        MarbleAxisRow(m, *marble_axis, xs.data(), y, z, field, spread, nx);
                        return;
@@ -303,9 +299,7 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
                          std::holds_alternative<TurbulenceParams>(spec.pattern) ||
                          std::holds_alternative<MarbleParams>(spec.pattern));
   std::optional<FractalRows> fractal_rows;
-  if (plan.count > 0) {
-    fractal_rows.emplace(plan, xs, fractal_pattern ? static_cast<std::size_t>(grid.count.y) : 1);
-  }
+  if (fractal_pattern) fractal_rows.emplace(plan, xs, static_cast<std::size_t>(grid.count.y));
   const RowFields row_field{spec.pattern,
                             plan,
                             {source.wood_cos_tilt_z, source.wood_sin_tilt_z},
@@ -317,8 +311,7 @@ HWY_FLATTEN void EvaluateGridKernel(const PatternSource& source, const Grid& gri
                             scratch.cube_red.data(),
                             scratch.wood.data(),
                             scratch.wood_rotations.data(),
-                            &marble_axis,
-                            fractal_pattern};
+                            &marble_axis};
 
   const ChannelSet& wanted = spec.channels;
   // A fractal's spread is the grid's (one plan); marble's is each point's; the other fields

@@ -127,21 +127,29 @@ std::string with_source(const CLI::App& app, const CLI::ParseError& error, int a
   return with_value_source(app, message, argc, argv);
 }
 
-// Where `option`'s value came from when the command line did not give it: "from the
-// environment variable X", "from the config file F", both when either could have, or "".
-std::string value_source(const CLI::Option& option, const std::string& config_file) {
+// The option's environment variable when it is set (CLI11 leaves an empty one unread), else
+// nullptr.
+const char* set_variable(const CLI::Option& option) {
   const std::string& variable = option.get_envname();
-  // CLI11 leaves an empty variable unread.
   const char* set = variable.empty() ? nullptr : std::getenv(variable.c_str());
-  const bool from_environment = set != nullptr && *set != '\0';
-  // CLI11 reads a config file's value over the environment's: a value unlike the variable's
-  // came from the file, and one like it may be taken as the variable's.
+  return set != nullptr && *set != '\0' ? set : nullptr;
+}
+
+// Whether the option holds its set variable's value. CLI11 reads a config file's value over
+// the environment's: a value unlike the variable's came from the file, and one like it may be
+// taken as the variable's.
+bool holds_variable(const CLI::Option& option, const char* set) {
   const std::vector<std::string>& results = option.results();
-  if (from_environment && !config_file.empty() &&
-      !(results.size() == 1 && results.front() == set)) {
-    return "from the config file " + config_file;
+  return set != nullptr && results.size() == 1 && results.front() == set;
+}
+
+// Where `option`'s value came from when the command line did not give it: "from the
+// environment variable X", "from the config file F", or "".
+std::string value_source(const CLI::Option& option, const std::string& config_file) {
+  const char* set = set_variable(option);
+  if (set != nullptr && (config_file.empty() || holds_variable(option, set))) {
+    return "from the environment variable " + option.get_envname();
   }
-  if (from_environment) return "from the environment variable " + variable;
   if (!config_file.empty() && option.count() > 0) return "from the config file " + config_file;
   return {};
 }
@@ -196,11 +204,7 @@ std::string with_value_source(const CLI::App& app, const std::string& message, i
 }
 
 bool value_from_environment(const CLI::Option& option, int argc, char** argv) {
-  const std::string& variable = option.get_envname();
-  const char* set = variable.empty() ? nullptr : std::getenv(variable.c_str());
-  if (set == nullptr || *set == '\0' || on_command_line(option, argc, argv)) return false;
-  const std::vector<std::string>& results = option.results();
-  return results.size() == 1 && results.front() == set;
+  return holds_variable(option, set_variable(option)) && !on_command_line(option, argc, argv);
 }
 
 bool on_command_line(const CLI::Option& option, int argc, char** argv) {
