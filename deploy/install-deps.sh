@@ -27,6 +27,7 @@ packages=(
   python3-matplotlib                      # soltex-bench accuracy's plot (client/bench/plot_accuracy.py)
   libmeshoptimizer-dev                    # mesh ordering and clean-up (client/scene)
   libhwy-dev                              # Highway: SIMD kernels chosen at run time
+  libjemalloc-dev                         # jemalloc: the streaming programs' allocator (common/allocator)
   libpugixml-dev                          # MaterialX documents (XML)
   chromium                                # the web viewer's test in a real (headless) browser
 )

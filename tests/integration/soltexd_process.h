@@ -26,6 +26,7 @@ class SoltexdProcess {
   int grpc_port() const { return grpc_port_; }
   int metrics_port() const { return metrics_port_; }
   int http_port() const { return http_port_; }  // 0 without --http-listen
+  pid_t pid() const { return pid_; }            // for reading /proc/PID; -1 once it has exited
 
   // Sends SIGTERM and returns the exit status (or -signal if killed), waiting up to 30 s.
   int terminate();

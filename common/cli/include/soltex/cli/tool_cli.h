@@ -78,7 +78,9 @@ std::string environment_name(const std::string& long_name);
 // - fixed glibc malloc thresholds, so that freed memory stays in the process. By default glibc
 //   serves large blocks with mmap and gives the free top of a heap back to the kernel; gRPC's
 //   message and socket buffers (tens of KB, made and freed per message) then cost a page fault
-//   per 4 KB on every message;
+//   per 4 KB on every message. These matter where the program runs on glibc's malloc: a build
+//   without jemalloc (common/allocator) or a sanitizer build; with jemalloc they set an
+//   allocator nothing calls;
 // - no lock-order tracking in abseil's mutexes, which gRPC takes several times per message:
 //   Debian's abseil tracks the order for deadlock detection on every acquisition unless told
 //   not to.
